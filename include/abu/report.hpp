@@ -1,0 +1,32 @@
+// The output formats of an analysis: the equilibria CSV / JSON / table and the sweep
+// CSV. Every file starts with the provenance header (io.hpp) and documents its columns
+// in comment lines; numbers are in shortest round-trip form, states in SI in the state
+// order of model.md §2, eigenvalues in 1/s.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "abu/scan.hpp"
+
+namespace abu {
+
+/// Column documentation shared by the CSV files.
+std::string_view equilibrium_columns_doc();
+
+/// `family,q1,q2,beta1,beta2,residual,spectral_abscissa,stable,re1,im1,...,re8,im8`.
+std::string equilibria_csv(const Analysis& a, std::string_view header);
+std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
+                            const Params& p);
+std::string equilibria_table(const Analysis& a, const Params& p);
+
+/// Long format, one row per equilibrium per value, ordered by family, member, value so
+/// that each member of a family is one contiguous series:
+/// `step,<param>,family,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,re1,...,im8`.
+std::string sweep_csv(const SweepResult& s, std::string_view header);
+
+/// Warnings for the user (stderr): equilibria whose polish or spectrum did not
+/// converge, ill-conditioned spectra; `where` says at which parameter value.
+std::string analysis_warnings(const Analysis& a, std::string_view where);
+
+}  // namespace abu

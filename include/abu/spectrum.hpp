@@ -1,0 +1,79 @@
+// Eigenvalues of the linearization at an equilibrium, each accurate relative to its own
+// modulus, with a condition number, an error estimate and a stability verdict.
+//
+// Why not just QR on J: with coulomb friction the spectrum spans up to 16 orders of
+// magnitude (model.md §8). A dense QR in double has absolute errors ~ eps ||J||, which
+// can flip the sign of the slow ball modes that decide stability. The method here
+// (SpectrumMethod::refined):
+//
+//  1. starting values from two balanced double-precision QRs: of J (accurate for the
+//     large eigenvalues) and of the structured inverse
+//        J^-1 = [[-K^-1 C, -K^-1 A], [I, 0]]
+//     (accurate for the small ones); each eigenvalue is taken from the one whose
+//     error bound eps ||.|| is smaller relative to it;
+//  2. Newton on the quadratic eigenproblem T(lambda) x = (lambda^2 A + lambda C + K) x = 0
+//     with a bordered 5x5 system in long double, from A, C, K assembled in long double;
+//  3. for each eigenvalue the componentwise backward error
+//        eta = max_i |T x|_i / ((|lambda|^2 |A| + |lambda| |C| + |K|) |x|)_i
+//     and the componentwise condition number (Higham & Tisseur)
+//        cond = y* (|lambda|^2 |A| + |lambda| |C| + |K|) |x| / (|lambda| |y* T'(lambda) x|),
+//     whose product bounds the relative error to first order.
+//
+// Stability: eigenvalue k is on the imaginary axis ("marginal") when
+//     |Re lambda_k| <= 8 cond_k |lambda_k| (eta_k + 2^-53),
+// i.e. within eight times the first-order change that the computation's backward error
+// plus one rounding of every matrix entry to double can cause; unstable above, stable
+// below. The equilibrium is unstable if any eigenvalue is, else marginal if any is,
+// else stable.
+//
+//   abu::Spectrum sp = abu::equilibrium_spectrum(p, equilibrium);
+//   if (sp.stability == abu::Stability::stable) ...
+#pragma once
+
+#include <array>
+#include <complex>
+#include <string_view>
+
+#include "abu/equilibria.hpp"
+#include "abu/model.hpp"
+
+namespace abu {
+
+enum class Stability { stable, unstable, marginal };
+std::string_view to_string(Stability s);
+
+/// How eigenvalues are computed; `refined` is the analyzer's, the others exist for the
+/// benchmark's speed-against-error comparison.
+enum class SpectrumMethod {
+  dense_qr,    ///< QR of the balanced J in double (what numpy.linalg.eigvals does)
+  structured,  ///< QR of J and of the structured J^-1 in double, best of both
+  refined,     ///< structured + long-double Newton on the quadratic eigenproblem
+};
+std::string_view to_string(SpectrumMethod m);
+
+struct Spectrum {
+  static constexpr int size = 8;
+  /// Sorted by real part descending, then imaginary part descending [1/s].
+  std::array<std::complex<double>, size> eigenvalues{};
+  std::array<double, size> error{};      ///< estimated absolute error [1/s]
+  std::array<double, size> condition{};  ///< relative componentwise condition number
+  std::array<bool, size> on_axis{};      ///< within the marginal band (see above)
+  double abscissa = 0.0;                 ///< spectral abscissa max Re lambda [1/s]
+  Stability stability = Stability::marginal;
+  int n_unstable = 0;  ///< eigenvalues right of the band
+  int n_marginal = 0;  ///< eigenvalues inside the band
+  /// Some eigenvalue moves by more than 1e-8 of its modulus when the matrix entries
+  /// are rounded to double: the inputs themselves do not determine it to 8 digits.
+  bool ill_conditioned = false;
+  bool converged = true;  ///< every Newton refinement converged (refined method)
+};
+
+/// Spectrum of the linearization A, C, K (model.hpp) of the two-ball model.
+Spectrum compute_spectrum(const Linearization<long double, 2>& lin,
+                          SpectrumMethod method = SpectrumMethod::refined);
+
+/// Spectrum at an equilibrium (linearized in long double at its exact position).
+Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e,
+                              SpectrumMethod method = SpectrumMethod::refined);
+
+}  // namespace abu

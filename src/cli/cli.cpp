@@ -1,0 +1,82 @@
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+
+#include <exception>
+
+#include "abu/cli.hpp"
+#include "abu/errors.hpp"
+#include "abu/params.hpp"
+#include "commands.hpp"
+
+namespace abu::cli {
+
+namespace {
+std::string g_command_line;
+}
+
+const std::string& command_line() { return g_command_line; }
+
+Scene load(const SceneOptions& options) {
+  Scene scene = load_scene(options.scene);
+  for (const auto& assignment : options.overrides) apply_override(scene, assignment);
+  return scene;
+}
+
+void add_scene_options(CLI::App& sub, SceneOptions& options) {
+  sub.add_option("scene", options.scene, "Scene file (TOML, SI units), e.g. data/scenes/default.toml")->required();
+  sub.add_option("--set", options.overrides,
+                 fmt::format("Override a parameter, NAME=VALUE (repeatable). Names: {}", param_symbols_help()))
+      ->type_name("NAME=VALUE")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+int run(int argc, char** argv) {
+  gsl_set_error_handler_off();  // library code reports, never aborts
+  for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
+
+  CLI::App app{"stability-scan: linear stability of the automatic ball balancer (model: docs model.md)"};
+  app.name("stability-scan");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("stability-scan ") + ABU_VERSION);
+  std::vector<std::pair<CLI::App*, Action>> commands;
+  {
+    Action a = add_equilibria_command(app);
+    commands.emplace_back(app.get_subcommands({}).back(), a);
+  }
+  {
+    Action a = add_sweep_command(app);
+    commands.emplace_back(app.get_subcommands({}).back(), a);
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "stability-scan: {}\nRun with --help for usage.\n", e.what());
+    return exit_bad_input;
+  }
+  try {
+    for (auto& [sub, action] : commands)
+      if (sub->parsed()) return action();
+    return exit_bad_input;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "stability-scan: error: {}\n", e.what());
+    return exit_bad_input;
+  } catch (const NotSupportedError& e) {
+    fmt::print(stderr, "stability-scan: not supported yet: {}\n", e.what());
+    return exit_bad_input;
+  } catch (const NumericalError& e) {
+    fmt::print(stderr, "stability-scan: numerical failure: {}\n", e.what());
+    return exit_numerical;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stability-scan: failed: {}\n", e.what());
+    return exit_failure;
+  }
+}
+
+}  // namespace abu::cli

@@ -1,0 +1,19 @@
+// Registration of the subcommands (private to the CLI). Each add_* function declares a
+// subcommand's options on `app` and returns the action to run if it was selected.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace abu::cli {
+
+using Action = std::function<int()>;
+
+Action add_equilibria_command(CLI::App& app);
+Action add_sweep_command(CLI::App& app);
+
+/// Adds SCENE and --set to a subcommand.
+struct SceneOptions;
+void add_scene_options(CLI::App& sub, SceneOptions& options);
+
+}  // namespace abu::cli

@@ -1,0 +1,92 @@
+// `stability-scan sweep SCENE --param NAME --from A --to B --steps N [--log]`: the
+// analysis on a plain grid of one parameter, as a long CSV and a gnuplot chart.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "abu/cli.hpp"
+#include "abu/errors.hpp"
+#include "abu/io.hpp"
+#include "abu/report.hpp"
+#include "abu/scan.hpp"
+#include "commands.hpp"
+
+namespace abu::cli {
+
+namespace {
+struct SweepOptions {
+  SceneOptions scene;
+  std::string param;
+  double from = 0, to = 0;
+  int steps = 0;
+  bool logarithmic = false;
+  bool chart = true;
+  std::string output_dir = "out";
+};
+// The grid must stay inside the parameter's physical range; it is an interval, so the
+// two ends decide. Checked before any work, with the scene's own rules.
+constexpr int kMaxSteps = 1000000;
+}  // namespace
+
+Action add_sweep_command(CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "sweep",
+      "Equilibria and spectra on a plain grid of one parameter: CSV (one row per equilibrium per value) and a PNG "
+      "chart of |q| and the spectral abscissa (stable solid, unstable dashed).");
+  add_scene_options(*sub, o->scene);
+  sub->add_option("--param", o->param, fmt::format("Parameter to sweep: {}", param_symbols_help()))->required();
+  sub->add_option("--from", o->from, "First value (SI)")->required();
+  sub->add_option("--to", o->to, "Last value (SI)")->required();
+  sub->add_option("--steps", o->steps, "Number of intervals: N+1 values including both ends")->required();
+  sub->add_flag("--log", o->logarithmic, "Space the values evenly in log");
+  sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
+  sub->add_option("-o,--output-dir", o->output_dir, "Directory for sweep_NAME.csv and sweep_NAME.png")
+      ->capture_default_str();
+  return [o]() -> int {
+    Scene scene = load(o->scene);
+    const int n_balls = int(scene.balls.size());
+    const auto ref = parse_param(o->param, n_balls);
+    if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (o->steps < 1 || o->steps > kMaxSteps)
+      throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o->steps));
+    if (o->logarithmic && !(o->from > 0 && o->to > 0))
+      throw InputError("--log", 0, o->param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", o->from, o->to));
+    {
+      Scene probe = scene;
+      set_checked(probe, *ref, o->from, "--from");
+      set_checked(probe, *ref, o->to, "--to");
+    }
+    const Params base = params_of<2>(scene);
+    const auto values = grid_values(o->from, o->to, o->steps, o->logarithmic);
+    const SweepResult result = sweep(base, *ref, values);
+    for (std::size_t i = 0; i < values.size(); ++i)
+      fmt::print(stderr, "{}", analysis_warnings(result.points[i], fmt::format("{}={}", o->param, values[i])));
+
+    const std::string name = to_string(*ref);
+    const std::filesystem::path dir(o->output_dir);
+    const auto csv_path = dir / fmt::format("sweep_{}.csv", name);
+    const auto png_path = dir / fmt::format("sweep_{}.png", name);
+    OutputTransaction out;
+    const std::string csv = sweep_csv(result, provenance_header(command_line(), scene.file, base));
+    const auto staged_csv = out.stage(csv_path, csv);
+    if (o->chart) {
+      // gnuplot reads the staged CSV and writes the staged PNG; both move into place together.
+      run_gnuplot(plots_dir() / "sweep.gp",
+                  {{"csv", staged_csv.string()},
+                   {"png", out.reserve(png_path).string()},
+                   {"param", name},
+                   {"unit", std::string(unit(ref->quantity))},
+                   {"logx", o->logarithmic ? "1" : "0"},
+                   {"title", fmt::format("{}: sweep of {}", scene.file, name)}});
+    }
+    out.commit();
+    std::size_t rows = 0;
+    for (const auto& a : result.points) rows += a.equilibria.points().size();
+    fmt::print(stderr, "wrote {} ({} rows){}\n", csv_path.string(), rows,
+               o->chart ? fmt::format(" and {}", png_path.string()) : std::string());
+    return exit_ok;
+  };
+}
+
+}  // namespace abu::cli
