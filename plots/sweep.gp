@@ -30,50 +30,54 @@ S(a) = sgn(a) * log10(1 + abs(a) / a0)
 colour_balanced = '#1f77b4'
 colour_together = '#d62728'
 colour_opposite = '#2ca02c'
-set style line 1 lc rgb colour_balanced lw 2 dt 1
-set style line 2 lc rgb colour_balanced lw 2 dt 2
-set style line 3 lc rgb colour_together lw 2 dt 1
-set style line 4 lc rgb colour_together lw 2 dt 2
-set style line 5 lc rgb colour_opposite lw 2 dt 1
-set style line 6 lc rgb colour_opposite lw 2 dt 2
+set style line 1 lc rgb colour_balanced lw 2.5 dt 1
+set style line 2 lc rgb colour_balanced lw 1.5 dt (6,4)
+set style line 3 lc rgb colour_together lw 2.5 dt 1
+set style line 4 lc rgb colour_together lw 1.5 dt (6,4)
+set style line 5 lc rgb colour_opposite lw 2.5 dt 1
+set style line 6 lc rgb colour_opposite lw 1.5 dt (6,4)
 
 if (logx eq '1') set logscale x
 set xlabel sprintf('%s [%s]', param, unit)
 set grid
 set key outside right top
+set lmargin at screen 0.09
+set rmargin at screen 0.72
 set multiplot layout 2,1 title title noenhanced
 
 set logscale y
 set ylabel '|q| [m] (rotor excursion, rotating frame)'
 set format y '10^{%T}'
 plot \
-  last = -1, csv using 2:(series('together', 1, 1, column(9))) with linespoints ls 3 pt 7 ps 0.3 title 'together, stable', \
-  last = -1, csv using 2:(series('together', 1, 0, column(9))) with linespoints ls 4 pt 6 ps 0.3 title 'together, unstable', \
-  last = -1, csv using 2:(series('together', 2, 1, column(9))) with linespoints ls 3 pt 7 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('together', 2, 0, column(9))) with linespoints ls 4 pt 6 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('opposite', 1, 1, column(9))) with linespoints ls 5 pt 7 ps 0.3 title 'opposite, stable', \
-  last = -1, csv using 2:(series('opposite', 1, 0, column(9))) with linespoints ls 6 pt 6 ps 0.3 title 'opposite, unstable', \
-  last = -1, csv using 2:(series('opposite', 2, 1, column(9))) with linespoints ls 5 pt 7 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('opposite', 2, 0, column(9))) with linespoints ls 6 pt 6 ps 0.3 notitle, \
+  last = -1, csv using 2:(series('together', 1, 1, column(9))) with lines ls 3 title 'together, stable', \
+  last = -1, csv using 2:(series('together', 1, 0, column(9))) with lines ls 4 title 'together, unstable', \
+  last = -1, csv using 2:(series('together', 2, 1, column(9))) with lines ls 3 notitle, \
+  last = -1, csv using 2:(series('together', 2, 0, column(9))) with lines ls 4 notitle, \
+  last = -1, csv using 2:(series('opposite', 1, 1, column(9))) with lines ls 5 title 'opposite, stable', \
+  last = -1, csv using 2:(series('opposite', 1, 0, column(9))) with lines ls 6 title 'opposite, unstable', \
+  last = -1, csv using 2:(series('opposite', 2, 1, column(9))) with lines ls 5 notitle, \
+  last = -1, csv using 2:(series('opposite', 2, 0, column(9))) with lines ls 6 notitle, \
   NaN with lines ls 1 title 'balanced: q = 0 (off this log axis)'
 
 unset logscale y
 set format y '%g'
 set ylabel 'spectral abscissa  sgn(a) log_{10}(1 + |a| / 10^{-12} s^{-1})'
-set ytics ('-10' S(-10), '-1e-2' S(-1e-2), '-1e-6' S(-1e-6), '-1e-9' S(-1e-9), '0' 0, \
-           '1e-9' S(1e-9), '1e-6' S(1e-6), '1e-2' S(1e-2), '10' S(10)) 
+set ytics ('0' 0)
+do for [e = -10:2:2] {
+  set ytics add (sprintf('10^{%d}', e) S(10.0**e), sprintf('-10^{%d}', e) S(-(10.0**e)))
+}
 set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#555555' dt 3
 plot \
-  last = -1, csv using 2:(series('balanced', 1, 1, S(column(11)))) with linespoints ls 1 pt 7 ps 0.3 title 'balanced, stable', \
-  last = -1, csv using 2:(series('balanced', 1, 0, S(column(11)))) with linespoints ls 2 pt 6 ps 0.3 title 'balanced, unstable', \
-  last = -1, csv using 2:(series('balanced', 2, 1, S(column(11)))) with linespoints ls 1 pt 7 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('balanced', 2, 0, S(column(11)))) with linespoints ls 2 pt 6 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('together', 1, 1, S(column(11)))) with linespoints ls 3 pt 7 ps 0.3 title 'together, stable', \
-  last = -1, csv using 2:(series('together', 1, 0, S(column(11)))) with linespoints ls 4 pt 6 ps 0.3 title 'together, unstable', \
-  last = -1, csv using 2:(series('together', 2, 1, S(column(11)))) with linespoints ls 3 pt 7 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('together', 2, 0, S(column(11)))) with linespoints ls 4 pt 6 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('opposite', 1, 1, S(column(11)))) with linespoints ls 5 pt 7 ps 0.3 title 'opposite, stable', \
-  last = -1, csv using 2:(series('opposite', 1, 0, S(column(11)))) with linespoints ls 6 pt 6 ps 0.3 title 'opposite, unstable', \
-  last = -1, csv using 2:(series('opposite', 2, 1, S(column(11)))) with linespoints ls 5 pt 7 ps 0.3 notitle, \
-  last = -1, csv using 2:(series('opposite', 2, 0, S(column(11)))) with linespoints ls 6 pt 6 ps 0.3 notitle
+  last = -1, csv using 2:(series('balanced', 1, 1, S(column(11)))) with lines ls 1 title 'balanced, stable', \
+  last = -1, csv using 2:(series('balanced', 1, 0, S(column(11)))) with lines ls 2 title 'balanced, unstable', \
+  last = -1, csv using 2:(series('balanced', 2, 1, S(column(11)))) with lines ls 1 notitle, \
+  last = -1, csv using 2:(series('balanced', 2, 0, S(column(11)))) with lines ls 2 notitle, \
+  last = -1, csv using 2:(series('together', 1, 1, S(column(11)))) with lines ls 3 title 'together, stable', \
+  last = -1, csv using 2:(series('together', 1, 0, S(column(11)))) with lines ls 4 title 'together, unstable', \
+  last = -1, csv using 2:(series('together', 2, 1, S(column(11)))) with lines ls 3 notitle, \
+  last = -1, csv using 2:(series('together', 2, 0, S(column(11)))) with lines ls 4 notitle, \
+  last = -1, csv using 2:(series('opposite', 1, 1, S(column(11)))) with lines ls 5 title 'opposite, stable', \
+  last = -1, csv using 2:(series('opposite', 1, 0, S(column(11)))) with lines ls 6 title 'opposite, unstable', \
+  last = -1, csv using 2:(series('opposite', 2, 1, S(column(11)))) with lines ls 5 notitle, \
+  last = -1, csv using 2:(series('opposite', 2, 0, S(column(11)))) with lines ls 6 notitle
 unset multiplot

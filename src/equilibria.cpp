@@ -56,6 +56,7 @@ Equilibrium make(Family family, int member, const Coordinates<ld, 2>& s, bool is
   e.position = s;
   if (family == Family::balanced) e.position.head<2>().setZero();
   e.is_set = is_set;
+  e.singular = is_set;
   return e;
 }
 
@@ -85,9 +86,10 @@ void add_balanced(const ClosedForm& f, EquilibriumSet& set) {
   const ld s = (f.a1 + f.a2 + f.U) / 2;
   const ld t1 = 2 * std::atan2(std::sqrt(s1 * su), std::sqrt(s * s2));
   const ld t2 = 2 * std::atan2(std::sqrt(s2 * su), std::sqrt(s * s1));
-  set.add(make(Family::balanced, 1, with_rotor_response(f, kPi - t1, kPi + t2)));
-  if (!merges_together && !merges_opposite)  // otherwise the mirror point is the same point
-    set.add(make(Family::balanced, 2, with_rotor_response(f, kPi + t1, kPi - t2)));
+  Equilibrium first = make(Family::balanced, 1, with_rotor_response(f, kPi - t1, kPi + t2));
+  first.singular = merges_together || merges_opposite;  // a pitchfork: the mirror points have met
+  set.add(first);
+  if (!first.singular) set.add(make(Family::balanced, 2, with_rotor_response(f, kPi + t1, kPi - t2)));
 }
 
 // Roots of K U sin b + C U cos b + C a = 0, i.e. U R sin(b + phi) = -C a with
@@ -132,9 +134,19 @@ void add_collinear(const ClosedForm& f, Family family, EquilibriumSet& set) {
   bool double_root = false;
   const int n = line_roots(f, a, roots, double_root);
   if (double_root) set.degeneracy |= together ? together_double_root : opposite_double_root;
+  // Where the balanced points merged into this family, its root at the merging point is
+  // the same configuration and shares the zero eigenvalue.
+  const Equilibrium* merged = nullptr;
+  for (const auto& p : set.points())
+    if (p.family == Family::balanced && p.singular && !p.is_set) merged = &p;
+  const auto same_angle = [](ld u, ld v) { return std::abs(std::remainder(u - v, kTwoPi)) < 1e-6L; };
   for (int i = 0; i < n; ++i) {
     const ld b = roots[std::size_t(i)];
-    set.add(make(family, i + 1, with_rotor_response(f, b, b + offset)));
+    Equilibrium e = make(family, i + 1, with_rotor_response(f, b, b + offset));
+    const bool at_merge =
+        merged && same_angle(b, merged->position(2)) && same_angle(b + offset, merged->position(3));
+    e.singular = double_root || at_merge;
+    set.add(e);
   }
 }
 
@@ -182,22 +194,20 @@ Equilibrium polish_equilibrium(const Params& p, const Equilibrium& guess) {
   constexpr int kMaxIterations = 30;
   ld residual = std::numeric_limits<ld>::infinity();
   int it = 0;
-  for (; it < kMaxIterations; ++it) {
+  for (;; ++it) {
     const State<ld, 2> x = at_rest<ld, 2>(s);
     const Coordinates<ld, 2> b = generalized_forces(pl, x);
     const Coordinates<ld, 2> scale = static_force_scale(pl, s);
+    const ld previous = residual;
     residual = (b.array().abs() / scale.array()).maxCoeff();
-    if (residual <= 4 * kLongEps) break;
+    // Done at the rounding level of long double, or where the residual stops falling
+    // (it has reached the rounding level of evaluating b, which varies with the terms).
+    if (residual <= 4 * kLongEps || residual > previous / 2 || it == kMaxIterations) break;
     const DofMatrix<ld, 2> db_ds = -linearize(pl, x).stiffness;
     const DofMatrix<ld, 2> scaled = scale.cwiseInverse().asDiagonal() * db_ds * column_scale;
     const Coordinates<ld, 2> step =
         scaled.completeOrthogonalDecomposition().solve(Coordinates<ld, 2>(-(b.array() / scale.array())));
     s += column_scale * step;
-    if (step.cwiseAbs().maxCoeff() <= 4 * kLongEps) {
-      ++it;
-      residual = static_residual(p, s);
-      break;
-    }
   }
   s(2) = wrap_angle(s(2));
   s(3) = wrap_angle(s(3));
@@ -210,17 +220,23 @@ Equilibrium polish_equilibrium(const Params& p, const Equilibrium& guess) {
   return e;
 }
 
-EquilibriumSet find_equilibria(const Params& p) {
-  const auto pl = p.cast<ld>();
-  const ClosedForm f = closed_form(pl);
+EquilibriumSet closed_form_equilibria(const Params& p) {
+  const ClosedForm f = closed_form(p.cast<ld>());
   EquilibriumSet set;
   add_balanced(f, set);
   add_collinear(f, Family::together, set);
   add_collinear(f, Family::opposite, set);
   for (auto& e : set.points()) {
+    e.position(2) = wrap_angle(e.position(2));
+    e.position(3) = wrap_angle(e.position(3));
+  }
+  return set;
+}
+
+EquilibriumSet find_equilibria(const Params& p) {
+  EquilibriumSet set = closed_form_equilibria(p);
+  for (auto& e : set.points()) {
     if (e.is_set) {  // exact by symmetry; Newton has no isolated root to converge to
-      e.position(2) = wrap_angle(e.position(2));
-      e.position(3) = wrap_angle(e.position(3));
       e.converged = true;
       e.residual = static_residual(p, e.position.cast<double>().cast<ld>());
     } else {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <type_traits>
 
 namespace abu {
 
@@ -115,7 +116,16 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
       const T x = beta_dot / b.v_s;
       const T e = exp(-x * x);
       switch (q) {
-        case Quantity::mu_c: return -normal * (T(1) - e) * sign;
+        case Quantity::mu_c: {
+          // 1 - exp(-x^2) cancels for |beta_dot| << v_s; expm1 keeps it exact (real scalars).
+          T one_minus_e;
+          if constexpr (std::is_floating_point_v<T>) {
+            one_minus_e = -std::expm1(-x * x);
+          } else {
+            one_minus_e = T(1) - e;
+          }
+          return -normal * one_minus_e * sign;
+        }
         case Quantity::mu_s: return -normal * e * sign;
         // d/dv_s exp(-(v/v_s)^2) = exp(..) 2 v^2 / v_s^3
         case Quantity::v_s: return -normal * (b.mu_s - b.mu_c) * e * (T(2) * x * x / b.v_s) * sign;

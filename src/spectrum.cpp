@@ -15,49 +15,36 @@ namespace {
 using ld = long double;
 using cld = std::complex<ld>;
 using Mat4 = Eigen::Matrix<ld, 4, 4>;
-using Mat8d = Eigen::Matrix<double, 8, 8, Eigen::RowMajor>;
 constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // unit roundoff 2^-53
 constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon() / 2;
 
-// A starting value: an eigenvalue and the position part x of its eigenvector
-// v = (x, lambda x), from a double-precision QR.
 using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
-struct Estimate {
-  std::complex<double> value;
-  Vec4c vector = Vec4c::Ones();
-};
+using Mat8Row = Eigen::Matrix<double, 8, 8, Eigen::RowMajor>;
 
-// QR eigenvalues (and eigenvectors) of a matrix after Parlett-Reinsch balancing
-// (GSL): Eigen's EigenSolver does not balance, and the Jacobian's rows differ by 1e15
-// in scale. `norm` is the Frobenius norm of the balanced matrix: the absolute error of
-// each eigenvalue is about eps * norm.
-struct QrResult {
-  std::array<Estimate, 8> estimates;
-  double norm;
+// A matrix after Parlett-Reinsch balancing (GSL; Eigen's EigenSolver does not balance
+// and the Jacobian's rows differ by 1e15 in scale), with its QR eigenvalues. `norm` is
+// the Frobenius norm of the balanced matrix: each eigenvalue's absolute error is about
+// eps * norm.
+struct BalancedQr {
+  Mat8Row balanced;
+  std::array<double, 8> scale{};  // balanced = D^-1 M D, D = diag(scale)
+  std::array<std::complex<double>, 8> values{};
+  double norm = 0;
 };
-QrResult balanced_qr(Mat8d m, bool vectors) {
-  gsl_matrix_view view = gsl_matrix_view_array(m.data(), 8, 8);
-  std::array<double, 8> d{};
-  gsl_vector_view dv = gsl_vector_view_array(d.data(), 8);
+BalancedQr balanced_qr(const Mat8Row& m) {
+  BalancedQr r;
+  r.balanced = m;
+  gsl_matrix_view view = gsl_matrix_view_array(r.balanced.data(), 8, 8);
+  gsl_vector_view dv = gsl_vector_view_array(r.scale.data(), 8);
   gsl_linalg_balance_matrix(&view.matrix, &dv.vector);
-  Eigen::EigenSolver<Eigen::Matrix<double, 8, 8>> solver(m, vectors);
-  QrResult r{};
-  for (int i = 0; i < 8; ++i) {
-    auto& e = r.estimates[std::size_t(i)];
-    e.value = solver.eigenvalues()(i);
-    if (!vectors) continue;
-    // Undo the balancing; take x from whichever half of (x, lambda x) is larger.
-    Eigen::Matrix<std::complex<double>, 8, 1> v = solver.eigenvectors().col(i);
-    for (int k = 0; k < 8; ++k) v(k) *= d[std::size_t(k)];
-    e.vector = std::abs(e.value) > 1 ? Vec4c(v.tail<4>() / e.value) : Vec4c(v.head<4>());
-    if (!e.vector.allFinite() || e.vector.isZero(0)) e.vector = Vec4c::Ones();
-  }
-  r.norm = m.norm();
+  const Eigen::EigenSolver<Eigen::Matrix<double, 8, 8>> solver(r.balanced, false);
+  for (int i = 0; i < 8; ++i) r.values[std::size_t(i)] = solver.eigenvalues()(i);
+  r.norm = r.balanced.norm();
   return r;
 }
 
 // First-order form J = [[0, I], [-A^-1 K, -A^-1 C]].
-Mat8d companion(const Linearization<ld, 2>& lin) {
+Mat8Row companion(const Linearization<ld, 2>& lin) {
   Eigen::Matrix<ld, 8, 8> J = Eigen::Matrix<ld, 8, 8>::Zero();
   J.block<4, 4>(0, 4).setIdentity();
   const Eigen::LLT<Mat4> a(lin.mass);
@@ -71,7 +58,7 @@ Mat8d companion(const Linearization<ld, 2>& lin) {
 //   (J - sigma I)^-1 = [[-T(sigma)^-1 (C + 2 sigma A), -T(sigma)^-1 A], [I, 0]],
 // formed in long double; its eigenvectors are those of J. sigma = 0 is the plain
 // structured inverse of model.md §8. False if T(sigma) is numerically singular.
-bool shifted_inverse(const Linearization<ld, 2>& lin, ld sigma, Mat8d& out) {
+bool shifted_inverse(const Linearization<ld, 2>& lin, ld sigma, Mat8Row& out) {
   const Mat4 t = sigma * sigma * lin.mass + sigma * lin.damping + lin.stiffness;
   const Eigen::PartialPivLU<Mat4> lu(t);
   if (!(lu.rcond() > 64 * kEpsLong)) return false;
@@ -83,48 +70,103 @@ bool shifted_inverse(const Linearization<ld, 2>& lin, ld sigma, Mat8d& out) {
   return out.allFinite();
 }
 
+// A starting value: an eigenvalue lambda of J, and where it came from: eigenvalue
+// `theta` of the balanced matrix `source` (J itself, theta = lambda, or the shifted
+// inverse, theta = 1 / (lambda - sigma)).
+struct Estimate {
+  std::complex<double> value;
+  std::complex<double> theta;
+  const BalancedQr* source = nullptr;
+};
+
+// The position part x of the eigenvector (x, lambda x) by inverse iteration on the
+// balanced matrix the estimate came from: there the decoupled modes of equal balls are
+// as well separated as the QR saw them, while T(lambda) can be singular to working
+// precision (its 1e-20 ball stiffness lost against the rotor coupling).
+template <class S>
+Vec4c position_vector(const Estimate& e) {
+  using Mat8s = Eigen::Matrix<S, 8, 8>;
+  using Vec8s = Eigen::Matrix<S, 8, 1>;
+  S theta;
+  if constexpr (std::is_same_v<S, double>) {
+    theta = e.theta.real();
+  } else {
+    theta = e.theta;
+  }
+  Vec8s v = Vec8s::Ones();
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    // Exactly on the eigenvalue the LU can meet a zero pivot: nudge theta off it.
+    const S shifted = theta * S(1 + attempt * 1e-13);
+    const Mat8s m = e.source->balanced.cast<S>() - shifted * Mat8s::Identity();
+    const Eigen::PartialPivLU<Mat8s> lu(m);
+    Vec8s w = Vec8s::Ones();
+    for (int step = 0; step < 2; ++step) {
+      w = lu.solve(w);
+      w /= S(w.cwiseAbs().maxCoeff());
+    }
+    if (w.allFinite()) {
+      v = w;
+      break;
+    }
+  }
+  Eigen::Matrix<std::complex<double>, 8, 1> full;
+  for (int k = 0; k < 8; ++k) full(k) = std::complex<double>(v(k)) * e.source->scale[std::size_t(k)];
+  const std::complex<double> lambda = e.value;
+  Vec4c x = std::abs(lambda) > 1 ? Vec4c(full.tail<4>() / lambda) : Vec4c(full.head<4>());
+  if (!x.allFinite() || x.isZero(0)) x = Vec4c::Ones();
+  return x;
+}
+
 // Starting values: every eigenvalue from the QR whose error bound relative to it is
 // smaller: eps ||J|| from J, eps ||(J - sigma)^-1|| |lambda - sigma|^2 from the inverse.
 // Sorting both lists by distance to sigma pairs them; the k closest come from the
 // inverse, k counting its values inside the crossover radius sqrt(||J|| / ||J^-1||).
 // If K is singular (a zero eigenvalue: U = 0 circles, folds), the shift moves to
 // sigma = -eps ||J||, the level below which the direct QR cannot resolve anything.
-std::array<Estimate, 8> starting_values(const Linearization<ld, 2>& lin, SpectrumMethod method) {
-  const bool vectors = method == SpectrumMethod::refined;
-  QrResult direct = balanced_qr(companion(lin), vectors);
-  if (method == SpectrumMethod::dense_qr) return direct.estimates;
-  Mat8d jinv;
+struct Starts {
+  BalancedQr direct, inverse;
+  std::array<Estimate, 8> estimates;
+};
+void starting_values(const Linearization<ld, 2>& lin, SpectrumMethod method, Starts& out) {
+  out.direct = balanced_qr(companion(lin));
+  std::array<Estimate, 8> direct{};
+  for (std::size_t i = 0; i < 8; ++i) direct[i] = {out.direct.values[i], out.direct.values[i], &out.direct};
+  out.estimates = direct;
+  if (method == SpectrumMethod::dense_qr) return;
+  Mat8Row jinv;
   ld sigma = 0;
   if (!shifted_inverse(lin, sigma, jinv)) {
-    sigma = -ld(kEps * direct.norm);
-    if (!shifted_inverse(lin, sigma, jinv)) return direct.estimates;
+    sigma = -ld(kEps * out.direct.norm);
+    if (!shifted_inverse(lin, sigma, jinv)) return;
   }
-  QrResult inverse = balanced_qr(jinv, vectors);
+  out.inverse = balanced_qr(jinv);
   const double shift = double(sigma);
-  for (auto& e : inverse.estimates)
-    e.value = (e.value == 0.0) ? std::complex<double>(std::numeric_limits<double>::max()) : shift + 1.0 / e.value;
+  std::array<Estimate, 8> inverse{};
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto mu = out.inverse.values[i];
+    inverse[i] = {mu == 0.0 ? std::complex<double>(std::numeric_limits<double>::max()) : shift + 1.0 / mu, mu,
+                  &out.inverse};
+  }
   const auto by_distance = [shift](const Estimate& a, const Estimate& b) {
     const double da = std::abs(a.value - shift), db = std::abs(b.value - shift);
     return da < db || (da == db && a.value.imag() > b.value.imag());
   };
-  std::sort(direct.estimates.begin(), direct.estimates.end(), by_distance);
-  std::sort(inverse.estimates.begin(), inverse.estimates.end(), by_distance);
-  const double crossover = std::sqrt(direct.norm / inverse.norm);
+  std::sort(direct.begin(), direct.end(), by_distance);
+  std::sort(inverse.begin(), inverse.end(), by_distance);
+  const double crossover = std::sqrt(out.direct.norm / out.inverse.norm);
   std::size_t k = 0;
-  while (k < 8 && std::abs(inverse.estimates[k].value - shift) < crossover) ++k;
+  while (k < 8 && std::abs(inverse[k].value - shift) < crossover) ++k;
   // Keep complex-conjugate pairs on one side of the split.
   const auto splits_pair = [&k](const std::array<Estimate, 8>& v) {
     return k > 0 && k < 8 && v[k - 1].value.imag() != 0 && v[k].value == std::conj(v[k - 1].value);
   };
-  if (splits_pair(inverse.estimates)) ++k;
-  if (splits_pair(direct.estimates)) --k;
-  std::array<Estimate, 8> start{};
-  for (std::size_t i = 0; i < 8; ++i) start[i] = i < k ? inverse.estimates[i] : direct.estimates[i];
-  return start;
+  if (splits_pair(inverse)) ++k;
+  if (splits_pair(direct)) --k;
+  for (std::size_t i = 0; i < 8; ++i) out.estimates[i] = i < k ? inverse[i] : direct[i];
 }
 
-// Newton on T(lambda) x = 0 for one eigenvalue, in long double; real arithmetic for a
-// real starting value keeps real eigenvalues exactly real.
+// Newton on T(lambda) x = 0 for one eigenvalue; real arithmetic for a real starting
+// value keeps real eigenvalues exactly real.
 struct Refined {
   cld value;
   ld backward_error;  // componentwise, eta
@@ -139,12 +181,22 @@ struct Refined {
 void equilibrate(const Mat4& magnitude, Eigen::Matrix<ld, 4, 1>& rows, Eigen::Matrix<ld, 4, 1>& cols) {
   rows.setOnes();
   cols.setOnes();
-  const auto pow2 = [](ld v) { return v > 0 && std::isfinite(v) ? std::exp2(std::round(std::log2(v))) : ld(1); };
+  const auto inverse_pow2 = [](ld v) {  // the power of two nearest 1 / v
+    if (!(v > 0) || !std::isfinite(v)) return ld(1);
+    int e = 0;
+    std::frexp(v, &e);
+    return std::ldexp(ld(1), 1 - e);
+  };
   for (int sweep = 0; sweep < 3; ++sweep) {
-    for (int i = 0; i < 4; ++i) rows(i) = pow2(1 / (magnitude.row(i).transpose().cwiseProduct(cols)).maxCoeff());
-    for (int j = 0; j < 4; ++j) cols(j) = pow2(1 / (magnitude.col(j).cwiseProduct(rows)).maxCoeff());
+    for (int i = 0; i < 4; ++i) rows(i) = inverse_pow2(magnitude.row(i).transpose().cwiseProduct(cols).maxCoeff());
+    for (int j = 0; j < 4; ++j) cols(j) = inverse_pow2(magnitude.col(j).cwiseProduct(rows).maxCoeff());
   }
 }
+
+// |z| without hypot: the componentwise magnitudes below only need a factor-sqrt(2)-
+// accurate size, and hypotl is the slowest call in the refinement.
+ld magnitude_of(ld z) { return std::abs(z); }
+ld magnitude_of(const cld& z) { return std::abs(z.real()) + std::abs(z.imag()); }
 
 template <class S>
 S from_complex(std::complex<double> z) {
@@ -155,96 +207,96 @@ S from_complex(std::complex<double> z) {
   }
 }
 
+// Mixed precision: T(lambda), the residual T x and the iterate in long double (this is
+// what makes the result better than double), the bordered correction solved in double
+// (its errors only slow the convergence by a factor eps_double * cond(B) per step).
 template <class S>
-Refined refine(const Linearization<ld, 2>& lin, const Estimate& start) {
+Refined refine(const Linearization<ld, 2>& lin, std::complex<double> start, const Vec4c& start_vector) {
+  using D = std::conditional_t<std::is_same_v<S, ld>, double, std::complex<double>>;
   using Vec4 = Eigen::Matrix<S, 4, 1>;
   using Mat4s = Eigen::Matrix<S, 4, 4>;
-  using Mat5s = Eigen::Matrix<S, 5, 5>;
-  S lambda = from_complex<S>(start.value);
-  Eigen::Matrix<ld, 4, 1> rows, cols;
+  using Vec4l = Eigen::Matrix<ld, 4, 1>;
+  S lambda = from_complex<S>(start);
+  Vec4l rows, cols;
   {
-    const ld a = std::abs(lambda);
+    const ld a = std::abs(start);
     equilibrate(a * a * lin.mass.cwiseAbs() + a * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs(), rows, cols);
   }
   const Mat4 Ar = rows.asDiagonal() * lin.mass * cols.asDiagonal();
   const Mat4 Cr = rows.asDiagonal() * lin.damping * cols.asDiagonal();
   const Mat4 Kr = rows.asDiagonal() * lin.stiffness * cols.asDiagonal();
-  const Mat4s A = Ar.cast<S>(), C = Cr.cast<S>(), K = Kr.cast<S>();
   const Mat4 absA = Ar.cwiseAbs(), absC = Cr.cwiseAbs(), absK = Kr.cwiseAbs();
-  const auto T = [&](S l) -> Mat4s { return (l * l) * A + l * C + K; };
-  const auto dT = [&](S l) -> Mat4s { return S(2) * l * A + C; };
+  const auto T = [&](S l) -> Mat4s { return (l * l) * Ar.cast<S>() + l * Cr.cast<S>() + Kr.cast<S>(); };
+  const auto dT = [&](S l) -> Mat4s { return S(2) * l * Ar.cast<S>() + Cr.cast<S>(); };
   const auto magnitude = [&](S l) -> Mat4 {
-    const ld a = std::abs(l);
+    const ld a = magnitude_of(l);
     return a * a * absA + a * absC + absK;
   };
-  // The QR's eigenvector in the equilibrated coordinates, sharpened by two steps of
-  // inverse iteration (the QR vector can carry rounding noise in components that are
-  // exactly zero, e.g. q for the decoupled mode of two equal balls); kept as is where T
-  // is singular to working precision.
+  const auto abs_vector = [](const Vec4& v) {
+    Vec4l a;
+    for (int i = 0; i < 4; ++i) a(i) = magnitude_of(v(i));
+    return a;
+  };
+  // The start vector in the equilibrated coordinates; normalization c^H x = 1 with c the
+  // start itself (unlike pinning one entry, it cannot pick a component that is noise).
   Vec4 x;
-  for (int i = 0; i < 4; ++i) x(i) = from_complex<S>(start.vector(i)) / S(cols(i));
-  x /= S(x.cwiseAbs().maxCoeff());
-  for (int i = 0; i < 2; ++i) {
-    const Vec4 sharper = T(lambda).partialPivLu().solve(x);
-    if (!sharper.allFinite() || sharper.isZero(0)) break;
-    x = sharper / S(sharper.cwiseAbs().maxCoeff());
-  }
-  // Normalization c^H x = 1 with c the starting vector itself: unlike pinning one
-  // entry, it cannot select a component that is noise in the start.
+  for (int i = 0; i < 4; ++i) x(i) = from_complex<S>(start_vector(i)) / S(cols(i));
   x /= S(x.norm());
-  const Vec4 c = x;
-  // Bordered Newton: B = [T, T' x; c^H, 0], B [dx; dl] = [-T x; 0], the first four rows
-  // scaled by the componentwise magnitude so the pivoting sees comparable rows. Near a
-  // simple eigenvalue B is well conditioned even where T is singular to working
-  // precision (decoupled ball modes of equal balls).
-  const auto bordered = [&](S l, const Vec4& v, Eigen::Matrix<ld, 4, 1>& row_weight) {
-    const Eigen::Matrix<ld, 4, 1> scale = magnitude(l) * v.cwiseAbs();
-    Mat5s B = Mat5s::Zero();
-    B.template topLeftCorner<4, 4>() = T(l);
-    B.template topRightCorner<4, 1>() = dT(l) * v;
+  const Eigen::Matrix<D, 4, 1> c = x.template cast<D>();
+  // Bordered system B = [T, T' x; c^H, 0], its first four rows weighted by the
+  // componentwise magnitude so that pivoting sees comparable rows. Near a simple
+  // eigenvalue B is well conditioned even where T itself is singular to working precision.
+  Vec4l weight;
+  const auto bordered = [&](S l, const Vec4& v) {
+    const Vec4l scale = magnitude(l) * abs_vector(v);
+    Eigen::Matrix<D, 5, 5> B;
+    const Mat4s t = T(l);
+    const Vec4 tv = dT(l) * v;
     for (int i = 0; i < 4; ++i) {
-      row_weight(i) = scale(i) > 0 ? 1 / scale(i) : 1;
-      B.row(i) *= S(row_weight(i));
+      weight(i) = scale(i) > 0 ? 1 / scale(i) : 1;
+      for (int j = 0; j < 4; ++j) B(i, j) = D(t(i, j) * S(weight(i)));
+      B(i, 4) = D(tv(i) * S(weight(i)));
+      B(4, i) = Eigen::numext::conj(c(i));
     }
-    B.template bottomLeftCorner<1, 4>() = c.adjoint();
+    B(4, 4) = D(0);
     return B;
   };
-  // Quadratic convergence ends at the rounding level, where the steps stop shrinking;
-  // whether that level is good enough is judged below against the error bound.
+  // Newton converges until its steps stop shrinking (the rounding level); whether that
+  // level is good enough is judged below against the error bound.
   ld last_step = std::numeric_limits<ld>::infinity();
   ld final_step = last_step;
-  Eigen::Matrix<ld, 4, 1> weight;
   for (int it = 0; it < 16; ++it) {
-    const Mat5s B = bordered(lambda, x, weight);
-    Eigen::Matrix<S, 5, 1> rhs = Eigen::Matrix<S, 5, 1>::Zero();
-    rhs.template head<4>() = -(T(lambda) * x);
-    for (int i = 0; i < 4; ++i) rhs(i) *= S(weight(i));
-    const Eigen::Matrix<S, 5, 1> step = B.partialPivLu().solve(rhs);
+    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, x);
+    const Vec4 r = T(lambda) * x;  // in long double
+    Eigen::Matrix<D, 5, 1> rhs;
+    for (int i = 0; i < 4; ++i) rhs(i) = D(-r(i) * S(weight(i)));
+    rhs(4) = D(0);
+    const Eigen::Matrix<D, 5, 1> step = B.partialPivLu().solve(rhs);
     if (!step.allFinite()) break;
-    const ld dl = std::abs(step(4));
-    lambda += step(4);
-    x += step.template head<4>();
+    const ld dl = magnitude_of(S(step(4)));
+    lambda += S(step(4));
+    for (int i = 0; i < 4; ++i) x(i) += S(step(i));
     final_step = std::min(dl, last_step);
-    if (dl <= 4 * kEpsLong * std::abs(lambda) || (it >= 2 && dl > last_step / 2)) break;
+    if (dl <= 4 * kEpsLong * magnitude_of(lambda) || (it >= 2 && dl > last_step / 2)) break;
     last_step = dl;
   }
   // Left vector from the adjoint bordered system: B^H [y; eta] = e_5 gives
   // T^H y = -eta c with eta ~ (T x)^H y / (c^H x) ~ 0: y is the left null vector of T.
   Vec4 y;
   {
-    const Mat5s B = bordered(lambda, x, weight);
-    Eigen::Matrix<S, 5, 1> e5 = Eigen::Matrix<S, 5, 1>::Zero();
-    e5(4) = S(1);
-    const Eigen::Matrix<S, 5, 1> z = B.partialPivLu().adjoint().solve(e5);
-    for (int i = 0; i < 4; ++i) y(i) = z(i) * S(weight(i));  // undo the row weighting
+    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, x);
+    Eigen::Matrix<D, 5, 1> e5 = Eigen::Matrix<D, 5, 1>::Zero();
+    e5(4) = D(1);
+    const Eigen::Matrix<D, 5, 1> z = B.partialPivLu().adjoint().solve(e5);
+    for (int i = 0; i < 4; ++i) y(i) = S(z(i)) * S(weight(i));  // undo the row weighting
     if (!y.allFinite() || y.isZero(0)) y = x;
   }
   const Mat4 S_mag = magnitude(lambda);
   const Vec4 r = T(lambda) * x;
-  const Eigen::Matrix<ld, 4, 1> denom = S_mag * x.cwiseAbs();
+  const Vec4l denom = S_mag * abs_vector(x);
   ld eta = 0;
-  for (int i = 0; i < 4; ++i) eta = std::max(eta, denom(i) > 0 ? std::abs(r(i)) / denom(i) : ld(0));
-  const ld num = y.cwiseAbs().dot(S_mag * x.cwiseAbs());
+  for (int i = 0; i < 4; ++i) eta = std::max(eta, denom(i) > 0 ? magnitude_of(r(i)) / denom(i) : ld(0));
+  const ld num = abs_vector(y).dot(S_mag * abs_vector(x));
   const ld den = std::abs(y.dot(dT(lambda) * x));  // dot() conjugates its first argument
   const ld abs_condition = den > 0 ? num / den : std::numeric_limits<ld>::infinity();
   eta = std::max(eta, kEpsLong);
@@ -255,7 +307,18 @@ Refined refine(const Linearization<ld, 2>& lin, const Estimate& start) {
   return {cld(lambda), eta, abs_condition, converged};
 }
 
-void sort_and_classify(Spectrum& sp, const std::array<ld, 8>& band) {
+// Sorts, and classifies each eigenvalue against its band; the `structural_zeros`
+// eigenvalues of smallest modulus are exactly zero by construction and lie on the axis.
+void sort_and_classify(Spectrum& sp, std::array<ld, 8> band, int structural_zeros) {
+  for (int z = 0; z < structural_zeros; ++z) {
+    std::size_t smallest = 0;
+    for (std::size_t i = 1; i < 8; ++i)
+      if (band[i] != std::numeric_limits<ld>::infinity() &&
+          (band[smallest] == std::numeric_limits<ld>::infinity() ||
+           std::abs(sp.eigenvalues[i]) < std::abs(sp.eigenvalues[smallest])))
+        smallest = i;
+    band[smallest] = std::numeric_limits<ld>::infinity();
+  }
   std::array<int, 8> order{};
   for (int i = 0; i < 8; ++i) order[std::size_t(i)] = i;
   std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -305,8 +368,10 @@ std::string_view to_string(SpectrumMethod m) {
   return "?";
 }
 
-Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method) {
-  const auto start = starting_values(lin, method);
+Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method, int structural_zeros) {
+  Starts starts;
+  starting_values(lin, method, starts);
+  const auto& start = starts.estimates;
   Spectrum sp;
   std::array<ld, 8> band{};
   if (method != SpectrumMethod::refined) {
@@ -318,7 +383,7 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
       band[i] = ld(8 * kEps * std::abs(start[i].value));
     }
     sp.converged = false;
-    sort_and_classify(sp, band);
+    sort_and_classify(sp, band, structural_zeros);
     return sp;
   }
   std::array<bool, 8> filled{};
@@ -339,11 +404,11 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
     const auto z = start[i].value;
     if (filled[i] || z.imag() < 0) continue;  // lower half-plane: the conjugate partner
     if (z.imag() == 0) {
-      const Refined r = refine<ld>(lin, start[i]);
+      const Refined r = refine<ld>(lin, z, position_vector<double>(start[i]));
       fill(i, r.value, r);
       continue;
     }
-    const Refined r = refine<cld>(lin, start[i]);
+    const Refined r = refine<cld>(lin, z, position_vector<std::complex<double>>(start[i]));
     fill(i, r.value, r);
     for (std::size_t j = 0; j < 8; ++j) {
       if (!filled[j] && start[j].value == std::conj(z)) {
@@ -354,7 +419,7 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
   }
   for (std::size_t i = 0; i < 8; ++i) {  // a lower-half value whose partner was not found
     if (filled[i]) continue;
-    const Refined r = refine<cld>(lin, start[i]);
+    const Refined r = refine<cld>(lin, start[i].value, position_vector<std::complex<double>>(start[i]));
     fill(i, r.value, r);
   }
   // Newton must stay in the basin of its starting value: a refined eigenvalue that moved
@@ -373,12 +438,12 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
       sp.converged = false;
     }
   }
-  sort_and_classify(sp, band);
+  sort_and_classify(sp, band, structural_zeros);
   return sp;
 }
 
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method) {
-  return compute_spectrum(linearize(p.cast<ld>(), e.state()), method);
+  return compute_spectrum(linearize(p.cast<ld>(), e.state()), method, e.singular ? 1 : 0);
 }
 
 }  // namespace abu

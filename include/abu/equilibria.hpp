@@ -56,6 +56,9 @@ struct Equilibrium {
   int newton_iterations = 0;
   bool converged = false;  ///< Newton reached the rounding level of long double
   bool is_set = false;     ///< representative of a circle of equilibria (U = 0)
+  /// The linearization is singular by construction (a circle representative, a merging
+  /// point, a double root): one eigenvalue is exactly zero, whatever rounding makes of it.
+  bool singular = false;
 
   Coordinates<double, 2> position_si() const { return position.cast<double>(); }
   State<long double, 2> state() const { return at_rest<long double, 2>(position); }
@@ -74,7 +77,10 @@ class EquilibriumSet {
   std::size_t count_ = 0;
 };
 
-/// Every real equilibrium of the two-ball model. Never throws on degenerate physics;
+/// The closed forms alone (model.md §5), in long double, not yet polished.
+EquilibriumSet closed_form_equilibria(const Params& p);
+
+/// Every real equilibrium of the two-ball model: closed forms polished by Newton. Never throws on degenerate physics;
 /// an equilibrium whose polish does not converge is kept with converged = false.
 EquilibriumSet find_equilibria(const Params& p);
 

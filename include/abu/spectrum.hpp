@@ -24,7 +24,8 @@
 // i.e. within eight times the first-order change that the computation's backward error
 // plus one rounding of every matrix entry to double can cause; unstable above, stable
 // below. The equilibrium is unstable if any eigenvalue is, else marginal if any is,
-// else stable.
+// else stable. An eigenvalue that is zero by construction (circles of equilibria at
+// U = 0, merging points, double roots) is on the axis whatever its computed value.
 //
 //   abu::Spectrum sp = abu::equilibrium_spectrum(p, equilibrium);
 //   if (sp.stability == abu::Stability::stable) ...
@@ -69,8 +70,11 @@ struct Spectrum {
 };
 
 /// Spectrum of the linearization A, C, K (model.hpp) of the two-ball model.
+/// `structural_zeros` eigenvalues are known to be exactly zero (a singular equilibrium,
+/// Equilibrium::singular): the ones of smallest modulus are put on the imaginary axis,
+/// whatever rounding made of them.
 Spectrum compute_spectrum(const Linearization<long double, 2>& lin,
-                          SpectrumMethod method = SpectrumMethod::refined);
+                          SpectrumMethod method = SpectrumMethod::refined, int structural_zeros = 0);
 
 /// Spectrum at an equilibrium (linearized in long double at its exact position).
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e,

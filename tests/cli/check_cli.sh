@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# The command-line contract of stability-scan (issue 2): output formats, atomic files,
+# bad arguments rejected with exit code 2 and nothing written, same bytes on a re-run.
+#   check_cli.sh BINARY SOURCE_DIR
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+scene=$src/data/scenes/default.toml
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+pass() { echo "ok   $1"; }
+fail() { echo "FAIL $1"; fails=$((fails + 1)); }
+check() { if eval "$2"; then pass "$1"; else fail "$1"; fi; }
+
+# --- equilibria: CSV shape -------------------------------------------------------------
+"$bin" equilibria "$scene" --format csv >"$work/eq.csv" 2>"$work/eq.err"
+check "equilibria csv exits 0" "[ $? -eq 0 ]"
+header=$(grep -v '^#' "$work/eq.csv" | head -1)
+expected="family,q1,q2,beta1,beta2,residual,spectral_abscissa,stable"
+for k in 1 2 3 4 5 6 7 8; do expected="$expected,re$k,im$k"; done
+check "csv header is the documented one" "[ \"$header\" = \"$expected\" ]"
+check "default scene has 6 equilibria" "[ $(grep -v '^#' "$work/eq.csv" | tail -n +2 | wc -l) -eq 6 ]"
+check "every row has 24 fields" "[ -z \"\$(grep -v '^#' "$work/eq.csv" | awk -F, 'NF != 24')\" ]"
+check "no nan or inf in the csv" "! grep -v '^#' '$work/eq.csv' | grep -qiE 'nan|inf'"
+check "families in order balanced, together, opposite" \
+  "[ \"\$(grep -v '^#' '$work/eq.csv' | tail -n +2 | cut -d, -f1 | uniq | tr '\n' ' ')\" = 'balanced together opposite ' ]"
+check "angles in [0, 2pi)" "grep -v '^#' '$work/eq.csv' | tail -n +2 | awk -F, '\$4 < 0 || \$4 >= 6.283185307179586 || \$5 < 0 || \$5 >= 6.283185307179586 {exit 1}'"
+
+# --- other formats, -o -----------------------------------------------------------------
+"$bin" equilibria "$scene" --format json >"$work/eq.json"
+check "json is valid" "/usr/bin/python3 -m json.tool '$work/eq.json' >/dev/null"
+"$bin" equilibria "$scene" >"$work/eq.txt"
+check "table names every family" "grep -q 'balanced 1' '$work/eq.txt' && grep -q 'together 2' '$work/eq.txt' && grep -q 'opposite 1' '$work/eq.txt'"
+"$bin" equilibria "$scene" --format csv -o "$work/sub/eq.csv"
+check "-o writes the file (creating the directory)" "[ -s '$work/sub/eq.csv' ]"
+check "-o leaves no temporary behind" "[ \$(ls -A '$work/sub' | wc -l) -eq 1 ]"
+check "-o file has the same rows as stdout" "diff <(grep -v '^#' '$work/eq.csv') <(grep -v '^#' '$work/sub/eq.csv') >/dev/null"
+"$bin" equilibria "$scene" --format csv --set omega=150 --set mu=0.01 >"$work/set.csv"
+check "--set changes the parameters in the header" "grep -q 'omega=150' '$work/set.csv' && grep -q 'mu1=0.01' '$work/set.csv'"
+
+# --- sweep -------------------------------------------------------------------------------
+"$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 30 -o "$work/sweep" 2>"$work/sweep.err"
+check "sweep exits 0" "[ $? -eq 0 ]"
+check "sweep writes csv and png only" "[ \"\$(ls '$work/sweep' | tr '\n' ' ')\" = 'sweep_omega.csv sweep_omega.png ' ]"
+check "png is a PNG" "[ \"\$(head -c 8 '$work/sweep/sweep_omega.png' | od -An -tx1 | tr -d ' \n')\" = '89504e470d0a1a0a' ]"
+check "sweep csv has 31 distinct steps" "[ \$(grep -v '^#' '$work/sweep/sweep_omega.csv' | tail -n +2 | cut -d, -f1 | sort -u | wc -l) -eq 31 ]"
+check "sweep csv ends exactly at --to" "grep -v '^#' '$work/sweep/sweep_omega.csv' | cut -d, -f2 | grep -qx 1000"
+"$bin" sweep "$scene" --param mu --from 1e-4 --to 1e-1 --steps 6 --log --no-chart -o "$work/mu"
+check "log sweep of mu, no chart" "[ -s '$work/mu/sweep_mu.csv' ] && [ ! -e '$work/mu/sweep_mu.png' ]"
+"$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 30 -o "$work/sweep2" 2>/dev/null
+check "same input, same bytes (csv)" "cmp -s <(grep -v '^# command' '$work/sweep/sweep_omega.csv') <(grep -v '^# command' '$work/sweep2/sweep_omega.csv')"
+
+# --- bad input: exit 2, message, nothing written ----------------------------------------
+bad() {  # name, then the arguments; run in an empty directory with -o inside it
+  local name=$1; shift
+  local dir=$work/bad.$RANDOM
+  mkdir -p "$dir"
+  (cd "$dir" && "$bin" "$@" >"$work/out" 2>"$work/err")
+  local rc=$?
+  if [ $rc -ne 2 ]; then fail "$name: exit $rc, want 2"; return; fi
+  if [ ! -s "$work/err" ]; then fail "$name: no message"; return; fi
+  if [ -n "$(ls -A "$dir")" ]; then fail "$name: wrote $(ls -A "$dir")"; return; fi
+  pass "$name: exit 2 ($(head -1 "$work/err" | cut -c1-90))"
+}
+bad "no subcommand"             equilibria
+bad "unknown subcommand"        frobnicate "$scene"
+bad "unknown format"            equilibria "$scene" --format xml -o out.csv
+bad "missing scene file"        equilibria nosuch.toml -o out.csv
+bad "--set unknown name"        equilibria "$scene" --set zeta=1 -o out.csv
+bad "--set malformed"           equilibria "$scene" --set omega -o out.csv
+bad "--set non-finite"          equilibria "$scene" --set omega=nan -o out.csv
+bad "--set out of range"        equilibria "$scene" --set m=-1 -o out.csv
+bad "--set law mismatch"        equilibria "$scene" --set d=1 -o out.csv
+bad "sweep unknown param"       sweep "$scene" --param zeta --from 1 --to 2 --steps 3 -o o
+bad "sweep steps 0"             sweep "$scene" --param omega --from 1 --to 2 --steps 0 -o o
+bad "sweep absurd steps"        sweep "$scene" --param omega --from 1 --to 2 --steps 2000000000 -o o
+bad "sweep crosses mass 0"      sweep "$scene" --param m --from 0 --to 1e-4 --steps 3 -o o
+bad "sweep negative omega"      sweep "$scene" --param omega --from -100 --to 100 --steps 3 -o o
+bad "sweep log through 0"       sweep "$scene" --param U --from 0 --to 1e-6 --steps 3 --log -o o
+bad "sweep param not in law"    sweep "$scene" --param d --from 0 --to 1 --steps 3 -o o
+bad "sweep r above l"           sweep "$scene" --param r --from 1e-3 --to 0.05 --steps 3 -o o
+bad "sweep missing --to"        sweep "$scene" --param omega --from 1 --steps 3 -o o
+cat >"$work/three.toml" <<'TOML'
+[rotor]
+mass = 0.12
+stiffness = 7500.0
+damping = 2.0
+unbalance = 6.0e-7
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[friction]
+law = "none"
+[speed]
+omega = 900.0
+TOML
+bad "three balls: not supported yet" equilibria "$work/three.toml" -o out.csv
+grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
+
+echo "$fails failure(s)"
+[ $fails -eq 0 ]
