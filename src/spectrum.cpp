@@ -43,6 +43,25 @@ BalancedQr balanced_qr(const Mat8Row& m) {
   return r;
 }
 
+// Diagonal equilibration R |T(lambda0)| D ~ O(1) (powers of two, a few Sinkhorn-style
+// sweeps): the ball rows of T can be 1e10 smaller than the rotor rows (tiny balls),
+// which would make pivoting treat them as zero. Eigenvalues, the componentwise
+// backward error and the componentwise condition number are all invariant under it.
+void equilibrate(const Mat4& magnitude, Eigen::Matrix<ld, 4, 1>& rows, Eigen::Matrix<ld, 4, 1>& cols) {
+  rows.setOnes();
+  cols.setOnes();
+  const auto inverse_pow2 = [](ld v) {  // the power of two nearest 1 / v
+    if (!(v > 0) || !std::isfinite(v)) return ld(1);
+    int e = 0;
+    std::frexp(v, &e);
+    return std::ldexp(ld(1), 1 - e);
+  };
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    for (int i = 0; i < 4; ++i) rows(i) = inverse_pow2(magnitude.row(i).transpose().cwiseProduct(cols).maxCoeff());
+    for (int j = 0; j < 4; ++j) cols(j) = inverse_pow2(magnitude.col(j).cwiseProduct(rows).maxCoeff());
+  }
+}
+
 // First-order form J = [[0, I], [-A^-1 K, -A^-1 C]].
 Mat8Row companion(const Linearization<ld, 2>& lin) {
   Eigen::Matrix<ld, 8, 8> J = Eigen::Matrix<ld, 8, 8>::Zero();
@@ -60,11 +79,16 @@ Mat8Row companion(const Linearization<ld, 2>& lin) {
 // structured inverse of model.md §8. False if T(sigma) is numerically singular.
 bool shifted_inverse(const Linearization<ld, 2>& lin, ld sigma, Mat8Row& out) {
   const Mat4 t = sigma * sigma * lin.mass + sigma * lin.damping + lin.stiffness;
-  const Eigen::PartialPivLU<Mat4> lu(t);
+  // Judge and factor T(sigma) equilibrated, T = R^-1 Te D^-1: unscaled, its rotor rows
+  // can be 1e10 larger than the ball rows and rcond would call it singular when it is not.
+  Eigen::Matrix<ld, 4, 1> rows, cols;
+  equilibrate(t.cwiseAbs(), rows, cols);
+  const Eigen::PartialPivLU<Mat4> lu(rows.asDiagonal() * t * cols.asDiagonal());
   if (!(lu.rcond() > 64 * kEpsLong)) return false;
+  const auto solve = [&](const Mat4& rhs) -> Mat4 { return cols.asDiagonal() * lu.solve(rows.asDiagonal() * rhs); };
   Eigen::Matrix<ld, 8, 8> Ji = Eigen::Matrix<ld, 8, 8>::Zero();
-  Ji.block<4, 4>(0, 0) = -lu.solve(Mat4(lin.damping + 2 * sigma * lin.mass));
-  Ji.block<4, 4>(0, 4) = -lu.solve(lin.mass);
+  Ji.block<4, 4>(0, 0) = -solve(Mat4(lin.damping + 2 * sigma * lin.mass));
+  Ji.block<4, 4>(0, 4) = -solve(lin.mass);
   Ji.block<4, 4>(4, 0).setIdentity();
   out = Ji.cast<double>();
   return out.allFinite();
@@ -173,25 +197,6 @@ struct Refined {
   ld abs_condition;   // y* S |x| / |y* T' x|, S = |lambda|^2 |A| + |lambda| |C| + |K|
   bool converged;
 };
-
-// Diagonal equilibration R |T(lambda0)| D ~ O(1) (powers of two, a few Sinkhorn-style
-// sweeps): the ball rows of T can be 1e10 smaller than the rotor rows (tiny balls),
-// which would make pivoting treat them as zero. Eigenvalues, the componentwise
-// backward error and the componentwise condition number are all invariant under it.
-void equilibrate(const Mat4& magnitude, Eigen::Matrix<ld, 4, 1>& rows, Eigen::Matrix<ld, 4, 1>& cols) {
-  rows.setOnes();
-  cols.setOnes();
-  const auto inverse_pow2 = [](ld v) {  // the power of two nearest 1 / v
-    if (!(v > 0) || !std::isfinite(v)) return ld(1);
-    int e = 0;
-    std::frexp(v, &e);
-    return std::ldexp(ld(1), 1 - e);
-  };
-  for (int sweep = 0; sweep < 3; ++sweep) {
-    for (int i = 0; i < 4; ++i) rows(i) = inverse_pow2(magnitude.row(i).transpose().cwiseProduct(cols).maxCoeff());
-    for (int j = 0; j < 4; ++j) cols(j) = inverse_pow2(magnitude.col(j).cwiseProduct(rows).maxCoeff());
-  }
-}
 
 // |z| without hypot: the componentwise magnitudes below only need a factor-sqrt(2)-
 // accurate size, and hypotl is the slowest call in the refinement.
