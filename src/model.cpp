@@ -239,12 +239,20 @@ StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x) {
   return J;
 }
 
+namespace {
+// db/dp and (dA/dp) s'' for one parameter: the two pieces of df/dp.
 template <class T, int N>
-State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
-  const Kinematics<T, N> kin(p, x);
-  const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
-  Coordinates<T, N> db = Coordinates<T, N>::Zero();  // db/dp
-  Coordinates<T, N> dA_accel = Coordinates<T, N>::Zero();  // (dA/dp) s''
+struct ParameterPartials {
+  Coordinates<T, N> db = Coordinates<T, N>::Zero();
+  Coordinates<T, N> dA_accel = Coordinates<T, N>::Zero();
+};
+
+template <class T, int N>
+ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref,
+                                           const Kinematics<T, N>& kin, const Coordinates<T, N>& accel) {
+  ParameterPartials<T, N> out;
+  auto& db = out.db;
+  auto& dA_accel = out.dA_accel;
   const T w = kin.w;
   const T qd1 = x(N + 2), qd2 = x(N + 3);
   // A change of M (rotor or ball mass) acts on the rotor rows of A and b alike.
@@ -324,9 +332,25 @@ State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, P
         for (int i = 0; i < N; ++i) per_ball(i);
       }
   }
+  return out;
+}
+}  // namespace
+
+template <class T, int N>
+State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
+  const Kinematics<T, N> kin(p, x);
+  const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
+  const ParameterPartials<T, N> d = parameter_partials(p, x, ref, kin, accel);
   State<T, N> df = State<T, N>::Zero();
-  df.template tail<N + 2>() = solve_mass(p, kin, Coordinates<T, N>(db - dA_accel));
+  df.template tail<N + 2>() = solve_mass(p, kin, Coordinates<T, N>(d.db - d.dA_accel));
   return df;
+}
+
+template <class T, int N>
+Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
+  const Kinematics<T, N> kin(p, x);
+  // db/dp does not involve s''; the accelerations only feed the (dA/dp) s'' part.
+  return parameter_partials(p, x, ref, kin, Coordinates<T, N>(Coordinates<T, N>::Zero())).db;
 }
 
 template <class T, int N>
@@ -365,6 +389,7 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
   template StateMatrix<T, N> jacobian<T, N>(const Linearization<T, N>&);                              \
   template StateMatrix<T, N> jacobian<T, N>(const ParamsT<T, N>&, const State<T, N>&);                \
   template State<T, N> parameter_derivative<T, N>(const ParamsT<T, N>&, const State<T, N>&, ParamRef); \
+  template Coordinates<T, N> generalized_force_derivative<T, N>(const ParamsT<T, N>&, const State<T, N>&, ParamRef); \
   template T displacement_scale<T, N>(const ParamsT<T, N>&);
 ABU_INSTANTIATE_MODEL(double, 2)
 ABU_INSTANTIATE_MODEL(long double, 2)

@@ -126,8 +126,8 @@ auto& ball_field(Ball& b, Quantity q) {
 }
 }  // namespace
 
-template <int N>
-double get(const ParamsT<double, N>& p, ParamRef ref) {
+template <class T, int N>
+T get(const ParamsT<T, N>& p, ParamRef ref) {
   switch (ref.quantity) {
     case Quantity::omega: return p.omega;
     case Quantity::unbalance: return p.rotor.unbalance;
@@ -139,8 +139,8 @@ double get(const ParamsT<double, N>& p, ParamRef ref) {
   }
 }
 
-template <int N>
-void set(ParamsT<double, N>& p, ParamRef ref, double value) {
+template <class T, int N>
+void set(ParamsT<T, N>& p, ParamRef ref, T value) {
   switch (ref.quantity) {
     case Quantity::omega: p.omega = value; return;
     case Quantity::unbalance: p.rotor.unbalance = value; return;
@@ -157,10 +157,12 @@ void set(ParamsT<double, N>& p, ParamRef ref, double value) {
   }
 }
 
-template double get<2>(const ParamsT<double, 2>&, ParamRef);
-template double get<3>(const ParamsT<double, 3>&, ParamRef);
-template void set<2>(ParamsT<double, 2>&, ParamRef, double);
-template void set<3>(ParamsT<double, 3>&, ParamRef, double);
+template double get<double, 2>(const ParamsT<double, 2>&, ParamRef);
+template double get<double, 3>(const ParamsT<double, 3>&, ParamRef);
+template long double get<long double, 2>(const ParamsT<long double, 2>&, ParamRef);
+template void set<double, 2>(ParamsT<double, 2>&, ParamRef, double);
+template void set<double, 3>(ParamsT<double, 3>&, ParamRef, double);
+template void set<long double, 2>(ParamsT<long double, 2>&, ParamRef, long double);
 
 std::optional<std::string> range_violation(Quantity q, double value) {
   if (!std::isfinite(value)) return fmt::format("must be a finite number (got {})", value);

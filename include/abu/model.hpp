@@ -73,6 +73,11 @@ StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x);
 template <class T, int N>
 State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
 
+/// Analytic db/dp: the parameter derivative of the generalized forces, which is what
+/// the static equations b(s, 0; p) = 0 of continuation need.
+template <class T, int N>
+Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
+
 /// Natural displacement scale (U + sum m_i l_i) / M [m]: the rotor excursion the
 /// unbalance and the ball set can cause. Internal computations measure q in this unit
 /// so that micrometres and radians are equally well conditioned.

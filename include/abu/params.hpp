@@ -119,11 +119,11 @@ bool law_uses(FrictionLaw law, Quantity q);
 
 /// Value of a parameter. For an every-ball reference it is ball 1's value (the balls
 /// of a scene addressed as a set are usually equal; `set` makes them so).
-template <int N>
-double get(const ParamsT<double, N>& p, ParamRef ref);
-/// Sets a parameter (every ball, or one).
-template <int N>
-void set(ParamsT<double, N>& p, ParamRef ref, double value);
+template <class T, int N>
+T get(const ParamsT<T, N>& p, ParamRef ref);
+/// Sets a parameter (every ball, or one). Instantiated for double and long double.
+template <class T, int N>
+void set(ParamsT<T, N>& p, ParamRef ref, T value);
 
 /// The physical range of a quantity, as a rule that names it (nullopt: value allowed).
 /// Used by the scene parser, `--set`, sweeps and continuation alike.

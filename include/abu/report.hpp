@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "abu/continuation.hpp"
 #include "abu/scan.hpp"
 
 namespace abu {
@@ -24,6 +25,16 @@ std::string equilibria_table(const Analysis& a, const Params& p);
 /// that each member of a family is one contiguous series:
 /// `step,<param>,family,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,re1,...,im8`.
 std::string sweep_csv(const SweepResult& s, std::string_view header);
+
+/// Continuation: one row per branch point,
+/// `branch,point,label,<param>,q1,q2,beta1,beta2,q_abs,family,stable,n_unstable,re1,im1,...,re8,im8`
+/// with the eigenvalues in tracked order (eigenvalue k is the same mode along a branch).
+std::string branch_csv(const ContinuationRun& run, std::string_view header);
+/// One row per special point (and an MX row where a branch ended in failure):
+/// `branch,label,<param>,q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lyapunov,converged,n_unstable_before,n_unstable_after`.
+std::string special_points_csv(const ContinuationRun& run, std::string_view header);
+/// How each branch ended, one line per end that is not the end of the interval (stderr).
+std::string continuation_warnings(const ContinuationRun& run);
 
 /// Warnings for the user (stderr): equilibria whose polish or spectrum did not
 /// converge, ill-conditioned spectra; `where` says at which parameter value.

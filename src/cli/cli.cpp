@@ -40,12 +40,8 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("stability-scan ") + ABU_VERSION);
   std::vector<std::pair<CLI::App*, Action>> commands;
-  {
-    Action a = add_equilibria_command(app);
-    commands.emplace_back(app.get_subcommands({}).back(), a);
-  }
-  {
-    Action a = add_sweep_command(app);
+  for (auto add : {add_equilibria_command, add_sweep_command, add_continue_command}) {
+    Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
   }
   try {

@@ -116,7 +116,7 @@ int timing(const std::string& scene_path, int points, int repeats) {
 
 int eigenvalues(const std::string& out_path, const std::vector<std::string>& scenes) {
   std::ofstream out(out_path);
-  out << "scene,index,family,member,method";
+  out << "scene,index,family,member,q1,q2,beta1,beta2,method";
   for (int k = 1; k <= 8; ++k) out << ",re" << k << ",im" << k;
   out << "\n";
   for (const auto& path : scenes) {
@@ -126,7 +126,9 @@ int eigenvalues(const std::string& out_path, const std::vector<std::string>& sce
     for (const auto& e : set.points()) {
       ++index;
       const auto row = [&](std::string_view method, const std::array<std::complex<double>, 8>& ev) {
-        out << fmt::format("{},{},{},{},{}", path, index, abu::to_string(e.family), e.member, method);
+        const auto s = e.position_si();
+        out << fmt::format("{},{},{},{},{},{},{},{},{}", path, index, abu::to_string(e.family), e.member, s(0), s(1),
+                           s(2), s(3), method);
         for (const auto& z : ev) out << fmt::format(",{},{}", z.real(), z.imag());
         out << "\n";
       };

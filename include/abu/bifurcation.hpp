@@ -1,0 +1,48 @@
+// Locating special points of equilibrium branches by solving augmented systems, and the
+// normal-form coefficient that tells a supercritical Hopf point from a subcritical one.
+//
+// Minimally augmented systems (Govaerts, "Numerical methods for bifurcations of
+// dynamical equilibria", 2000), on the scaled static equations of static_equations.hpp:
+//
+//   fold   [F_s  b] [v]   [0]        unknowns (s, p):         F(s, p) = 0, g(s, p) = 0
+//          [c^T  0] [g] = [1]
+//
+//   Hopf   [T(i w)  b] [v]   [0]     unknowns (s, p, w):      F(s, p) = 0, g(s, p, w) = 0
+//          [c^H     0] [g] = [1]     (g complex: two real equations)
+//
+// with T(lambda) = lambda^2 A + lambda C + K the quadratic pencil of the linearization
+// (the 4x4 form of J - i w I, see spectrum.hpp) and b, c fixed approximate null vectors.
+// g vanishes exactly where F_s (resp. T(i w)) is singular. Newton runs in long double;
+// the residuals are analytic, the Jacobian rows of g central differences.
+//
+//   auto fold = abu::locate_fold(eq, z_guess);
+//   auto hopf = abu::locate_hopf(eq, z_guess, omega_guess);
+//   double l1 = abu::first_lyapunov_coefficient(p, s, hopf.frequency);
+#pragma once
+
+#include "abu/static_equations.hpp"
+
+namespace abu {
+
+struct Located {
+  StaticEquations::Vec5 z = StaticEquations::Vec5::Zero();
+  long double frequency = 0;  ///< Hopf: omega_H [rad/s]
+  bool converged = false;
+  int iterations = 0;
+};
+
+/// Fold (limit point) of the branch through z_guess: F = 0 and F_s singular.
+Located locate_fold(const StaticEquations& eq, const StaticEquations::Vec5& z_guess);
+
+/// Hopf point near (z_guess, omega_guess): F = 0 and T(i omega) singular, omega > 0.
+Located locate_hopf(const StaticEquations& eq, const StaticEquations::Vec5& z_guess, long double omega_guess);
+
+/// First Lyapunov coefficient l1 at a Hopf point (Kuznetsov, "Elements of applied
+/// bifurcation theory", eq. 3.20): l1 < 0 supercritical (a stable cycle is born),
+/// l1 > 0 subcritical. Computed on the first-order field f of model.md §3 in SI state
+/// coordinates with the critical eigenvector q normalized to <q, q> = 1; its sign is
+/// coordinate-free. The second and third derivatives of f are central differences in
+/// long double of the analytic field (relative accuracy ~1e-7).
+double first_lyapunov_coefficient(const Params& p, const Coordinates<long double, 2>& s, long double omega);
+
+}  // namespace abu

@@ -1,0 +1,123 @@
+// `stability-scan continue SCENE --param NAME --to VALUE`: pseudo-arclength continuation
+// of equilibrium branches with special points located; with --param2/--to2 the fold and
+// Hopf points found are continued in two parameters (stability boundaries).
+#include <fmt/format.h>
+
+#include <charconv>
+#include <sstream>
+
+#include "abu/cli.hpp"
+#include "abu/continuation.hpp"
+#include "abu/errors.hpp"
+#include "abu/io.hpp"
+#include "abu/report.hpp"
+#include "commands.hpp"
+
+namespace abu::cli {
+
+namespace {
+struct ContinueOptions {
+  SceneOptions scene;
+  std::string param, param2;
+  double to = 0, to2 = 0;
+  std::string family;
+  std::string state;
+  bool all = false;
+  ContinuationOptions numerics;
+  bool chart = true;
+  std::string output_dir = "out";
+};
+
+// "q1,q2,beta1,beta2" -> a configuration, or an InputError naming the rule.
+Coordinates<long double, 2> parse_state(const std::string& text) {
+  Coordinates<long double, 2> s;
+  std::stringstream in(text);
+  std::string cell;
+  int n = 0;
+  while (std::getline(in, cell, ',')) {
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+    if (ec != std::errc() || ptr != cell.data() + cell.size() || !std::isfinite(v) || n >= 4)
+      throw InputError("--from-state", 0, text, "expected four finite numbers q1,q2,beta1,beta2 (SI)");
+    s(n++) = v;
+  }
+  if (n != 4) throw InputError("--from-state", 0, text, "expected four finite numbers q1,q2,beta1,beta2 (SI)");
+  return s;
+}
+}  // namespace
+
+Action add_continue_command(CLI::App& app) {
+  auto o = std::make_shared<ContinueOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "continue",
+      "Pseudo-arclength continuation of equilibrium branches in one parameter, eigenvalues tracked, folds (LP), "
+      "branch points (BP) and Hopf points (HB, with the first Lyapunov coefficient) located; with --param2 the "
+      "fold and Hopf points are continued in two parameters.");
+  add_scene_options(*sub, o->scene);
+  sub->add_option("--param", o->param, fmt::format("Continuation parameter: {}", param_symbols_help()))->required();
+  sub->add_option("--to", o->to, "End value of the parameter (it starts at the scene's value)")->required();
+  auto* fam = sub->add_option("--from-equilibrium", o->family, "Start only from this family's equilibria")
+                  ->check(CLI::IsMember({"balanced", "together", "opposite"}));
+  auto* all = sub->add_flag("--all", o->all, "Start from every equilibrium (the default)");
+  auto* state = sub->add_option("--from-state", o->state, "Start from this configuration q1,q2,beta1,beta2 (SI)");
+  fam->excludes(all)->excludes(state);
+  all->excludes(state);
+  sub->add_option("--param2", o->param2, "Second parameter: continue the fold and Hopf points in (param, param2)");
+  sub->add_option("--to2", o->to2, "End value of the second parameter");
+  sub->add_option("--ds", o->numerics.ds, "First step (scaled arclength: the interval is 1)")->capture_default_str();
+  sub->add_option("--ds-min", o->numerics.ds_min, "Minimum step")->capture_default_str();
+  sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
+  sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
+  sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
+  sub->add_option("-o,--output-dir", o->output_dir, "Directory for branch_NAME.csv, special_NAME.csv and the chart")
+      ->capture_default_str();
+  return [o]() -> int {
+    Scene scene = load(o->scene);
+    const auto ref = parse_param(o->param, int(scene.balls.size()));
+    if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (ref->quantity == Quantity::ball_radius)
+      throw InputError("--param", 0, o->param, "the ball radius does not enter the equations of motion (model.md §3)");
+    {
+      Scene probe = scene;
+      set_checked(probe, *ref, o->to, "--to");
+    }
+    if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
+    const Params p = params_of<2>(scene);
+    if (o->to == get(p, *ref))
+      throw InputError("--to", 0, o->param, fmt::format("must differ from the start value {}", get(p, *ref)));
+    StartSelection start;
+    if (!o->family.empty()) start.family = o->family == "balanced" ? Family::balanced
+                                           : o->family == "together" ? Family::together
+                                                                     : Family::opposite;
+    if (!o->state.empty()) start.state = parse_state(o->state);
+    if (!o->param2.empty()) throw NotSupportedError("two-parameter continuation (--param2) is not built yet");
+
+    const ContinuationRun run = continue_branches(p, *ref, o->to, o->numerics, start);
+    fmt::print(stderr, "{}", continuation_warnings(run));
+    const std::string name = to_string(*ref);
+    const std::filesystem::path dir(o->output_dir);
+    const std::string header = provenance_header(command_line(), scene.file, p);
+    OutputTransaction out;
+    const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+    const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
+    if (o->chart)
+      run_gnuplot(plots_dir() / "bifurcation.gp",
+                  {{"branches", branches.string()},
+                   {"specials", specials.string()},
+                   {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
+                   {"param", name},
+                   {"unit", std::string(unit(ref->quantity))},
+                   {"title", fmt::format("{}: continuation in {}", scene.file, name)}});
+    out.commit();
+    std::size_t points = 0, specials_count = 0;
+    for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
+    fmt::print(stderr, "{} branches, {} points, {} special points -> {}\n", run.branches.size(), points,
+               specials_count, dir.string());
+    for (const auto& b : run.branches)
+      for (int end = 0; end < 2; ++end)
+        if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
+    return exit_ok;
+  };
+}
+
+}  // namespace abu::cli

@@ -1,0 +1,570 @@
+#include "abu/continuation.hpp"
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "abu/bifurcation.hpp"
+#include "abu/static_equations.hpp"
+
+namespace abu {
+
+namespace {
+
+using ld = long double;
+using Vec5 = StaticEquations::Vec5;
+using Mat5 = Eigen::Matrix<ld, 5, 5>;
+constexpr ld kTwoPi = 2 * std::numbers::pi_v<ld>;
+
+ld wrapped_difference(ld a, ld b) { return std::abs(std::remainder(a - b, kTwoPi)); }
+
+// Distance between two scaled points with the angles compared modulo 2 pi.
+ld distance(const Vec5& a, const Vec5& b) {
+  return std::max({std::abs(a(0) - b(0)), std::abs(a(1) - b(1)), wrapped_difference(a(2), b(2)),
+                   wrapped_difference(a(3), b(3)), std::abs(a(4) - b(4))});
+}
+
+struct Corrected {
+  Vec5 z;
+  bool converged = false;
+  int iterations = 0;
+};
+
+// Newton on [F(z); d . (z - z_pred)] = 0: the pseudo-arclength corrector (d the tangent),
+// or, with d = e_5, the equilibrium at a fixed parameter. Converged when the steps
+// reach the rounding level and F is at the rounding level of double or below.
+Corrected correct(const StaticEquations& eq, const Vec5& z_pred, const Vec5& d) {
+  Corrected c{z_pred};
+  ld last = std::numeric_limits<ld>::infinity();
+  for (int it = 0; it < 12; ++it) {
+    Mat5 M;
+    M.topRows<4>() = eq.jacobian(c.z);
+    M.row(4) = d.transpose();
+    Vec5 r;
+    r << eq.residual(c.z), d.dot(c.z - z_pred);
+    const Vec5 step = M.partialPivLu().solve(-r);
+    if (!step.allFinite()) return c;
+    c.z += step;
+    c.iterations = it + 1;
+    const ld size = step.cwiseAbs().maxCoeff();
+    const bool small = size <= 1e-15L || (it >= 2 && size > last / 2 && size <= 1e-12L);
+    if (small || (it >= 2 && size > last / 2)) {
+      c.converged = small && eq.residual(c.z).cwiseAbs().maxCoeff() <= 1e-15L;
+      return c;
+    }
+    if (size > 1) return c;  // diverging: far outside any reasonable step
+    last = size;
+  }
+  return c;
+}
+
+// Unit tangent: the null vector of F_u, oriented along `previous`.
+Vec5 tangent(const StaticEquations& eq, const Vec5& z, const Vec5& previous) {
+  Mat5 M;
+  M.topRows<4>() = eq.jacobian(z);
+  M.row(4) = previous.transpose();
+  Vec5 e5 = Vec5::Zero();
+  e5(4) = 1;
+  Vec5 t = M.partialPivLu().solve(e5);
+  t.normalize();
+  if (t.dot(previous) < 0) t = -t;
+  return t;
+}
+
+// det [F_u; t^T]: changes sign at a branch point, not at a fold.
+ld branch_test(const StaticEquations& eq, const Vec5& z, const Vec5& t) {
+  Mat5 M;
+  M.topRows<4>() = eq.jacobian(z);
+  M.row(4) = t.transpose();
+  return M.partialPivLu().determinant();
+}
+
+// Matches this point's eigenvalues to the previous point's modes, nearest first
+// (distance relative to the sizes involved), so that mode k stays the same mode.
+std::array<std::complex<double>, 8> track(const std::array<std::complex<double>, 8>& previous,
+                                          const std::array<std::complex<double>, 8>& current) {
+  std::array<std::complex<double>, 8> out{};
+  std::array<bool, 8> used_prev{}, used_cur{};
+  for (int round = 0; round < 8; ++round) {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bi = 0, bj = 0;
+    for (std::size_t i = 0; i < 8; ++i) {
+      if (used_prev[i]) continue;
+      for (std::size_t j = 0; j < 8; ++j) {
+        if (used_cur[j]) continue;
+        const double d = std::abs(current[j] - previous[i]) /
+                         (std::abs(current[j]) + std::abs(previous[i]) + std::numeric_limits<double>::min());
+        if (d < best) best = d, bi = i, bj = j;
+      }
+    }
+    used_prev[bi] = used_cur[bj] = true;
+    out[bi] = current[bj];
+  }
+  return out;
+}
+
+double error_of(const Spectrum& sp, std::complex<double> value) {
+  for (std::size_t k = 0; k < 8; ++k)
+    if (sp.eigenvalues[k] == value) return sp.error[k];
+  return 0;
+}
+
+// Sign of the Hopf test function prod_{i<j} (lambda_i + lambda_j), the determinant of
+// the bialternate product 2J (.) I: its factors are 2 Re lambda for each conjugate pair
+// and lambda_i + lambda_j for each pair of real eigenvalues (the rest pair up into
+// positive |.|^2). It changes sign where a complex pair crosses the imaginary axis (and
+// at neutral saddles, which the location then tells apart). Factors inside their error
+// bands are left out: their sign is noise (e.g. the conservative case's centres).
+int hopf_test_sign(const Spectrum& sp) {
+  int sign = 1;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto li = sp.eigenvalues[i];
+    if (li.imag() > 0) {
+      if (!sp.on_axis[i] && li.real() < 0) sign = -sign;
+      continue;
+    }
+    if (li.imag() != 0) continue;
+    for (std::size_t j = i + 1; j < 8; ++j) {
+      const auto lj = sp.eigenvalues[j];
+      if (lj.imag() != 0) continue;
+      const double sum = li.real() + lj.real();
+      if (std::abs(sum) > 8 * (sp.error[i] + sp.error[j]) && sum < 0) sign = -sign;
+    }
+  }
+  return sign;
+}
+
+// The complex pair that crosses between two spectra: an upper-half-plane eigenvalue of
+// `a`, clear of the real axis, whose nearest counterpart in `b` is too and lies on the
+// other side of the imaginary axis.
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a, const Spectrum& b) {
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto la = a.eigenvalues[i];
+    if (!(la.imag() > 8 * a.error[i])) continue;
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < 8; ++j)
+      if (std::abs(b.eigenvalues[j] - la) < std::abs(b.eigenvalues[best] - la)) best = j;
+    const auto lb = b.eigenvalues[best];
+    if (lb.imag() > 8 * b.error[best] && (la.real() > 0) != (lb.real() > 0)) return std::pair{la, lb};
+  }
+  return std::nullopt;
+}
+
+// The largest relative move of a tracked mode between two points, each mode's floor
+// being its error bands (so modes at the rounding level do not count).
+double largest_mode_move(const BranchPoint& a, const BranchPoint& b) {
+  double worst = 0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    const double floor = 8 * (error_of(a.spectrum, a.modes[k]) + error_of(b.spectrum, b.modes[k]));
+    const double move = std::abs(b.modes[k] - a.modes[k]);
+    if (move > floor) worst = std::max(worst, move / (std::abs(a.modes[k]) + std::abs(b.modes[k])));
+  }
+  return worst;
+}
+
+// One direction of one branch.
+class Tracer {
+ public:
+  Tracer(const StaticEquations& eq, const ContinuationOptions& options) : eq_(eq), options_(options) {}
+
+  void run(const Vec5& z0, const Vec5& t0);
+
+  std::vector<BranchPoint> points;
+  std::vector<SpecialPoint> specials;
+  StopReason stop = StopReason::max_steps;
+  std::string detail;
+
+ private:
+  BranchPoint make_point(const Vec5& z, const Vec5& t) const;
+  void add(const Vec5& z, const Vec5& t);
+  void detect(std::size_t a);
+  void locate_fold_between(std::size_t a);
+  void locate_branch_point_between(std::size_t a);
+  void locate_hopf_between(std::size_t a);
+  SpecialPoint special_at(Label label, const Vec5& z, std::size_t a) const;
+
+  const StaticEquations& eq_;
+  const ContinuationOptions& options_;
+  std::vector<Vec5> zs_, ts_;
+};
+
+BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t) const {
+  BranchPoint pt;
+  pt.parameter = eq_.parameter(z);
+  pt.position = eq_.position(z);
+  pt.family = classify(eq_.base(), pt.position);
+  pt.spectrum = compute_spectrum(eq_.linearization(z));
+  pt.modes = points.empty() ? pt.spectrum.eigenvalues : track(points.back().modes, pt.spectrum.eigenvalues);
+  // Signs relative to the direction of increasing parameter, whichever way we travel.
+  pt.tangent_parameter = double(t(4));
+  pt.branch_test = double(branch_test(eq_, z, t));
+  return pt;
+}
+
+void Tracer::add(const Vec5& z, const Vec5& t) {
+  points.push_back(make_point(z, t));
+  zs_.push_back(z);
+  ts_.push_back(t);
+  if (points.size() >= 2) detect(points.size() - 2);
+}
+
+void Tracer::run(const Vec5& z0, const Vec5& t0) {
+  add(z0, t0);
+  ld ds = options_.ds;
+  const auto range_rule = [&](const Vec5& z) { return range_violation(eq_.param().quantity, double(eq_.parameter(z))); };
+  for (int step = 0; step < options_.max_steps; ++step) {
+    const Vec5 z = zs_.back(), t = ts_.back();
+    const Vec5 z_pred = z + ds * t;
+    const Corrected c = correct(eq_, z_pred, t);
+    Vec5 t_new = t;
+    bool ok = c.converged && (c.z - z_pred).norm() <= ds;
+    if (ok) {
+      t_new = tangent(eq_, c.z, t);
+      ok = t_new.dot(t) > std::cos(0.5L);  // turning by more than 0.5 rad per step: too coarse
+    }
+    if (!ok) {
+      ds /= 2;
+      if (ds < options_.ds_min) {
+        stop = StopReason::step_underflow;
+        detail = fmt::format("the corrector did not converge with step {:.3g} at {}={:.17g}", double(ds * 2),
+                             to_string(eq_.param()), double(eq_.parameter(z)));
+        return;
+      }
+      continue;
+    }
+    if (const auto rule = range_rule(c.z)) {
+      stop = StopReason::invalid_parameter;
+      detail = fmt::format("{} would become {:.17g}: {}", to_string(eq_.param()), double(eq_.parameter(c.z)), *rule);
+      return;
+    }
+    if (c.z(4) < 0 || c.z(4) > 1) {
+      // The end of the interval: the equilibrium at the end value exactly.
+      const ld end = c.z(4) > 1 ? 1 : 0;
+      const ld theta = (end - z(4)) / (c.z(4) - z(4));
+      Vec5 guess = z + theta * (c.z - z);
+      guess(4) = end;
+      Vec5 e5 = Vec5::Zero();
+      e5(4) = 1;
+      const Corrected last = correct(eq_, guess, e5);
+      if (last.converged) {
+        add(last.z, tangent(eq_, last.z, t));
+        points.back().label = Label::EP;
+        stop = StopReason::end_of_range;
+      } else {
+        stop = StopReason::step_underflow;
+        detail = fmt::format("no equilibrium found at the end value {}={:.17g}", to_string(eq_.param()),
+                             double(eq_.parameter(guess)));
+      }
+      return;
+    }
+    // Eigenvalue tracking needs the modes to move little per step: else halve the step.
+    BranchPoint candidate = make_point(c.z, t_new);
+    if (largest_mode_move(points.back(), candidate) > 0.25 && ds > 16 * options_.ds_min) {
+      ds /= 2;
+      continue;
+    }
+    points.push_back(std::move(candidate));
+    zs_.push_back(c.z);
+    ts_.push_back(t_new);
+    detect(points.size() - 2);
+    if (points.size() > 5 && distance(c.z, zs_.front()) < ds) {
+      stop = StopReason::closed_loop;
+      return;
+    }
+    if (c.iterations <= 3) ds = std::min<ld>(ds * 1.6L, options_.ds_max);
+    if (c.iterations >= 6) ds *= 0.6L;
+  }
+  stop = StopReason::max_steps;
+  detail = fmt::format("stopped after {} steps at {}={:.17g}", options_.max_steps, to_string(eq_.param()),
+                       double(points.back().parameter));
+}
+
+void Tracer::detect(std::size_t a) {
+  const BranchPoint& pa = points[a];
+  const BranchPoint& pb = points[a + 1];
+  if ((pa.tangent_parameter > 0) != (pb.tangent_parameter > 0)) locate_fold_between(a);
+  if ((pa.branch_test > 0) != (pb.branch_test > 0)) locate_branch_point_between(a);
+  if (hopf_test_sign(pa.spectrum) != hopf_test_sign(pb.spectrum)) locate_hopf_between(a);
+}
+
+SpecialPoint Tracer::special_at(Label label, const Vec5& z, std::size_t a) const {
+  SpecialPoint sp;
+  sp.label = label;
+  sp.parameter = eq_.parameter(z);
+  sp.position = eq_.position(z);
+  sp.family = classify(eq_.base(), sp.position);
+  sp.n_unstable_before = points[a].spectrum.n_unstable;
+  sp.n_unstable_after = points[a + 1].spectrum.n_unstable;
+  sp.bracket_from = points[a].parameter;
+  sp.bracket_to = points[a + 1].parameter;
+  return sp;
+}
+
+// The eigenvalue of `sp` nearest to `target`.
+std::complex<double> nearest(const Spectrum& sp, std::complex<double> target) {
+  std::complex<double> best = sp.eigenvalues[0];
+  for (const auto& l : sp.eigenvalues)
+    if (std::abs(l - target) < std::abs(best - target)) best = l;
+  return best;
+}
+
+// A located point must lie on the piece of branch it was bracketed on (within a
+// margin of the chord), else the augmented Newton wandered off.
+bool inside(const Vec5& za, const Vec5& zb, const Vec5& z) {
+  const ld chord = distance(za, zb);
+  return distance(z, za) <= 2 * chord && distance(z, zb) <= 2 * chord;
+}
+
+void Tracer::locate_fold_between(std::size_t a) {
+  const ld ta = points[a].tangent_parameter, tb = points[a + 1].tangent_parameter;
+  const Vec5 guess = zs_[a] + (ta / (ta - tb)) * (zs_[a + 1] - zs_[a]);
+  const Located f = locate_fold(eq_, guess);
+  const bool ok = f.converged && inside(zs_[a], zs_[a + 1], f.z);
+  SpecialPoint sp = special_at(Label::LP, ok ? f.z : guess, a);
+  sp.converged = ok;
+  const Spectrum s = compute_spectrum(eq_.linearization(sp.converged ? f.z : guess));
+  sp.eigenvalue = nearest(s, 0.0);
+  if (!ok) sp.note = "fold detected (t_p changes sign) but its augmented system did not converge";
+  specials.push_back(sp);
+}
+
+void Tracer::locate_branch_point_between(std::size_t a) {
+  // det [F_u; t^T] along the chord from z_a to z_b, each value on the branch (the
+  // corrector with the chord as constraint direction); Brent's method (GSL) on it.
+  const Vec5 za = zs_[a];
+  const ld length = (zs_[a + 1] - za).norm();
+  const Vec5 d = (zs_[a + 1] - za) / length;
+  struct Context {
+    const StaticEquations* eq;
+    Vec5 za, d, t;
+    bool failed = false;
+  } ctx{&eq_, za, d, ts_[a]};
+  gsl_function fn;
+  fn.params = &ctx;
+  fn.function = [](double sigma, void* raw) -> double {
+    auto* c = static_cast<Context*>(raw);
+    const Corrected on = correct(*c->eq, c->za + ld(sigma) * c->d, c->d);
+    if (!on.converged) c->failed = true;
+    const Vec5 t = tangent(*c->eq, on.z, c->t);
+    return double(branch_test(*c->eq, on.z, t));
+  };
+  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  double lo = 0, hi = double(length), root = 0.5 * hi;
+  bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
+  for (int it = 0; ok && it < 200; ++it) {
+    if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
+      ok = false;
+      break;
+    }
+    root = gsl_root_fsolver_root(solver);
+    lo = gsl_root_fsolver_x_lower(solver);
+    hi = gsl_root_fsolver_x_upper(solver);
+    if (gsl_root_test_interval(lo, hi, 0, 1e-15) == GSL_SUCCESS) break;
+  }
+  gsl_root_fsolver_free(solver);
+  const Corrected on = correct(eq_, za + ld(root) * d, d);
+  SpecialPoint sp = special_at(Label::BP, on.z, a);
+  sp.converged = ok && on.converged && !ctx.failed;
+  sp.eigenvalue = nearest(compute_spectrum(eq_.linearization(on.z)), 0.0);
+  if (!sp.converged) sp.note = "branch point detected but not located to full accuracy";
+  specials.push_back(sp);
+}
+
+void Tracer::locate_hopf_between(std::size_t a) {
+  // Narrow the bracket on the branch (bisection on the test function's sign, each point
+  // corrected onto the branch) until the crossing pair is complex at both ends: a Hopf
+  // pair can be complex only in a sliver of the step (near omega_n with coulomb
+  // friction its frequency is 1e-5 omega_n). Then solve the Hopf system from there.
+  Vec5 za = zs_[a], zb = zs_[a + 1];
+  Spectrum sa = points[a].spectrum, sb = points[a + 1].spectrum;
+  const int sign_a = hopf_test_sign(sa);
+  std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
+  for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it) {
+    if (distance(za, zb) < 1e-15L) break;
+    const Vec5 d = (zb - za).normalized();
+    const Corrected mid = correct(eq_, (za + zb) / 2, d);
+    if (!mid.converged) break;
+    const Spectrum sm = compute_spectrum(eq_.linearization(mid.z));
+    if (hopf_test_sign(sm) == sign_a) {
+      za = mid.z, sa = sm;
+    } else {
+      zb = mid.z, sb = sm;
+    }
+  }
+  if (!pair) {
+    // The sign change came from a real pair lambda, -lambda: a neutral saddle, not a
+    // Hopf point (or a crossing too close to a coalescence to resolve): not reported.
+    return;
+  }
+  const auto [la, lb] = *pair;
+  const double theta = la.real() / (la.real() - lb.real());
+  const Vec5 guess = za + ld(theta) * (zb - za);
+  const ld omega_guess = la.imag() + theta * (lb.imag() - la.imag());
+  const Located h = locate_hopf(eq_, guess, omega_guess);
+  const bool ok = h.converged && inside(zs_[a], zs_[a + 1], h.z);
+  SpecialPoint sp = special_at(Label::HB, ok ? h.z : guess, a);
+  sp.converged = ok;
+  sp.frequency = double(ok ? h.frequency : omega_guess);
+  const Spectrum s = compute_spectrum(eq_.linearization(ok ? h.z : guess));
+  sp.eigenvalue = nearest(s, std::complex<double>(0, sp.frequency));
+  if (ok) {
+    sp.lyapunov = first_lyapunov_coefficient(eq_.params(h.z), eq_.position(h.z), h.frequency);
+    if (sp.lyapunov == 0) sp.note = "degenerate Hopf point (l1 = 0 within its accuracy)";
+  } else {
+    sp.note = "Hopf crossing detected but its augmented system did not converge";
+  }
+  specials.push_back(sp);
+}
+
+std::vector<Equilibrium> start_points(const Params& p, const StartSelection& start, std::vector<std::string>& notes) {
+  std::vector<Equilibrium> out;
+  if (start.state) {
+    Equilibrium guess;
+    guess.position = *start.state;
+    guess.family = classify(p, *start.state);
+    out.push_back(polish_equilibrium(p, guess));
+    if (!out.back().converged)
+      notes.push_back(fmt::format("the given start state did not converge to an equilibrium (residual {:.3g})",
+                                  out.back().residual));
+    return out;
+  }
+  for (const auto& e : find_equilibria(p).points()) {
+    if (start.family && e.family != *start.family) continue;
+    if (e.is_set) {
+      notes.push_back(fmt::format("{} {} is a circle of equilibria (U = 0): continuation needs isolated "
+                                  "equilibria; not continued",
+                                  to_string(e.family), e.member));
+      continue;
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string_view to_string(Label label) {
+  switch (label) {
+    case Label::none: return "";
+    case Label::EP: return "EP";
+    case Label::LP: return "LP";
+    case Label::BP: return "BP";
+    case Label::HB: return "HB";
+    case Label::MX: return "MX";
+  }
+  return "?";
+}
+
+std::string_view to_string(StopReason r) {
+  switch (r) {
+    case StopReason::end_of_range: return "end of the parameter interval";
+    case StopReason::max_steps: return "maximum number of steps";
+    case StopReason::step_underflow: return "step below its minimum";
+    case StopReason::invalid_parameter: return "parameter left its valid range";
+    case StopReason::closed_loop: return "closed loop";
+  }
+  return "?";
+}
+
+std::optional<std::string> options_violation(const ContinuationOptions& o) {
+  if (!(o.ds_min > 0)) return fmt::format("--ds-min must be > 0 (got {})", o.ds_min);
+  if (!(o.ds >= o.ds_min)) return fmt::format("--ds must be >= --ds-min (got {} < {})", o.ds, o.ds_min);
+  if (!(o.ds_max >= o.ds)) return fmt::format("--ds-max must be >= --ds (got {} < {})", o.ds_max, o.ds);
+  if (!(o.ds_max <= 0.5)) return fmt::format("--ds-max must be <= 0.5 of the interval (got {})", o.ds_max);
+  if (o.max_steps < 1 || o.max_steps > 1000000)
+    return fmt::format("--max-steps must be in [1, 1000000] (got {})", o.max_steps);
+  return std::nullopt;
+}
+
+Family classify(const Params& p, const Coordinates<long double, 2>& s) {
+  const ld length = displacement_scale(p.cast<ld>());
+  if (std::hypot(s(0), s(1)) <= 1e-7L * length) return Family::balanced;
+  const ld apart = wrapped_difference(s(2), s(3));
+  return apart < std::numbers::pi_v<ld> / 2 ? Family::together : Family::opposite;
+}
+
+namespace {
+// Traces the branch through `e` at scaled parameter z4 = end (0: the start value, 1 the
+// far end), heading into the interval, and appends it to the run.
+Branch trace_branch(const StaticEquations& eq, const Equilibrium& e, ld parameter, ld end,
+                    const ContinuationOptions& options) {
+  Vec5 inward = Vec5::Zero();
+  inward(4) = end == 0 ? 1 : -1;
+  const Vec5 z0 = eq.scaled(e.position, parameter);
+  const Vec5 t0 = tangent(eq, z0, inward);
+  Tracer forward(eq, options), backward(eq, options);
+  forward.run(z0, t0);
+  // Backwards only if the branch does not leave the interval at once (a fold at the start).
+  const bool transversal = t0.dot(inward) > 1e-6L;
+  if (!transversal) backward.run(z0, -t0);
+  Branch b;
+  b.family = e.family;
+  b.member = e.member;
+  b.start_parameter = parameter;
+  for (std::size_t k = backward.points.size(); k > 1; --k) b.points.push_back(backward.points[k - 1]);
+  for (auto it = backward.specials.rbegin(); it != backward.specials.rend(); ++it) {
+    SpecialPoint sp = *it;  // traversed the other way: before and after swap
+    std::swap(sp.n_unstable_before, sp.n_unstable_after);
+    std::swap(sp.bracket_from, sp.bracket_to);
+    b.specials.push_back(sp);
+  }
+  b.points.insert(b.points.end(), forward.points.begin(), forward.points.end());
+  b.specials.insert(b.specials.end(), forward.specials.begin(), forward.specials.end());
+  b.stop = {transversal ? StopReason::end_of_range : backward.stop, forward.stop};
+  b.stop_detail = {transversal ? std::string("the start value is an end of the interval") : backward.detail,
+                   forward.detail};
+  if (transversal) b.points.front().label = Label::EP;
+  return b;
+}
+
+// Does the branch pass through the configuration z at the scaled parameter of z?
+bool passes_through(const StaticEquations& eq, const Branch& b, const Vec5& z) {
+  for (const auto& pt : b.points)
+    if (distance(eq.scaled(pt.position, pt.parameter), z) < 1e-8L) return true;
+  return false;
+}
+}  // namespace
+
+ContinuationRun continue_branches(const Params& p, ParamRef param, double to, const ContinuationOptions& options,
+                                  const StartSelection& start) {
+  ContinuationRun run;
+  run.param = param;
+  run.from = get(p, param);
+  run.to = to;
+  const StaticEquations eq(p, param, run.from, ld(to) - ld(run.from));
+  // Branches from the equilibria at the start value; then, so that no branch of the
+  // interval is missed, from those at the far end that no branch has reached (a family
+  // that exists only in part of the interval, beyond a fold).
+  Params far = p;
+  set(far, param, to);
+  struct Start {
+    Equilibrium e;
+    ld parameter, end;
+  };
+  std::vector<Start> starts;
+  for (const auto& e : start_points(p, start, run.notes)) starts.push_back({e, run.from, 0});
+  if (!start.state)
+    for (const auto& e : start_points(far, start, run.notes)) starts.push_back({e, ld(to), 1});
+  for (const auto& s : starts) {
+    const Vec5 z = eq.scaled(s.e.position, s.parameter);
+    const Branch* on = nullptr;
+    for (const auto& b : run.branches)
+      if (passes_through(eq, b, z)) on = &b;
+    if (on) {
+      if (s.end == 0)
+        run.notes.push_back(fmt::format("{} {} lies on the branch of {} {}; not traced again", to_string(s.e.family),
+                                        s.e.member, to_string(on->family), on->member));
+      continue;
+    }
+    run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options));
+  }
+  return run;
+}
+
+}  // namespace abu
