@@ -85,36 +85,6 @@ ld branch_test(const StaticEquations& eq, const Vec5& z, const Vec5& t) {
   return M.partialPivLu().determinant();
 }
 
-// Matches this point's eigenvalues to the previous point's modes, nearest first
-// (distance relative to the sizes involved), so that mode k stays the same mode.
-std::array<std::complex<double>, 8> track(const std::array<std::complex<double>, 8>& previous,
-                                          const std::array<std::complex<double>, 8>& current) {
-  std::array<std::complex<double>, 8> out{};
-  std::array<bool, 8> used_prev{}, used_cur{};
-  for (int round = 0; round < 8; ++round) {
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t bi = 0, bj = 0;
-    for (std::size_t i = 0; i < 8; ++i) {
-      if (used_prev[i]) continue;
-      for (std::size_t j = 0; j < 8; ++j) {
-        if (used_cur[j]) continue;
-        const double d = std::abs(current[j] - previous[i]) /
-                         (std::abs(current[j]) + std::abs(previous[i]) + std::numeric_limits<double>::min());
-        if (d < best) best = d, bi = i, bj = j;
-      }
-    }
-    used_prev[bi] = used_cur[bj] = true;
-    out[bi] = current[bj];
-  }
-  return out;
-}
-
-double error_of(const Spectrum& sp, std::complex<double> value) {
-  for (std::size_t k = 0; k < 8; ++k)
-    if (sp.eigenvalues[k] == value) return sp.error[k];
-  return 0;
-}
-
 // Sign of the Hopf test function prod_{i<j} (lambda_i + lambda_j), the determinant of
 // the bialternate product 2J (.) I: its factors are 2 Re lambda for each conjugate pair
 // and lambda_i + lambda_j for each pair of real eigenvalues (the rest pair up into
@@ -156,14 +126,71 @@ std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pa
   return std::nullopt;
 }
 
-// The largest relative move of a tracked mode between two points, each mode's floor
-// being its error bands (so modes at the rounding level do not count).
-double largest_mode_move(const BranchPoint& a, const BranchPoint& b) {
+using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
+
+// What a mode is expected to be at the next point: its eigenvalue extrapolated along
+// the branch and its eigenvector (q measured in the displacement scale, so that rotor
+// and ball components weigh alike).
+struct ModePrediction {
+  std::array<std::complex<double>, 8> values{};
+  std::array<Vec4c, 8> vectors{};     ///< q in displacement-scale units, unit norm (overlaps)
+  std::array<Vec4c, 8> si_vectors{};  ///< as computed (Newton start vectors)
+};
+
+double overlap(const Vec4c& a, const Vec4c& b) { return std::abs(a.dot(b)); }
+
+// Assigns the new eigenvalues to the predicted modes, best match first; the cost of a
+// match adds the relative eigenvalue distance and the eigenvector mismatch 1 - |<a, b>|,
+// so that two modes with nearly equal eigenvalues (one per ball) keep their identity.
+// `source[k]` is the index in sp of mode k.
+void track(const ModePrediction& predicted, const Spectrum& sp, const std::array<Vec4c, 8>& scaled_vectors,
+           std::array<std::complex<double>, 8>& modes, std::array<int, 8>& source) {
+  std::array<bool, 8> used_mode{}, used_new{};
+  for (int round = 0; round < 8; ++round) {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bi = 0, bj = 0;
+    for (std::size_t i = 0; i < 8; ++i) {
+      if (used_mode[i]) continue;
+      for (std::size_t j = 0; j < 8; ++j) {
+        if (used_new[j]) continue;
+        const auto p = predicted.values[i], l = sp.eigenvalues[j];
+        const double d = std::abs(l - p) / (std::abs(l) + std::abs(p) + std::numeric_limits<double>::min()) +
+                         (1 - overlap(predicted.vectors[i], scaled_vectors[j]));
+        if (d < best) best = d, bi = i, bj = j;
+      }
+    }
+    used_mode[bi] = used_new[bj] = true;
+    modes[bi] = sp.eigenvalues[bj];
+    source[bi] = int(bj);
+  }
+}
+
+// The match of mode k is certain when its eigenvalue lands within half its predicted
+// distance to the nearest other mode (its own conjugate excluded: that pairing is
+// symmetric), or, failing that, when its eigenvector is nearly the predicted one and
+// clearly unlike that of every eigenvalue that landed as close to the prediction (two
+// modes with nearly equal eigenvalues, one per ball, moving together). Returns the
+// largest landing error / half-separation among the uncertain matches.
+double tracking_ambiguity(const ModePrediction& predicted, const Spectrum& sp,
+                          const std::array<Vec4c, 8>& scaled_vectors, const std::array<int, 8>& source) {
   double worst = 0;
   for (std::size_t k = 0; k < 8; ++k) {
-    const double floor = 8 * (error_of(a.spectrum, a.modes[k]) + error_of(b.spectrum, b.modes[k]));
-    const double move = std::abs(b.modes[k] - a.modes[k]);
-    if (move > floor) worst = std::max(worst, move / (std::abs(a.modes[k]) + std::abs(b.modes[k])));
+    const auto j = std::size_t(source[k]);
+    const auto pk = predicted.values[k];
+    const double miss = std::abs(sp.eigenvalues[j] - pk);
+    if (miss <= 8 * sp.error[j]) continue;
+    double separation = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < 8; ++i)
+      if (i != k && predicted.values[i] != std::conj(pk))
+        separation = std::min(separation, std::abs(predicted.values[i] - pk));
+    if (miss <= separation / 2) continue;
+    const double own = overlap(predicted.vectors[k], scaled_vectors[j]);
+    double rival = 0;
+    for (std::size_t i = 0; i < 8; ++i)
+      if (i != j && sp.eigenvalues[i] != std::conj(sp.eigenvalues[j]) && std::abs(sp.eigenvalues[i] - pk) <= 2 * miss)
+        rival = std::max(rival, overlap(predicted.vectors[k], scaled_vectors[i]));
+    if (own >= 0.9 && rival <= 0.5 * own) continue;
+    worst = std::max(worst, miss / (separation / 2));
   }
   return worst;
 }
@@ -181,7 +208,15 @@ class Tracer {
   std::string detail;
 
  private:
-  BranchPoint make_point(const Vec5& z, const Vec5& t) const;
+  // The point at z with its modes matched to `predicted` (none: the first point, sorted
+  // order); `ambiguity` receives tracking_ambiguity.
+  BranchPoint make_point(const Vec5& z, const Vec5& t, const ModePrediction* predicted, double* ambiguity) const;
+  ModePrediction predict(const Vec5& z) const;
+  // An eigenvector with q in displacement-scale units, unit norm (for overlaps).
+  Vec4c scaled_vector(const Vec4c& v) const {
+    const double length = double(eq_.length());
+    return Vec4c(v(0) / length, v(1) / length, v(2), v(3)).normalized();
+  }
   void add(const Vec5& z, const Vec5& t);
   void detect(std::size_t a);
   void locate_fold_between(std::size_t a);
@@ -194,13 +229,53 @@ class Tracer {
   std::vector<Vec5> zs_, ts_;
 };
 
-BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t) const {
+// Each mode's eigenvalue extrapolated linearly in arclength from the last two points to
+// z; its eigenvector as at the last point.
+ModePrediction Tracer::predict(const Vec5& z) const {
+  const std::size_t n = points.size();
+  ModePrediction out;
+  out.values = points[n - 1].modes;
+  out.si_vectors = points[n - 1].mode_vectors;
+  for (std::size_t k = 0; k < 8; ++k) out.vectors[k] = scaled_vector(points[n - 1].mode_vectors[k]);
+  if (n < 2) return out;
+  const ld last = (zs_[n - 1] - zs_[n - 2]).norm();
+  const double ratio = last > 0 ? double((z - zs_[n - 1]).norm() / last) : 0.0;
+  for (std::size_t k = 0; k < 8; ++k) out.values[k] += ratio * (points[n - 1].modes[k] - points[n - 2].modes[k]);
+  return out;
+}
+
+BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const ModePrediction* predicted,
+                               double* ambiguity) const {
   BranchPoint pt;
   pt.parameter = eq_.parameter(z);
   pt.position = eq_.position(z);
   pt.family = classify(eq_.base(), pt.position);
-  pt.spectrum = compute_spectrum(eq_.linearization(z));
-  pt.modes = points.empty() ? pt.spectrum.eigenvalues : track(points.back().modes, pt.spectrum.eigenvalues);
+  const Linearization<ld, 2> lin = eq_.linearization(z);
+  // Eigenvalue continuation from the predicted modes first (cheap, keeps every mode's
+  // identity); a fresh spectrum matched to the prediction where that fails.
+  if (predicted) {
+    if (auto tracked = track_spectrum(lin, predicted->values, predicted->si_vectors)) {
+      pt.spectrum = tracked->spectrum;
+      pt.modes = tracked->modes;
+      pt.mode_vectors = tracked->mode_vectors;
+      if (ambiguity) *ambiguity = 0;
+      pt.tangent_parameter = double(t(4));
+      pt.branch_test = double(branch_test(eq_, z, t));
+      return pt;
+    }
+  }
+  pt.spectrum = compute_spectrum(lin);
+  if (predicted) {
+    std::array<Vec4c, 8> scaled{};
+    for (std::size_t k = 0; k < 8; ++k) scaled[k] = scaled_vector(pt.spectrum.vectors[k]);
+    std::array<int, 8> source{};
+    track(*predicted, pt.spectrum, scaled, pt.modes, source);
+    for (std::size_t k = 0; k < 8; ++k) pt.mode_vectors[k] = pt.spectrum.vectors[std::size_t(source[k])];
+    if (ambiguity) *ambiguity = tracking_ambiguity(*predicted, pt.spectrum, scaled, source);
+  } else {
+    pt.modes = pt.spectrum.eigenvalues;
+    pt.mode_vectors = pt.spectrum.vectors;
+  }
   // Signs relative to the direction of increasing parameter, whichever way we travel.
   pt.tangent_parameter = double(t(4));
   pt.branch_test = double(branch_test(eq_, z, t));
@@ -208,7 +283,12 @@ BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t) const {
 }
 
 void Tracer::add(const Vec5& z, const Vec5& t) {
-  points.push_back(make_point(z, t));
+  if (points.empty()) {
+    points.push_back(make_point(z, t, nullptr, nullptr));
+  } else {
+    const ModePrediction predicted = predict(z);
+    points.push_back(make_point(z, t, &predicted, nullptr));
+  }
   zs_.push_back(z);
   ts_.push_back(t);
   if (points.size() >= 2) detect(points.size() - 2);
@@ -264,8 +344,10 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       return;
     }
     // Eigenvalue tracking needs the modes to move little per step: else halve the step.
-    BranchPoint candidate = make_point(c.z, t_new);
-    if (largest_mode_move(points.back(), candidate) > 0.25 && ds > 16 * options_.ds_min) {
+    const ModePrediction predicted = predict(c.z);
+    double ambiguity = 0;
+    BranchPoint candidate = make_point(c.z, t_new, &predicted, &ambiguity);
+    if (ambiguity > 1 && ds > 16 * options_.ds_min) {
       ds /= 2;
       continue;
     }
@@ -277,8 +359,11 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       stop = StopReason::closed_loop;
       return;
     }
-    if (c.iterations <= 3) ds = std::min<ld>(ds * 1.6L, options_.ds_max);
-    if (c.iterations >= 6) ds *= 0.6L;
+    // Next step from the predictor's relative error |z - z_pred| / ds ~ curvature * ds / 2:
+    // aim at 5% (the tangent then stays a good predictor), change by at most 2x per step.
+    const ld relative_error = (c.z - z_pred).norm() / ds;
+    const ld factor = std::clamp(std::sqrt(0.05L / std::max(relative_error, 1e-12L)), 0.5L, 2.0L);
+    ds = std::clamp<ld>(ds * factor, options_.ds_min, options_.ds_max);
   }
   stop = StopReason::max_steps;
   detail = fmt::format("stopped after {} steps at {}={:.17g}", options_.max_steps, to_string(eq_.param()),
@@ -383,6 +468,10 @@ void Tracer::locate_hopf_between(std::size_t a) {
   // friction its frequency is 1e-5 omega_n). Then solve the Hopf system from there.
   Vec5 za = zs_[a], zb = zs_[a + 1];
   Spectrum sa = points[a].spectrum, sb = points[a + 1].spectrum;
+  // A neutral saddle (a real pair lambda, -lambda: one eigenvalue on each side of the
+  // axis) changes the test function's sign but not the number of unstable eigenvalues;
+  // a Hopf crossing changes it by two. Only the latter is worth locating.
+  if (std::abs(sa.n_unstable - sb.n_unstable) != 2) return;
   const int sign_a = hopf_test_sign(sa);
   std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
   for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it) {

@@ -196,66 +196,89 @@ struct Refined {
   ld backward_error;  // componentwise, eta
   ld abs_condition;   // y* S |x| / |y* T' x|, S = |lambda|^2 |A| + |lambda| |C| + |K|
   bool converged;
+  Vec4c vector;       // x, unscaled (SI) and of unit norm
 };
 
 // |z| without hypot: the componentwise magnitudes below only need a factor-sqrt(2)-
 // accurate size, and hypotl is the slowest call in the refinement.
-ld magnitude_of(ld z) { return std::abs(z); }
-ld magnitude_of(const cld& z) { return std::abs(z.real()) + std::abs(z.imag()); }
+template <class W>
+W magnitude_of(W z) {
+  return std::abs(z);
+}
+template <class W>
+W magnitude_of(const std::complex<W>& z) {
+  return std::abs(z.real()) + std::abs(z.imag());
+}
+
+template <class S>
+struct Precision {  // S = W or std::complex<W>; D the scalar of the bordered solve
+  using W = S;
+  using D = double;
+};
+template <class W_>
+struct Precision<std::complex<W_>> {
+  using W = W_;
+  using D = std::complex<double>;
+};
 
 template <class S>
 S from_complex(std::complex<double> z) {
-  if constexpr (std::is_same_v<S, ld>) {
-    return ld(z.real());
+  if constexpr (std::is_floating_point_v<S>) {
+    return S(z.real());
   } else {
     return S(z.real(), z.imag());
   }
 }
 
-// Mixed precision: T(lambda), the residual T x and the iterate in long double (this is
-// what makes the result better than double), the bordered correction solved in double
-// (its errors only slow the convergence by a factor eps_double * cond(B) per step).
+// Newton on T(lambda) x = 0 from (start, start_vector), on the equilibrated problem.
+// The residual T x and the iterate are in S's precision: long double for the analyzer's
+// spectra (this is what makes them better than double), double for eigenvalue
+// continuation along branches; the bordered correction is always solved in double (its
+// errors only slow the convergence by a factor eps_double * cond(B) per step).
 template <class S>
 Refined refine(const Linearization<ld, 2>& lin, std::complex<double> start, const Vec4c& start_vector) {
-  using D = std::conditional_t<std::is_same_v<S, ld>, double, std::complex<double>>;
+  using W = typename Precision<S>::W;
+  using D = typename Precision<S>::D;
   using Vec4 = Eigen::Matrix<S, 4, 1>;
   using Mat4s = Eigen::Matrix<S, 4, 4>;
-  using Vec4l = Eigen::Matrix<ld, 4, 1>;
+  using Vec4w = Eigen::Matrix<W, 4, 1>;
+  using Mat4w = Eigen::Matrix<W, 4, 4>;
+  constexpr W eps = std::numeric_limits<W>::epsilon() / 2;
   S lambda = from_complex<S>(start);
-  Vec4l rows, cols;
+  Eigen::Matrix<ld, 4, 1> rows, cols;
   {
     const ld a = std::abs(start);
     equilibrate(a * a * lin.mass.cwiseAbs() + a * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs(), rows, cols);
   }
-  const Mat4 Ar = rows.asDiagonal() * lin.mass * cols.asDiagonal();
-  const Mat4 Cr = rows.asDiagonal() * lin.damping * cols.asDiagonal();
-  const Mat4 Kr = rows.asDiagonal() * lin.stiffness * cols.asDiagonal();
-  const Mat4 absA = Ar.cwiseAbs(), absC = Cr.cwiseAbs(), absK = Kr.cwiseAbs();
-  const auto T = [&](S l) -> Mat4s { return (l * l) * Ar.cast<S>() + l * Cr.cast<S>() + Kr.cast<S>(); };
-  const auto dT = [&](S l) -> Mat4s { return S(2) * l * Ar.cast<S>() + Cr.cast<S>(); };
-  const auto magnitude = [&](S l) -> Mat4 {
-    const ld a = magnitude_of(l);
+  const Mat4w Ar = (rows.asDiagonal() * lin.mass * cols.asDiagonal()).template cast<W>();
+  const Mat4w Cr = (rows.asDiagonal() * lin.damping * cols.asDiagonal()).template cast<W>();
+  const Mat4w Kr = (rows.asDiagonal() * lin.stiffness * cols.asDiagonal()).template cast<W>();
+  const Mat4s As = Ar.template cast<S>(), Cs = Cr.template cast<S>(), Ks = Kr.template cast<S>();
+  const Mat4w absA = Ar.cwiseAbs(), absC = Cr.cwiseAbs(), absK = Kr.cwiseAbs();
+  const auto T = [&](S l) -> Mat4s { return (l * l) * As + l * Cs + Ks; };
+  const auto dT = [&](S l) -> Mat4s { return S(2) * l * As + Cs; };
+  const auto magnitude = [&](S l) -> Mat4w {
+    const W a = magnitude_of(l);
     return a * a * absA + a * absC + absK;
   };
   const auto abs_vector = [](const Vec4& v) {
-    Vec4l a;
+    Vec4w a;
     for (int i = 0; i < 4; ++i) a(i) = magnitude_of(v(i));
     return a;
   };
   // The start vector in the equilibrated coordinates; normalization c^H x = 1 with c the
   // start itself (unlike pinning one entry, it cannot pick a component that is noise).
   Vec4 x;
-  for (int i = 0; i < 4; ++i) x(i) = from_complex<S>(start_vector(i)) / S(cols(i));
+  for (int i = 0; i < 4; ++i) x(i) = from_complex<S>(start_vector(i)) / S(W(cols(i)));
   x /= S(x.norm());
   const Eigen::Matrix<D, 4, 1> c = x.template cast<D>();
   // Bordered system B = [T, T' x; c^H, 0], its first four rows weighted by the
   // componentwise magnitude so that pivoting sees comparable rows. Near a simple
   // eigenvalue B is well conditioned even where T itself is singular to working precision.
-  Vec4l weight;
-  const auto bordered = [&](S l, const Vec4& v) {
-    const Vec4l scale = magnitude(l) * abs_vector(v);
+  Vec4w weight;
+  const auto bordered = [&](S l, const Mat4s& t, const Vec4& v) {
+    const Vec4w scale = magnitude(l) * abs_vector(v);
     Eigen::Matrix<D, 5, 5> B;
-    const Mat4s t = T(l);
     const Vec4 tv = dT(l) * v;
     for (int i = 0; i < 4; ++i) {
       weight(i) = scale(i) > 0 ? 1 / scale(i) : 1;
@@ -268,48 +291,55 @@ Refined refine(const Linearization<ld, 2>& lin, std::complex<double> start, cons
   };
   // Newton converges until its steps stop shrinking (the rounding level); whether that
   // level is good enough is judged below against the error bound.
-  ld last_step = std::numeric_limits<ld>::infinity();
-  ld final_step = last_step;
+  W last_step = std::numeric_limits<W>::infinity();
+  W final_step = last_step;
   for (int it = 0; it < 16; ++it) {
-    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, x);
-    const Vec4 r = T(lambda) * x;  // in long double
+    const Mat4s t = T(lambda);
+    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, t, x);
+    const Vec4 r = t * x;  // in the working precision
     Eigen::Matrix<D, 5, 1> rhs;
     for (int i = 0; i < 4; ++i) rhs(i) = D(-r(i) * S(weight(i)));
     rhs(4) = D(0);
     const Eigen::Matrix<D, 5, 1> step = B.partialPivLu().solve(rhs);
     if (!step.allFinite()) break;
-    const ld dl = magnitude_of(S(step(4)));
+    const W dl = magnitude_of(S(step(4)));
     lambda += S(step(4));
     for (int i = 0; i < 4; ++i) x(i) += S(step(i));
     final_step = std::min(dl, last_step);
-    if (dl <= 4 * kEpsLong * magnitude_of(lambda) || (it >= 2 && dl > last_step / 2)) break;
+    if (dl <= 4 * eps * magnitude_of(lambda) || (it >= 2 && dl > last_step / 2)) break;
     last_step = dl;
   }
   // Left vector from the adjoint bordered system: B^H [y; eta] = e_5 gives
   // T^H y = -eta c with eta ~ (T x)^H y / (c^H x) ~ 0: y is the left null vector of T.
+  const Mat4s t = T(lambda);
   Vec4 y;
   {
-    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, x);
+    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, t, x);
     Eigen::Matrix<D, 5, 1> e5 = Eigen::Matrix<D, 5, 1>::Zero();
     e5(4) = D(1);
     const Eigen::Matrix<D, 5, 1> z = B.partialPivLu().adjoint().solve(e5);
     for (int i = 0; i < 4; ++i) y(i) = S(z(i)) * S(weight(i));  // undo the row weighting
     if (!y.allFinite() || y.isZero(0)) y = x;
   }
-  const Mat4 S_mag = magnitude(lambda);
-  const Vec4 r = T(lambda) * x;
-  const Vec4l denom = S_mag * abs_vector(x);
-  ld eta = 0;
-  for (int i = 0; i < 4; ++i) eta = std::max(eta, denom(i) > 0 ? magnitude_of(r(i)) / denom(i) : ld(0));
-  const ld num = abs_vector(y).dot(S_mag * abs_vector(x));
-  const ld den = std::abs(y.dot(dT(lambda) * x));  // dot() conjugates its first argument
-  const ld abs_condition = den > 0 ? num / den : std::numeric_limits<ld>::infinity();
-  eta = std::max(eta, kEpsLong);
+  const Mat4w S_mag = magnitude(lambda);
+  const Vec4 r = t * x;
+  const Vec4w denom = S_mag * abs_vector(x);
+  W eta = 0;
+  for (int i = 0; i < 4; ++i) eta = std::max(eta, denom(i) > 0 ? magnitude_of(r(i)) / denom(i) : W(0));
+  const W num = abs_vector(y).dot(S_mag * abs_vector(x));
+  const W den = std::abs(y.dot(dT(lambda) * x));  // dot() conjugates its first argument
+  const W abs_condition = den > 0 ? num / den : std::numeric_limits<W>::infinity();
+  eta = std::max(eta, eps);
   // Converged: the last Newton step is at the rounding level of the eigenvalue itself or
   // below its first-order error bound (a zero eigenvalue has no relative rounding level).
   const bool converged = std::isfinite(std::abs(lambda)) &&
-                         (final_step <= 1e3L * kEpsLong * std::abs(lambda) || final_step <= 8 * abs_condition * eta);
-  return {cld(lambda), eta, abs_condition, converged};
+                         (final_step <= 1e3 * eps * std::abs(lambda) || final_step <= 8 * abs_condition * eta);
+  Vec4c unscaled;
+  for (int i = 0; i < 4; ++i) {
+    const std::complex<W> xi = std::complex<W>(x(i)) * W(cols(i));
+    unscaled(i) = {double(xi.real()), double(xi.imag())};
+  }
+  return {cld(std::complex<W>(lambda)), ld(eta), ld(abs_condition), converged, unscaled.normalized()};
 }
 
 // Sorts, and classifies each eigenvalue against its band; the `structural_zeros`
@@ -337,6 +367,7 @@ void sort_and_classify(Spectrum& sp, std::array<ld, 8> band, int structural_zero
     sorted.eigenvalues[i] = sp.eigenvalues[k];
     sorted.error[i] = sp.error[k];
     sorted.condition[i] = sp.condition[k];
+    sorted.vectors[i] = sp.vectors[k];
     const double re = sp.eigenvalues[k].real();
     sorted.on_axis[i] = std::abs(re) <= double(band[k]);
   }
@@ -396,6 +427,7 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
   const auto fill = [&](std::size_t k, cld v, const Refined& r) {
     const ld modulus = std::abs(v);
     refined[k] = v;
+    sp.vectors[k] = v == r.value ? r.vector : Vec4c(r.vector.conjugate());
     sp.eigenvalues[k] = {double(v.real()), double(v.imag())};
     sp.error[k] = double(r.abs_condition * r.backward_error);
     sp.condition[k] = modulus > 0 ? double(r.abs_condition / modulus) : std::numeric_limits<double>::infinity();
@@ -445,6 +477,56 @@ Spectrum compute_spectrum(const Linearization<ld, 2>& lin, SpectrumMethod method
   }
   sort_and_classify(sp, band, structural_zeros);
   return sp;
+}
+
+std::optional<TrackedSpectrum> track_spectrum(const Linearization<ld, 2>& lin,
+                                              const std::array<std::complex<double>, 8>& values,
+                                              const std::array<Vec4c, 8>& vectors) {
+  TrackedSpectrum out;
+  Spectrum& sp = out.spectrum;
+  std::array<ld, 8> band{};
+  std::array<bool, 8> done{};
+  for (std::size_t k = 0; k < 8; ++k) {
+    if (done[k]) continue;
+    const auto z = values[k];
+    // Each mode may move by less than half the predicted distance to its nearest
+    // neighbour (its conjugate excepted), or tracking would be ambiguous.
+    double radius = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < 8; ++j)
+      if (j != k && values[j] != std::conj(z)) radius = std::min(radius, std::abs(values[j] - z) / 2);
+    const bool real = z.imag() == 0;
+    const Refined r = real ? refine<double>(lin, z, vectors[k]) : refine<std::complex<double>>(lin, z, vectors[k]);
+    const std::complex<double> value(double(r.value.real()), double(r.value.imag()));
+    // Newton started from this mode's own eigenvector stays on that mode even when the
+    // extrapolated eigenvalue misses by more than the gap to a neighbour (two balls'
+    // nearly equal fast modes): the eigenvector's alignment identifies it then.
+    const bool aligned = std::abs(r.vector.dot(vectors[k].normalized())) >= 0.95;
+    if (!r.converged || !(std::abs(value - z) < radius || aligned)) return std::nullopt;
+    const auto store = [&](std::size_t m, std::complex<double> v, const Vec4c& x) {
+      out.modes[m] = v;
+      out.mode_vectors[m] = x;
+      sp.eigenvalues[m] = v;
+      sp.vectors[m] = x;
+      sp.error[m] = double(r.abs_condition * r.backward_error);
+      sp.condition[m] = std::abs(v) > 0 ? double(r.abs_condition) / std::abs(v) : std::numeric_limits<double>::infinity();
+      band[m] = 8 * r.abs_condition * (r.backward_error + ld(kEps));
+      sp.ill_conditioned = sp.ill_conditioned || !(sp.condition[m] * kEps <= 1e-8);
+      done[m] = true;
+    };
+    store(k, value, r.vector);
+    if (real) continue;
+    std::size_t partner = 8;
+    for (std::size_t j = 0; j < 8; ++j)
+      if (!done[j] && values[j] == std::conj(z)) partner = j;
+    if (partner == 8) return std::nullopt;  // a complex mode without its conjugate
+    store(partner, std::conj(value), Vec4c(r.vector.conjugate()));
+  }
+  // Two modes on one eigenvalue: one of them lost its identity.
+  for (std::size_t i = 0; i < 8; ++i)
+    for (std::size_t j = i + 1; j < 8; ++j)
+      if (std::abs(out.modes[i] - out.modes[j]) <= 1e-9 * std::abs(out.modes[i])) return std::nullopt;
+  sort_and_classify(sp, band, 0);
+  return out;
 }
 
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method) {

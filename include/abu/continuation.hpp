@@ -42,7 +42,7 @@ std::string_view to_string(Label label);
 struct ContinuationOptions {
   double ds = 0.01;      ///< first step
   double ds_min = 1e-9;  ///< below this a failing step ends the branch (MX)
-  double ds_max = 0.05;  ///< upper bound; also at most 20 points across the interval
+  double ds_max = 0.2;   ///< upper bound (the step also adapts to the branch's curvature)
   int max_steps = 5000;  ///< per branch and direction
 };
 /// Checks the options up front; returns the rule broken, if any.
@@ -54,8 +54,10 @@ struct BranchPoint {
   Coordinates<long double, 2> position = Coordinates<long double, 2>::Zero();  ///< angles unwrapped
   Family family = Family::balanced;  ///< of this point (a branch can pass a branch point)
   Spectrum spectrum;  ///< sorted as spectrum.hpp says; `modes` gives the tracked order
-  /// The eigenvalues in tracked order: modes[k] is the same mode at every point.
+  /// The eigenvalues in tracked order: modes[k] is the same mode at every point,
+  /// matched by eigenvector overlap and distance to the extrapolated eigenvalue.
   std::array<std::complex<double>, 8> modes{};
+  std::array<Eigen::Matrix<std::complex<double>, 4, 1>, 8> mode_vectors{};  ///< SI, unit norm
   double tangent_parameter = 0;  ///< t_p, the LP test function
   double branch_test = 0;        ///< det [F_u; t^T], the BP test function (sign matters)
   Label label = Label::none;     ///< EP at the ends; special points are listed separately

@@ -33,7 +33,10 @@
 
 #include <array>
 #include <complex>
+#include <optional>
 #include <string_view>
+
+#include <Eigen/Core>
 
 #include "abu/equilibria.hpp"
 #include "abu/model.hpp"
@@ -59,6 +62,9 @@ struct Spectrum {
   std::array<double, size> error{};      ///< estimated absolute error [1/s]
   std::array<double, size> condition{};  ///< relative componentwise condition number
   std::array<bool, size> on_axis{};      ///< within the marginal band (see above)
+  /// Right eigenvectors x of the quadratic problem (position part of J's (x, lambda x)),
+  /// SI coordinates, unit norm; refined method only.
+  std::array<Eigen::Matrix<std::complex<double>, 4, 1>, size> vectors{};
   double abscissa = 0.0;                 ///< spectral abscissa max Re lambda [1/s]
   Stability stability = Stability::marginal;
   int n_unstable = 0;  ///< eigenvalues right of the band
@@ -75,6 +81,21 @@ struct Spectrum {
 /// whatever rounding made of them.
 Spectrum compute_spectrum(const Linearization<long double, 2>& lin,
                           SpectrumMethod method = SpectrumMethod::refined, int structural_zeros = 0);
+
+/// Eigenvalue continuation: refines each predicted eigenpair (a branch's modes
+/// extrapolated from its previous points) by Newton in double precision and keeps the
+/// modes' identity: on success `modes[k]` is the new eigenvalue of predicted mode k and
+/// `mode_of_sorted[i]` the mode of sorted eigenvalue i. Fails (nullopt) when a mode's
+/// Newton leaves its basin (it moves by more than half the predicted distance to the
+/// nearest other mode) or does not converge; the caller then computes the spectrum afresh.
+struct TrackedSpectrum {
+  Spectrum spectrum;
+  std::array<std::complex<double>, Spectrum::size> modes{};
+  std::array<Eigen::Matrix<std::complex<double>, 4, 1>, Spectrum::size> mode_vectors{};
+};
+std::optional<TrackedSpectrum> track_spectrum(
+    const Linearization<long double, 2>& lin, const std::array<std::complex<double>, Spectrum::size>& values,
+    const std::array<Eigen::Matrix<std::complex<double>, 4, 1>, Spectrum::size>& vectors);
 
 /// Spectrum at an equilibrium (linearized in long double at its exact position).
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e,

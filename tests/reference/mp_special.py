@@ -54,7 +54,7 @@ WORK_DPS = 50      # location of every special point
 VERIFY_DPS = 80    # independent second location; the agreement is reported
 LYAP_DPS = 100     # first Lyapunov coefficient (finite differences of third order)
 
-BASE_POINTS = 300          # base grid points per existence segment
+BASE_POINTS = 150          # base grid points per existence segment
 CLUSTER_DECADES = 14       # geometric refinement down to 1e-14 relative at ends / resonance
 MIN_WIDTH = 1e-14          # relative width below which the scan stops refining
 NEAR = 0.1                 # indicator F below this: the interval gets a midpoint probe
@@ -619,6 +619,12 @@ def boundary_counts(p, par, sp, neighbours, lo, hi):
     """n_unstable of the incident branches next to an LP / BP (at WORK_DPS)."""
     v = sp.v
     d = _side_delta(v, neighbours, lo, hi)
+    # a neighbour closer than 1e-8 relative: keep the same number of digits inside the gap
+    with mp.workdps(mp.dps + max(0, int(mp.ceil(-mp.log10(d / abs(v)))) - 8)):
+        _boundary_counts(p, par, sp, v, d)
+
+
+def _boundary_counts(p, par, sp, v, d):
     if sp.label == "LP":
         # the two merging members, on the side where they exist
         for side in (-1, 1):
@@ -711,9 +717,14 @@ def first_lyapunov_generic(f, x0, J, w, h=None):
     iw = mpc(0, w)
 
     def null(Mx):
-        v = mp.lu_solve(Mx, mp.matrix([mpc(1, k + 1) / (k + 2) for k in range(n)]))
-        v = mp.lu_solve(Mx, v / mp.norm(v))
-        return v / mp.norm(v)
+        # inverse iteration with a tiny shift (Mx can be exactly singular); three steps
+        # leave an error (shift / gap)^3, far below the working precision
+        Ms = Mx + mpc(1, 1) * mpf(10) ** (-mp.dps // 3) * mp.mnorm(Mx, 1) * mp.eye(n)
+        v = mp.matrix([mpc(1, k + 1) / (k + 2) for k in range(n)])
+        for _ in range(3):
+            v = mp.lu_solve(Ms, v)
+            v = v / mp.norm(v)
+        return v
     I = mp.eye(n)
     q = null(J - iw * I)
     pv = null(J.T + iw * I)
@@ -838,13 +849,20 @@ def special_points(p, name, lo, hi, lyapunov=True, log=None):
     with mp.workdps(WORK_DPS):
         for family, member in members:
             mb = Member(p, par, family, member)
-            cuts = sorted(set([LO, HI] + [sp.v for sp in bounds if LO < sp.v < HI] + singular))
+            # the member's own existence ends, and branch points it passes (a real eigenvalue
+            # crosses 0 there, which Delta_7 does not see)
+            own = [sp.v for sp in bounds if (sp.label == "LP" and sp.family == family)
+                   or (sp.label == "BP" and family in ("balanced", sp.other))]
+            cuts = sorted(set([LO, HI] + [v for v in own if LO < v < HI] + singular))
             for a, b in zip(cuts[:-1], cuts[1:]):
                 m = (a + b) / 2
                 if mb.state(m) is None:
                     continue
                 t0 = time.time()
-                with mp.workdps(SCAN_DPS):
+                # a segment narrower than 1e-8 relative (e.g. between a fold and a branch point
+                # that nearly coincide) loses digits of parameter resolution: add them back
+                lost = max(0, int(mp.ceil(-mp.log10((b - a) / max(abs(a), abs(b))))) - 8)
+                with mp.workdps(SCAN_DPS + lost):
                     samples, brackets = scan_segment(mb, a, b, [v for v in resonance if a < v < b], stats)
                 if log:
                     log(f"# scanned {mb.name()} on [{mp.nstr(a, 8)}, {mp.nstr(b, 8)}]: {len(samples)} samples, "
@@ -856,18 +874,22 @@ def special_points(p, name, lo, hi, lyapunov=True, log=None):
                                      f"{mp.nstr(sa.v, 17)} and {mp.nstr(sb.v, 17)} without a Delta_7 "
                                      "sign change (unresolved)")
                 for sa, sb in brackets:
-                    v = locate_hopf(mb, sa, sb, WORK_DPS)
+                    v = locate_hopf(mb, sa, sb, WORK_DPS + lost)
                     if v is None:
                         notes.append(f"WARNING {mb.name()}: Delta_7 sign change at scan precision between "
-                                     f"{mp.nstr(sa.v, 17)} and {mp.nstr(sb.v, 17)} not confirmed at {WORK_DPS} digits")
+                                     f"{mp.nstr(sa.v, 17)} and {mp.nstr(sb.v, 17)} not confirmed at "
+                                     f"{WORK_DPS + lost} digits")
                         continue
-                    kind, crit, r, lam = classify_zero(mb, v)
+                    with mp.workdps(WORK_DPS + lost):
+                        kind, crit, r, lam = classify_zero(mb, v)
                     # second, independent location at VERIFY_DPS from the scan bracket
-                    v2 = locate_hopf(mb, sa, sb, VERIFY_DPS)
-                    with mp.workdps(VERIFY_DPS):
+                    v2 = locate_hopf(mb, sa, sb, VERIFY_DPS + lost)
+                    with mp.workdps(VERIFY_DPS + lost):
                         kind2, crit2, r2, _ = classify_zero(mb, v2)
                         dig = float(-mp.log10(abs(v2 - v) / abs(v2))) if v2 != v else float(WORK_DPS)
-                    sp = Special(kind, v2, family, (member,), mb.state(v2, clamp=True))
+                        st = mb.state(v2, clamp=True)
+                    sp = Special(kind, v2, family, (member,), st)
+                    sp.dps = WORK_DPS + lost
                     sp.crit, sp.digits = crit2, dig
                     sp.freq = abs(crit2.imag) if kind2 == "HB" else None
                     sp.scan_bracket = (sa.v, sb.v, sa.nu, sb.nu)
@@ -883,9 +905,10 @@ def special_points(p, name, lo, hi, lyapunov=True, log=None):
         allv = [sp.v for sp in specials]
         for sp in hopfs:
             a, b = sp.segment
-            d = _side_delta(sp.v, allv, a, b)
-            lb = _spectrum_at(p, par, sp.family, sp.members[0], sp.v - d)
-            la = _spectrum_at(p, par, sp.family, sp.members[0], sp.v + d)
+            with mp.workdps(sp.dps):
+                d = _side_delta(sp.v, allv, a, b)
+                lb = _spectrum_at(p, par, sp.family, sp.members[0], sp.v - d)
+                la = _spectrum_at(p, par, sp.family, sp.members[0], sp.v + d)
             sp.incidences.append((sp.family, sp.members, (n_unstable(lb), n_unstable(la))))
         for sp in bounds:
             boundary_counts(p, par, sp, allv, lo, hi)
@@ -936,10 +959,13 @@ def print_specials(p, name, lo, hi, specials, notes, stats, elapsed, out=sys.std
             continue
         k += 1
         fam = sp.family + "/" + ",".join(str(m) for m in sp.members)
+        # enough digits to tell it from a special point close by (degenerate scenes)
+        gap = min([abs(o.v - sp.v) / abs(sp.v) for o in specials if o is not sp and o.v != sp.v] + [mpf(1)])
+        ndig = 20 if gap > mpf(10) ** -14 else min(VERIFY_DPS - 5, int(-mp.log10(gap)) + 8)
         extra = ""
         if sp.label == "BP":
             fam = "balanced/1,2 + " + "/".join(str(x) for x in getattr(sp, "through", (sp.other, "?")))
-        print(f"\n[{k}] {sp.label} {fam}  {name} = {mp.nstr(sp.v, 20)}  (digits {sp.digits:.0f})", file=out)
+        print(f"\n[{k}] {sp.label} {fam}  {name} = {mp.nstr(sp.v, ndig)}  (digits {sp.digits:.0f})", file=out)
         print(f"    {_fmt_state(sp.state)}", file=out)
         if sp.label == "HB":
             extra = f"    w_H = {mp.nstr(sp.freq, 20)} rad/s"
@@ -990,7 +1016,7 @@ def read_special_csv(path, name):
     return rows
 
 
-def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.stdout, specials=None):
+def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.stdout, specials=None, notes=()):
     t0 = time.time()
     rows = read_special_csv(csv_path, name)
     if specials is None:
@@ -999,8 +1025,10 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
     ns = [sp for sp in specials if sp.label == "NS"]
     ok = True
     print(f"# reference: {p.source}\n#   {p.describe()}", file=out)
-    print(f"# {len(ref)} reference special points along {name} in ({lo!r}, {hi!r}) ({time.time() - t0:.1f} s); "
+    print(f"# {len(ref)} reference special points along {name} in ({lo!r}, {hi!r}); "
           f"rtol {rtol:g} on {name} and w_H; state tolerance {state_tol:g}", file=out)
+    for n in notes:
+        print(f"# reference note: {n}", file=out)
 
     # reference points closer than rtol to each other cannot be told apart by the C++
     # program: they form one cluster, found if any of them is, any of their labels allowed
@@ -1039,6 +1067,10 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
                 print(f"FAIL {where}: unreadable number: {ex}", file=out)
                 ok = False
                 continue
+            if not all(math.isfinite(x) for x in [float(v)] + [float(x) for x in st] + [freq, lyap]):
+                print(f"FAIL {where}: non-finite value", file=out)
+                ok = False
+                continue
             if abs(v - lo) <= rtol * abs(lo) or abs(v - hi) <= rtol * abs(hi) or not mpf(lo) < v < mpf(hi):
                 print(f"NOTE {where}: at an end of or outside the interval ({name} = {r[name].strip()}), "
                       "not checked", file=out)
@@ -1058,6 +1090,12 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
                 else:
                     close = [s for s in ns if abs(v - s.v) <= rtol * abs(s.v)]
                     why = (" (a neutral saddle: real pair +-r, not a Hopf point)" if close else "")
+                    near = [s for cl in clusters for s in cl
+                            if s.label == label and same_point(p, st, s.state, state_tol)[0]]
+                    if near and not close:
+                        s = min(near, key=lambda s: abs(v - s.v))
+                        why = (f" (nearest reference {label} with this state at {name} = {mp.nstr(s.v, 17)}, "
+                               f"rel err {float(abs(v - s.v) / abs(s.v)):.1e})")
                     print(f"FAIL {where}: invented: no reference {label} at {name} = {r[name].strip()} with "
                           f"state ({r['q1'].strip()}, {r['q2'].strip()}, {r['beta1'].strip()}, "
                           f"{r['beta2'].strip()}){why}", file=out)
@@ -1092,6 +1130,11 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
             # instability counts: along the direction of travel, so compared as unordered
             # pairs; at a BP a branch may leave along any incident branch
             fam = r["family"].strip()
+            fams = {f for f, _, _ in sp.incidences}
+            if fam not in fams:
+                # a BP's state belongs to every incident family (q = 0 and b1 = b2): any is right
+                good = False
+                notes.append(f"FAMILY {fam}, reference {'/'.join(sorted(fams))}")
             pairs = sp.n_pairs(fam) or sp.n_pairs()
             allowed = {tuple(sorted(nn)) for nn in pairs if None not in nn}
             if sp.label == "BP":
@@ -1128,6 +1171,7 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
 # CLI
 # ----------------------------------------------------------------------------------
 def main(argv=None):
+    global BASE_POINTS, NEAR
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scene")
     ap.add_argument("--param", required=True, help="omega U k c M_r kappa m l d mu mu_c mu_s v_s (ball ones: "
@@ -1139,14 +1183,24 @@ def main(argv=None):
     ap.add_argument("--rtol", type=float, default=1e-8)
     ap.add_argument("--state-tol", type=float, default=STATE_TOL)
     ap.add_argument("--no-lyapunov", action="store_true", help="skip the first Lyapunov coefficients")
+    ap.add_argument("--grid", type=int, default=BASE_POINTS,
+                    help=f"base scan points per segment (default {BASE_POINTS}); with --probe-all for a "
+                         "brute-force rerun that the default scan must agree with")
+    ap.add_argument("--probe-all", action="store_true", help="probe the middle of every scan interval")
     a = ap.parse_args(argv)
+    BASE_POINTS = a.grid
+    if a.probe_all:
+        NEAR = mpf("inf")
     try:
         p = R.load_scene(a.scene, a.set)
         lo, hi = min(a.lo, a.hi), max(a.lo, a.hi)
         t0 = time.time()
         if a.compare:
+            read_special_csv(a.compare, a.param)          # bad input fails before the long computation
             sp, notes, stats = special_points(p, a.param, lo, hi, lyapunov=not a.no_lyapunov)
-            return 0 if compare(a.compare, p, a.param, lo, hi, a.rtol, a.state_tol, specials=sp) else 1
+            ok = compare(a.compare, p, a.param, lo, hi, a.rtol, a.state_tol, specials=sp, notes=notes)
+            print(f"# reference computed in {time.time() - t0:.1f} s")
+            return 0 if ok else 1
         sp, notes, stats = special_points(p, a.param, lo, hi, lyapunov=not a.no_lyapunov,
                                           log=lambda s: print(s, file=sys.stderr))
         print_specials(p, a.param, lo, hi, sp, notes, stats, time.time() - t0)
