@@ -65,18 +65,76 @@ auto central_difference(const Fn& fn, const Eigen::Matrix<ld, Dim, 1>& y, int k)
 
 }  // namespace
 
-Located locate_fold(const StaticEquations& eq, const Vec5& z_guess) {
-  // b, c: the right and left singular vectors of F_s for its smallest singular value at
-  // the guess; fixed during the iteration so that g is one smooth function.
-  const Mat4 Fs0 = eq.jacobian(z_guess).leftCols<4>();
-  const Eigen::JacobiSVD<Mat4> svd(Fs0, Eigen::ComputeFullU | Eigen::ComputeFullV);
+FoldCondition::FoldCondition(const StaticEquations& eq, const Vec5& z) {
   // Border with the left null vector as column (outside the range of F_s) and the right
   // null vector as row (not orthogonal to its kernel): then the bordered matrix is regular.
-  const Eigen::Matrix<ld, 4, 1> left = svd.matrixU().col(3), right = svd.matrixV().col(3);
-  const auto g = [&](const Vec5& z) { return bordered_g<ld>(eq.jacobian(z).leftCols<4>(), left, right); };
+  const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(3);
+  right_ = svd.matrixV().col(3);
+}
+
+long double FoldCondition::operator()(const StaticEquations& eq, const Vec5& z) const {
+  return bordered_g<ld>(eq.jacobian(z).leftCols<4>(), left_, right_);
+}
+
+namespace {
+Mat4c hopf_pencil(const StaticEquations& eq, const Vec5& z, ld w) {
+  const auto lin = eq.linearization(z);
+  const cld l(0, w);
+  return (l * l) * lin.mass.cast<cld>() + l * lin.damping.cast<cld>() + lin.stiffness.cast<cld>();
+}
+}  // namespace
+
+HopfCondition::HopfCondition(const StaticEquations& eq, const Vec5& z, long double omega) {
+  const Mat4c T0 = hopf_pencil(eq, z, omega);
+  for (int i = 0; i < 4; ++i) rows_(i) = 1 / T0.row(i).cwiseAbs().maxCoeff();
+  for (int j = 0; j < 4; ++j) cols_(j) = 1 / (rows_.asDiagonal() * T0).col(j).cwiseAbs().maxCoeff();
+  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * T0 * cols_.cast<cld>().asDiagonal();
+  const Eigen::JacobiSVD<Mat4c> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(3);
+  right_ = svd.matrixV().col(3);
+}
+
+std::complex<long double> HopfCondition::operator()(const StaticEquations& eq, const Vec5& z,
+                                                    long double omega) const {
+  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * hopf_pencil(eq, z, omega) * cols_.cast<cld>().asDiagonal();
+  return bordered_g<cld>(scaled, left_, right_);
+}
+
+FoldCoefficients fold_coefficients(const StaticEquations& eq, const Vec5& z, const FoldCoefficients* previous) {
+  const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix<ld, 4, 1> w = svd.matrixU().col(3), v = svd.matrixV().col(3);
+  if (previous && w.dot(previous->left) < 0) w = -w;
+  if (previous && v.dot(previous->right) < 0) v = -v;
+  // F_ss[v, v] by a central second difference along v in the scaled unknowns (the
+  // parameter fixed), with the row scaling of z for all three values.
+  constexpr ld h = 1e-5L;
+  Vec5 dz = Vec5::Zero();
+  dz.head<4>() = v;
+  const Eigen::Matrix<ld, 4, 1> scale = eq.residual_scale(z);
+  // The unscaled b(y) measured in the fixed sizes at z (returned by value: an Eigen
+  // expression would outlive the temporaries it refers to).
+  const auto raw = [&](const Vec5& y) -> Eigen::Matrix<ld, 4, 1> {
+    return eq.residual(y).cwiseProduct(eq.residual_scale(y)).cwiseQuotient(scale);
+  };
+  const Eigen::Matrix<ld, 4, 1> second = (raw(z + h * dz) - 2 * raw(z) + raw(z - h * dz)) / (h * h);
+  FoldCoefficients c;
+  c.right = v;
+  c.left = w;
+  c.cusp = w.dot(second);
+  // w^T C v with w, v mapped back to the unscaled equations and unknowns.
+  const auto lin = eq.linearization(z);
+  const Eigen::Matrix<ld, 4, 1> w_raw = scale.cwiseInverse().cwiseProduct(w);
+  const Eigen::Matrix<ld, 4, 1> v_raw(v(0) * eq.length(), v(1) * eq.length(), v(2), v(3));
+  c.bogdanov_takens = w_raw.dot(lin.damping * v_raw);
+  return c;
+}
+
+Located locate_fold(const StaticEquations& eq, const Vec5& z_guess) {
+  const FoldCondition g(eq, z_guess);
   const auto residual = [&](const Vec5& z) {
     Vec5 r;
-    r << eq.residual(z), g(z);
+    r << eq.residual(z), g(eq, z);
     return r;
   };
   const auto jacobian = [&](const Vec5& z) {
@@ -84,7 +142,7 @@ Located locate_fold(const StaticEquations& eq, const Vec5& z_guess) {
     D.topRows<4>() = eq.jacobian(z);
     for (int k = 0; k < 5; ++k) D(4, k) = central_difference<5>([&](const Vec5& y) {
                                            Eigen::Matrix<ld, 1, 1> v;
-                                           v << g(y);
+                                           v << g(eq, y);
                                            return v;
                                          }, z, k)(0);
     return D;
@@ -97,22 +155,8 @@ Located locate_fold(const StaticEquations& eq, const Vec5& z_guess) {
 }
 
 Located locate_hopf(const StaticEquations& eq, const Vec5& z_guess, long double omega_guess) {
-  // Unknowns y = (z, w / w_guess). T(i w) equilibrated once at the guess; b, c its
-  // smallest singular vectors there.
-  const auto pencil = [&](const Vec5& z, ld w) -> Mat4c {
-    const auto lin = eq.linearization(z);
-    const cld l(0, w);
-    return (l * l) * lin.mass.cast<cld>() + l * lin.damping.cast<cld>() + lin.stiffness.cast<cld>();
-  };
-  const Mat4c T0 = pencil(z_guess, omega_guess);
-  Eigen::Matrix<ld, 4, 1> rows, cols;
-  for (int i = 0; i < 4; ++i) rows(i) = 1 / T0.row(i).cwiseAbs().maxCoeff();
-  for (int j = 0; j < 4; ++j) cols(j) = 1 / (rows.asDiagonal() * T0).col(j).cwiseAbs().maxCoeff();
-  const auto scaled = [&](const Vec5& z, ld w) -> Mat4c {
-    return rows.cast<cld>().asDiagonal() * pencil(z, w) * cols.cast<cld>().asDiagonal();
-  };
-  const Eigen::JacobiSVD<Mat4c> svd(scaled(z_guess, omega_guess), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec4c left = svd.matrixU().col(3), right = svd.matrixV().col(3);
+  // Unknowns y = (z, w / w_guess).
+  const HopfCondition condition(eq, z_guess, omega_guess);
   using Vec6 = Eigen::Matrix<ld, 6, 1>;
   const auto split = [&](const Vec6& y) {
     Vec5 z = y.head<5>();
@@ -120,7 +164,7 @@ Located locate_hopf(const StaticEquations& eq, const Vec5& z_guess, long double 
   };
   const auto g = [&](const Vec6& y) {
     const auto [z, w] = split(y);
-    const cld v = bordered_g<cld>(scaled(z, w), left, right);
+    const cld v = condition(eq, z, w);
     Eigen::Matrix<ld, 2, 1> out;
     out << v.real(), v.imag();
     return out;

@@ -546,6 +546,10 @@ std::string_view to_string(Label label) {
     case Label::BP: return "BP";
     case Label::HB: return "HB";
     case Label::MX: return "MX";
+    case Label::BT: return "BT";
+    case Label::ZH: return "ZH";
+    case Label::CP: return "CP";
+    case Label::GH: return "GH";
   }
   return "?";
 }

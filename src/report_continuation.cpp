@@ -101,6 +101,37 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
   return out;
 }
 
+std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
+  const std::string n1 = to_string(run.param), n2 = to_string(run.param2);
+  std::string out(header);
+  out += fmt::format(
+      "# two-parameter continuation of the fold (LP) and Hopf (HB) points in ({} [{}], {} [{}]) over {} .. {} x {} .. "
+      "{}\n# columns: curve, kind (LP fold curve, HB Hopf curve), point (index along the curve), label (EP end, BT "
+      "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp, GH generalized Hopf: where the curve meets them, located by "
+      "interpolating their test functions), the two\n#   parameters, q1 q2 [m], beta1 beta2 [rad], q_abs [m], family, "
+      "frequency [rad/s] (Hopf curves)\n",
+      n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
+  for (std::size_t c = 0; c < run.curves.size(); ++c)
+    for (int end = 0; end < 2; ++end) {
+      const auto& curve = run.curves[c];
+      out += fmt::format("# curve {} ({} from branch {}) {} end: {}{}{}\n", c + 1, to_string(curve.kind),
+                         curve.source_branch, end == 0 ? "first" : "last", to_string(curve.stop[std::size_t(end)]),
+                         curve.stop_detail[std::size_t(end)].empty() ? "" : ": ", curve.stop_detail[std::size_t(end)]);
+    }
+  for (const auto& n : run.notes) out += "# note: " + n + "\n";
+  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,frequency\n", n1, n2);
+  for (std::size_t c = 0; c < run.curves.size(); ++c) {
+    const auto& curve = run.curves[c];
+    for (std::size_t i = 0; i < curve.points.size(); ++i) {
+      const auto& pt = curve.points[i];
+      out += fmt::format("{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
+                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2), position_cells(pt.position),
+                         to_string(pt.family), num(double(pt.frequency), "frequency"));
+    }
+  }
+  return out;
+}
+
 std::string continuation_warnings(const ContinuationRun& run) {
   std::string out;
   for (std::size_t k = 0; k < run.branches.size(); ++k) {

@@ -20,9 +20,50 @@
 //   double l1 = abu::first_lyapunov_coefficient(p, s, hopf.frequency);
 #pragma once
 
+#include <complex>
+
 #include "abu/static_equations.hpp"
 
 namespace abu {
+
+/// The fold test function g(z) of the minimally augmented system, for borders fixed at
+/// construction (the singular vectors of F_s there; rebuild it as the fold moves).
+class FoldCondition {
+ public:
+  FoldCondition(const StaticEquations& eq, const StaticEquations::Vec5& z);
+  long double operator()(const StaticEquations& eq, const StaticEquations::Vec5& z) const;
+
+ private:
+  Eigen::Matrix<long double, 4, 1> left_, right_;
+};
+
+/// The Hopf test function g(z, w) (complex) for T(i w) equilibrated and bordered at
+/// construction.
+class HopfCondition {
+ public:
+  HopfCondition(const StaticEquations& eq, const StaticEquations::Vec5& z, long double omega);
+  std::complex<long double> operator()(const StaticEquations& eq, const StaticEquations::Vec5& z,
+                                       long double omega) const;
+
+ private:
+  Eigen::Matrix<long double, 4, 1> rows_, cols_;
+  Eigen::Matrix<std::complex<long double>, 4, 1> left_, right_;
+};
+
+/// Normal-form coefficients along fold curves, whose sign changes flag codimension-two
+/// points: the cusp coefficient w^T F_ss[v, v] (CP where it vanishes) and w^T C v, the
+/// derivative of the pencil at lambda = 0 along the null vectors (BT where it vanishes:
+/// the zero eigenvalue becomes double). v, w: right and left null vectors of F_s.
+/// The null vectors are oriented against `previous`' (their SVD signs are arbitrary, and
+/// both coefficients change sign with them): pass the last point's result along a curve.
+struct FoldCoefficients {
+  long double cusp = 0;
+  long double bogdanov_takens = 0;
+  Eigen::Matrix<long double, 4, 1> right = Eigen::Matrix<long double, 4, 1>::Zero();  ///< v
+  Eigen::Matrix<long double, 4, 1> left = Eigen::Matrix<long double, 4, 1>::Zero();   ///< w
+};
+FoldCoefficients fold_coefficients(const StaticEquations& eq, const StaticEquations::Vec5& z,
+                                   const FoldCoefficients* previous = nullptr);
 
 struct Located {
   StaticEquations::Vec5 z = StaticEquations::Vec5::Zero();

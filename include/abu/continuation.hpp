@@ -34,7 +34,9 @@
 
 namespace abu {
 
-enum class Label { none, EP, LP, BP, HB, MX };
+/// Codimension one: LP fold, BP branch point, HB Hopf; two (on fold and Hopf curves):
+/// BT Bogdanov-Takens, ZH zero-Hopf, CP cusp, GH generalized Hopf (l1 = 0).
+enum class Label { none, EP, LP, BP, HB, MX, BT, ZH, CP, GH };
 std::string_view to_string(Label label);
 
 /// Step-length control, in the scaled arclength (q / displacement scale, angles in rad,

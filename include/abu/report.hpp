@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "abu/boundaries.hpp"
 #include "abu/continuation.hpp"
 #include "abu/scan.hpp"
 
@@ -33,6 +34,10 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header);
 /// One row per special point (and an MX row where a branch ended in failure):
 /// `branch,label,<param>,q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lyapunov,converged,n_unstable_before,n_unstable_after`.
 std::string special_points_csv(const ContinuationRun& run, std::string_view header);
+/// Two-parameter curves, one row per curve point (codimension-two points included, by
+/// label): `curve,kind,point,label,<param>,<param2>,q1,q2,beta1,beta2,q_abs,family,frequency`.
+std::string boundary_csv(const BoundaryRun& run, std::string_view header);
+
 /// How each branch ended, one line per end that is not the end of the interval (stderr).
 std::string continuation_warnings(const ContinuationRun& run);
 

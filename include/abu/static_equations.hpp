@@ -35,6 +35,8 @@ class StaticEquations {
 
   /// F(z), each equation divided by its natural size at z.
   Vec4 residual(const Vec5& z) const;
+  /// The natural sizes the equations are divided by at z.
+  Vec4 residual_scale(const Vec5& z) const { return row_scale(z); }
   /// [dF/ds * diag(L, L, 1, 1), dF/dp * P] with the same row scaling as residual(z).
   Mat45 jacobian(const Vec5& z) const;
   /// The second-order linearization at z (for spectra and augmented systems).

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "abu/cli.hpp"
+#include "abu/boundaries.hpp"
 #include "abu/continuation.hpp"
 #include "abu/errors.hpp"
 #include "abu/io.hpp"
@@ -90,7 +91,17 @@ Action add_continue_command(CLI::App& app) {
                                            : o->family == "together" ? Family::together
                                                                      : Family::opposite;
     if (!o->state.empty()) start.state = parse_state(o->state);
-    if (!o->param2.empty()) throw NotSupportedError("two-parameter continuation (--param2) is not built yet");
+    std::optional<ParamRef> ref2;
+    if (!o->param2.empty()) {
+      ref2 = parse_param(o->param2, int(scene.balls.size()));
+      if (!ref2)
+        throw InputError("--param2", 0, o->param2, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+      if (*ref2 == *ref) throw InputError("--param2", 0, o->param2, "must differ from --param");
+      Scene probe = scene;
+      set_checked(probe, *ref2, o->to2, "--to2");
+      if (o->to2 == get(p, *ref2))
+        throw InputError("--to2", 0, o->param2, fmt::format("must differ from the start value {}", get(p, *ref2)));
+    }
 
     const ContinuationRun run = continue_branches(p, *ref, o->to, o->numerics, start);
     fmt::print(stderr, "{}", continuation_warnings(run));
@@ -108,6 +119,25 @@ Action add_continue_command(CLI::App& app) {
                    {"param", name},
                    {"unit", std::string(unit(ref->quantity))},
                    {"title", fmt::format("{}: continuation in {}", scene.file, name)}});
+    if (ref2) {
+      const BoundaryRun boundaries = continue_boundaries(p, run, *ref2, o->to2, o->numerics);
+      const std::string name2 = to_string(*ref2);
+      const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
+      if (o->chart)
+        run_gnuplot(plots_dir() / "boundary.gp",
+                    {{"curves", curves.string()},
+                     {"png", out.reserve(dir / fmt::format("boundary_{}_{}.png", name, name2)).string()},
+                     {"param", name},
+                     {"unit", std::string(unit(ref->quantity))},
+                     {"param2", name2},
+                     {"unit2", std::string(unit(ref2->quantity))},
+                     {"title", fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, name2)}});
+      for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
+        for (int end = 0; end < 2; ++end)
+          if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
+            fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
+      fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
+    }
     out.commit();
     std::size_t points = 0, specials_count = 0;
     for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
