@@ -30,10 +30,13 @@ ld distance(const Vec5& a, const Vec5& b) {
                    wrapped_difference(a(3), b(3)), std::abs(a(4) - b(4))});
 }
 
+using Mat45 = StaticEquations::Mat45;
+
 struct Corrected {
   Vec5 z;
   bool converged = false;
   int iterations = 0;
+  Mat45 jacobian = Mat45::Zero();  // F_u of the last iteration: within rounding of the result
 };
 
 // Newton on [F(z); d . (z - z_pred)] = 0: the pseudo-arclength corrector (d the tangent),
@@ -44,7 +47,8 @@ Corrected correct(const StaticEquations& eq, const Vec5& z_pred, const Vec5& d) 
   ld last = std::numeric_limits<ld>::infinity();
   for (int it = 0; it < 12; ++it) {
     Mat5 M;
-    M.topRows<4>() = eq.jacobian(c.z);
+    c.jacobian = eq.jacobian(c.z);
+    M.topRows<4>() = c.jacobian;
     M.row(4) = d.transpose();
     Vec5 r;
     r << eq.residual(c.z), d.dot(c.z - z_pred);
@@ -65,9 +69,9 @@ Corrected correct(const StaticEquations& eq, const Vec5& z_pred, const Vec5& d) 
 }
 
 // Unit tangent: the null vector of F_u, oriented along `previous`.
-Vec5 tangent(const StaticEquations& eq, const Vec5& z, const Vec5& previous) {
+Vec5 tangent(const Mat45& DF, const Vec5& previous) {
   Mat5 M;
-  M.topRows<4>() = eq.jacobian(z);
+  M.topRows<4>() = DF;
   M.row(4) = previous.transpose();
   Vec5 e5 = Vec5::Zero();
   e5(4) = 1;
@@ -78,9 +82,9 @@ Vec5 tangent(const StaticEquations& eq, const Vec5& z, const Vec5& previous) {
 }
 
 // det [F_u; t^T]: changes sign at a branch point, not at a fold.
-ld branch_test(const StaticEquations& eq, const Vec5& z, const Vec5& t) {
+ld branch_test(const Mat45& DF, const Vec5& t) {
   Mat5 M;
-  M.topRows<4>() = eq.jacobian(z);
+  M.topRows<4>() = DF;
   M.row(4) = t.transpose();
   return M.partialPivLu().determinant();
 }
@@ -210,7 +214,8 @@ class Tracer {
  private:
   // The point at z with its modes matched to `predicted` (none: the first point, sorted
   // order); `ambiguity` receives tracking_ambiguity.
-  BranchPoint make_point(const Vec5& z, const Vec5& t, const ModePrediction* predicted, double* ambiguity) const;
+  BranchPoint make_point(const Vec5& z, const Vec5& t, const Mat45& DF, const ModePrediction* predicted,
+                         double* ambiguity) const;
   ModePrediction predict(const Vec5& z) const;
   // An eigenvector with q in displacement-scale units, unit norm (for overlaps).
   Vec4c scaled_vector(const Vec4c& v) const {
@@ -244,7 +249,7 @@ ModePrediction Tracer::predict(const Vec5& z) const {
   return out;
 }
 
-BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const ModePrediction* predicted,
+BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const Mat45& DF, const ModePrediction* predicted,
                                double* ambiguity) const {
   BranchPoint pt;
   pt.parameter = eq_.parameter(z);
@@ -260,7 +265,7 @@ BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const ModePredictio
       pt.mode_vectors = tracked->mode_vectors;
       if (ambiguity) *ambiguity = 0;
       pt.tangent_parameter = double(t(4));
-      pt.branch_test = double(branch_test(eq_, z, t));
+      pt.branch_test = double(branch_test(DF, t));
       return pt;
     }
   }
@@ -278,16 +283,17 @@ BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const ModePredictio
   }
   // Signs relative to the direction of increasing parameter, whichever way we travel.
   pt.tangent_parameter = double(t(4));
-  pt.branch_test = double(branch_test(eq_, z, t));
+  pt.branch_test = double(branch_test(DF, t));
   return pt;
 }
 
 void Tracer::add(const Vec5& z, const Vec5& t) {
+  const Mat45 DF = eq_.jacobian(z);
   if (points.empty()) {
-    points.push_back(make_point(z, t, nullptr, nullptr));
+    points.push_back(make_point(z, t, DF, nullptr, nullptr));
   } else {
     const ModePrediction predicted = predict(z);
-    points.push_back(make_point(z, t, &predicted, nullptr));
+    points.push_back(make_point(z, t, DF, &predicted, nullptr));
   }
   zs_.push_back(z);
   ts_.push_back(t);
@@ -305,7 +311,7 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
     Vec5 t_new = t;
     bool ok = c.converged && (c.z - z_pred).norm() <= ds;
     if (ok) {
-      t_new = tangent(eq_, c.z, t);
+      t_new = tangent(c.jacobian, t);
       ok = t_new.dot(t) > std::cos(0.5L);  // turning by more than 0.5 rad per step: too coarse
     }
     if (!ok) {
@@ -333,7 +339,7 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       e5(4) = 1;
       const Corrected last = correct(eq_, guess, e5);
       if (last.converged) {
-        add(last.z, tangent(eq_, last.z, t));
+        add(last.z, tangent(last.jacobian, t));
         points.back().label = Label::EP;
         stop = StopReason::end_of_range;
       } else {
@@ -346,7 +352,7 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
     // Eigenvalue tracking needs the modes to move little per step: else halve the step.
     const ModePrediction predicted = predict(c.z);
     double ambiguity = 0;
-    BranchPoint candidate = make_point(c.z, t_new, &predicted, &ambiguity);
+    BranchPoint candidate = make_point(c.z, t_new, c.jacobian, &predicted, &ambiguity);
     if (ambiguity > 1 && ds > 16 * options_.ds_min) {
       ds /= 2;
       continue;
@@ -360,9 +366,9 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       return;
     }
     // Next step from the predictor's relative error |z - z_pred| / ds ~ curvature * ds / 2:
-    // aim at 5% (the tangent then stays a good predictor), change by at most 2x per step.
+    // aim at 10% (the tangent then stays a good predictor), change by at most 2x per step.
     const ld relative_error = (c.z - z_pred).norm() / ds;
-    const ld factor = std::clamp(std::sqrt(0.05L / std::max(relative_error, 1e-12L)), 0.5L, 2.0L);
+    const ld factor = std::clamp(std::sqrt(0.1L / std::max(relative_error, 1e-12L)), 0.5L, 2.0L);
     ds = std::clamp<ld>(ds * factor, options_.ds_min, options_.ds_max);
   }
   stop = StopReason::max_steps;
@@ -436,8 +442,8 @@ void Tracer::locate_branch_point_between(std::size_t a) {
     auto* c = static_cast<Context*>(raw);
     const Corrected on = correct(*c->eq, c->za + ld(sigma) * c->d, c->d);
     if (!on.converged) c->failed = true;
-    const Vec5 t = tangent(*c->eq, on.z, c->t);
-    return double(branch_test(*c->eq, on.z, t));
+    const Vec5 t = tangent(on.jacobian, c->t);
+    return double(branch_test(on.jacobian, t));
   };
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   double lo = 0, hi = double(length), root = 0.5 * hi;
@@ -590,7 +596,7 @@ Branch trace_branch(const StaticEquations& eq, const Equilibrium& e, ld paramete
   Vec5 inward = Vec5::Zero();
   inward(4) = end == 0 ? 1 : -1;
   const Vec5 z0 = eq.scaled(e.position, parameter);
-  const Vec5 t0 = tangent(eq, z0, inward);
+  const Vec5 t0 = tangent(eq.jacobian(z0), inward);
   Tracer forward(eq, options), backward(eq, options);
   forward.run(z0, t0);
   // Backwards only if the branch does not leave the interval at once (a fold at the start).

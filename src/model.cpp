@@ -27,12 +27,14 @@ void sin_cos<long double>(const long double& angle, long double& s, long double&
   constexpr long double kP1 = 0xc.90fdaa200000000p-3L;  // pi/2 to 32 bits
   constexpr long double kP2 = 0x8.5a308d300000000p-37L;  // the next 32 bits
   constexpr long double kP3 = 0x9.8cc51701b839a25p-72L;  // the next 64 bits (error 2e-41)
-  const long double k = std::nearbyint(angle / (kP1 + kP2));
-  if (!(std::abs(k) < 0x1p31L)) {  // far outside any angle the model produces
+  const long double quadrants = angle / (kP1 + kP2);
+  if (!(std::abs(quadrants) < 0x1p31L)) {  // far outside any angle the model produces
     s = std::sin(angle);
     c = std::cos(angle);
     return;
   }
+  // Round to the nearest quadrant with an inline conversion (nearbyintl is a slow call).
+  const long double k = static_cast<long double>(static_cast<long long>(quadrants + (quadrants < 0 ? -0.5L : 0.5L)));
   const long double r = ((angle - k * kP1) - k * kP2) - k * kP3;
   const long double sr = std::sin(r), cr = std::cos(r);
   switch (static_cast<long long>(k) & 3) {

@@ -48,18 +48,21 @@ BalancedQr balanced_qr(const Mat8Row& m) {
 // which would make pivoting treat them as zero. Eigenvalues, the componentwise
 // backward error and the componentwise condition number are all invariant under it.
 void equilibrate(const Mat4& magnitude, Eigen::Matrix<ld, 4, 1>& rows, Eigen::Matrix<ld, 4, 1>& cols) {
-  rows.setOnes();
-  cols.setOnes();
-  const auto inverse_pow2 = [](ld v) {  // the power of two nearest 1 / v
-    if (!(v > 0) || !std::isfinite(v)) return ld(1);
+  // In double: only the orders of magnitude matter, and double's frexp/ldexp are cheap.
+  const Eigen::Matrix4d m = magnitude.cast<double>();
+  Eigen::Vector4d r = Eigen::Vector4d::Ones(), c = Eigen::Vector4d::Ones();
+  const auto inverse_pow2 = [](double v) {  // the power of two nearest 1 / v
+    if (!(v > 0) || !std::isfinite(v)) return 1.0;
     int e = 0;
     std::frexp(v, &e);
-    return std::ldexp(ld(1), 1 - e);
+    return std::ldexp(1.0, 1 - e);
   };
-  for (int sweep = 0; sweep < 3; ++sweep) {
-    for (int i = 0; i < 4; ++i) rows(i) = inverse_pow2(magnitude.row(i).transpose().cwiseProduct(cols).maxCoeff());
-    for (int j = 0; j < 4; ++j) cols(j) = inverse_pow2(magnitude.col(j).cwiseProduct(rows).maxCoeff());
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (int i = 0; i < 4; ++i) r(i) = inverse_pow2(m.row(i).transpose().cwiseProduct(c).maxCoeff());
+    for (int j = 0; j < 4; ++j) c(j) = inverse_pow2(m.col(j).cwiseProduct(r).maxCoeff());
   }
+  rows = r.cast<ld>();
+  cols = c.cast<ld>();
 }
 
 // First-order form J = [[0, I], [-A^-1 K, -A^-1 C]].
@@ -491,9 +494,9 @@ std::optional<TrackedSpectrum> track_spectrum(const Linearization<ld, 2>& lin,
     const auto z = values[k];
     // Each mode may move by less than half the predicted distance to its nearest
     // neighbour (its conjugate excepted), or tracking would be ambiguous.
-    double radius = std::numeric_limits<double>::infinity();
+    double radius_squared = std::numeric_limits<double>::infinity();  // (std::norm: no hypot)
     for (std::size_t j = 0; j < 8; ++j)
-      if (j != k && values[j] != std::conj(z)) radius = std::min(radius, std::abs(values[j] - z) / 2);
+      if (j != k && values[j] != std::conj(z)) radius_squared = std::min(radius_squared, std::norm(values[j] - z) / 4);
     const bool real = z.imag() == 0;
     const Refined r = real ? refine<double>(lin, z, vectors[k]) : refine<std::complex<double>>(lin, z, vectors[k]);
     const std::complex<double> value(double(r.value.real()), double(r.value.imag()));
@@ -501,7 +504,7 @@ std::optional<TrackedSpectrum> track_spectrum(const Linearization<ld, 2>& lin,
     // extrapolated eigenvalue misses by more than the gap to a neighbour (two balls'
     // nearly equal fast modes): the eigenvector's alignment identifies it then.
     const bool aligned = std::abs(r.vector.dot(vectors[k].normalized())) >= 0.95;
-    if (!r.converged || !(std::abs(value - z) < radius || aligned)) return std::nullopt;
+    if (!r.converged || !(std::norm(value - z) < radius_squared || aligned)) return std::nullopt;
     const auto store = [&](std::size_t m, std::complex<double> v, const Vec4c& x) {
       out.modes[m] = v;
       out.mode_vectors[m] = x;

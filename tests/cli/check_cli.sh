@@ -51,6 +51,24 @@ check "log sweep of mu, no chart" "[ -s '$work/mu/sweep_mu.csv' ] && [ ! -e '$wo
 "$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 30 -o "$work/sweep2" 2>/dev/null
 check "same input, same bytes (csv)" "cmp -s <(grep -v '^# command' '$work/sweep/sweep_omega.csv') <(grep -v '^# command' '$work/sweep2/sweep_omega.csv')"
 
+# --- continue ------------------------------------------------------------------------
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 -o "$work/cont" 2>"$work/cont.err"
+check "continue exits 0" "[ $? -eq 0 ]"
+check "continue writes branch, special points and chart" \
+  "[ \"\$(ls '$work/cont' | tr '\n' ' ')\" = 'bifurcation_omega.png branch_omega.csv special_omega.csv ' ]"
+check "special points: LP and HB found between 200 and 400 rad/s" \
+  "grep -q '^[0-9]*,LP,' '$work/cont/special_omega.csv' && grep -q '^[0-9]*,HB,' '$work/cont/special_omega.csv'"
+check "branch csv has the tracked-eigenvalue columns" "grep -v '^#' '$work/cont/branch_omega.csv' | head -1 | grep -q ',n_unstable,re1,im1,'"
+check "no nan in the continuation csvs" "! grep -v '^#' '$work/cont/branch_omega.csv' '$work/cont/special_omega.csv' | grep -qi nan"
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 --from-equilibrium balanced --no-chart -o "$work/cb"
+check "--from-equilibrium balanced continues only balanced branches" \
+  "[ -z \"\$(grep -v '^#' '$work/cb/branch_omega.csv' | tail -n +2 | cut -d, -f10 | grep -v balanced)\" ]"
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 --param2 mu --to2 0.004 -o "$work/c2" 2>/dev/null
+check "two-parameter run writes the boundary csv and chart" "[ -s '$work/c2/boundary_omega_mu.csv' ] && [ -s '$work/c2/boundary_omega_mu.png' ]"
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/cmx" 2>"$work/cmx.err"
+check "a branch stopped early says so on stderr and in the csv" \
+  "grep -q 'maximum number of steps' '$work/cmx.err' && grep -q 'maximum number of steps' '$work/cmx/branch_omega.csv'"
+
 # --- bad input: exit 2, message, nothing written ----------------------------------------
 bad() {  # name, then the arguments; run in an empty directory with -o inside it
   local name=$1; shift
@@ -81,6 +99,15 @@ bad "sweep log through 0"       sweep "$scene" --param U --from 0 --to 1e-6 --st
 bad "sweep param not in law"    sweep "$scene" --param d --from 0 --to 1 --steps 3 -o o
 bad "sweep r above l"           sweep "$scene" --param r --from 1e-3 --to 0.05 --steps 3 -o o
 bad "sweep missing --to"        sweep "$scene" --param omega --from 1 --steps 3 -o o
+bad "continue unknown param"    continue "$scene" --param zeta --to 1 -o o
+bad "continue to an invalid value" continue "$scene" --param omega --to -5 -o o
+bad "continue to the start value" continue "$scene" --param omega --to 900 -o o
+bad "continue in r"             continue "$scene" --param r --to 2e-3 -o o
+bad "continue bad ds"           continue "$scene" --param omega --to 1000 --ds 0 -o o
+bad "continue ds-max too large" continue "$scene" --param omega --to 1000 --ds-max 2 -o o
+bad "continue param2 = param"   continue "$scene" --param omega --to 1000 --param2 omega --to2 5 -o o
+bad "continue bad from-state"   continue "$scene" --param omega --to 1000 --from-state 1,2,3 -o o
+bad "continue both family and state" continue "$scene" --param omega --to 1000 --from-equilibrium balanced --from-state 0,0,1,2 -o o
 cat >"$work/three.toml" <<'TOML'
 [rotor]
 mass = 0.12
