@@ -210,6 +210,7 @@ class Tracer {
   std::vector<SpecialPoint> specials;
   StopReason stop = StopReason::max_steps;
   std::string detail;
+  mutable ContinuationStats stats;
 
  private:
   // The point at z with its modes matched to `predicted` (none: the first point, sorted
@@ -260,6 +261,7 @@ BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const Mat45& DF, co
   // identity); a fresh spectrum matched to the prediction where that fails.
   if (predicted) {
     if (auto tracked = track_spectrum(lin, predicted->values, predicted->si_vectors)) {
+      ++stats.tracked_spectra;
       pt.spectrum = tracked->spectrum;
       pt.modes = tracked->modes;
       pt.mode_vectors = tracked->mode_vectors;
@@ -270,6 +272,7 @@ BranchPoint Tracer::make_point(const Vec5& z, const Vec5& t, const Mat45& DF, co
     }
   }
   pt.spectrum = compute_spectrum(lin);
+  ++stats.full_spectra;
   if (predicted) {
     std::array<Vec4c, 8> scaled{};
     for (std::size_t k = 0; k < 8; ++k) scaled[k] = scaled_vector(pt.spectrum.vectors[k]);
@@ -308,6 +311,7 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
     const Vec5 z = zs_.back(), t = ts_.back();
     const Vec5 z_pred = z + ds * t;
     const Corrected c = correct(eq_, z_pred, t);
+    stats.newton_iterations += c.iterations;
     Vec5 t_new = t;
     bool ok = c.converged && (c.z - z_pred).norm() <= ds;
     if (ok) {
@@ -315,6 +319,7 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       ok = t_new.dot(t) > std::cos(0.5L);  // turning by more than 0.5 rad per step: too coarse
     }
     if (!ok) {
+      ++stats.rejected;
       ds /= 2;
       if (ds < options_.ds_min) {
         stop = StopReason::step_underflow;
@@ -354,10 +359,12 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
     double ambiguity = 0;
     BranchPoint candidate = make_point(c.z, t_new, c.jacobian, &predicted, &ambiguity);
     if (ambiguity > 1 && ds > 16 * options_.ds_min) {
+      ++stats.rejected;
       ds /= 2;
       continue;
     }
     points.push_back(std::move(candidate));
+    ++stats.steps;
     zs_.push_back(c.z);
     ts_.push_back(t_new);
     detect(points.size() - 2);
@@ -592,7 +599,7 @@ namespace {
 // Traces the branch through `e` at scaled parameter z4 = end (0: the start value, 1 the
 // far end), heading into the interval, and appends it to the run.
 Branch trace_branch(const StaticEquations& eq, const Equilibrium& e, ld parameter, ld end,
-                    const ContinuationOptions& options) {
+                    const ContinuationOptions& options, ContinuationStats& stats) {
   Vec5 inward = Vec5::Zero();
   inward(4) = end == 0 ? 1 : -1;
   const Vec5 z0 = eq.scaled(e.position, parameter);
@@ -602,6 +609,8 @@ Branch trace_branch(const StaticEquations& eq, const Equilibrium& e, ld paramete
   // Backwards only if the branch does not leave the interval at once (a fold at the start).
   const bool transversal = t0.dot(inward) > 1e-6L;
   if (!transversal) backward.run(z0, -t0);
+  stats += forward.stats;
+  stats += backward.stats;
   Branch b;
   b.family = e.family;
   b.member = e.member;
@@ -661,7 +670,7 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
                                         s.e.member, to_string(on->family), on->member));
       continue;
     }
-    run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options));
+    run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options, run.stats));
   }
   return run;
 }

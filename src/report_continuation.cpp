@@ -31,7 +31,11 @@ std::string stop_line(const Branch& b, std::size_t k, int end) {
 bool failed(StopReason r) { return r == StopReason::step_underflow || r == StopReason::max_steps; }
 
 std::string run_comments(const ContinuationRun& run) {
-  std::string out;
+  const auto& st = run.stats;
+  std::string out = fmt::format(
+      "# run: {} points, {} steps retried, {} Newton iterations, {} spectra by eigenvalue continuation, {} computed "
+      "afresh\n",
+      st.steps, st.rejected, st.newton_iterations, st.tracked_spectra, st.full_spectra);
   for (std::size_t k = 0; k < run.branches.size(); ++k)
     for (int end = 0; end < 2; ++end) out += "# " + stop_line(run.branches[k], k, end) + "\n";
   for (const auto& n : run.notes) out += "# note: " + n + "\n";

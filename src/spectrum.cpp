@@ -233,6 +233,37 @@ S from_complex(std::complex<double> z) {
   }
 }
 
+// The 5x5 bordered matrix factored once, solved with it or its adjoint. Complex
+// systems are factored in their real 10x10 form [[Re, -Im], [Im, Re]]: Eigen's complex
+// LU pivots on |z|, i.e. hypot, which made hypot the refinement's most expensive call.
+// (The real form of B^H is the transpose of B's real form.)
+class BorderedSolver {
+ public:
+  explicit BorderedSolver(const Eigen::Matrix<double, 5, 5>& B) : real_(B) {}
+  explicit BorderedSolver(const Eigen::Matrix<std::complex<double>, 5, 5>& B) {
+    Eigen::Matrix<double, 10, 10> R;
+    R << B.real(), -B.imag(), B.imag(), B.real();
+    complex_.compute(R);
+  }
+  Eigen::Matrix<double, 5, 1> solve(const Eigen::Matrix<double, 5, 1>& r, bool adjoint) const {
+    return adjoint ? Eigen::Matrix<double, 5, 1>(real_.transpose().solve(r)) : Eigen::Matrix<double, 5, 1>(real_.solve(r));
+  }
+  Eigen::Matrix<std::complex<double>, 5, 1> solve(const Eigen::Matrix<std::complex<double>, 5, 1>& r,
+                                                  bool adjoint) const {
+    Eigen::Matrix<double, 10, 1> rr;
+    rr << r.real(), r.imag();
+    const Eigen::Matrix<double, 10, 1> v = adjoint ? Eigen::Matrix<double, 10, 1>(complex_.transpose().solve(rr))
+                                                   : Eigen::Matrix<double, 10, 1>(complex_.solve(rr));
+    Eigen::Matrix<std::complex<double>, 5, 1> out;
+    for (int i = 0; i < 5; ++i) out(i) = {v(i), v(i + 5)};
+    return out;
+  }
+
+ private:
+  Eigen::PartialPivLU<Eigen::Matrix<double, 5, 5>> real_;
+  Eigen::PartialPivLU<Eigen::Matrix<double, 10, 10>> complex_;
+};
+
 // Newton on T(lambda) x = 0 from (start, start_vector), on the equilibrated problem.
 // The residual T x and the iterate are in S's precision: long double for the analyzer's
 // spectra (this is what makes them better than double), double for eigenvalue
@@ -293,34 +324,39 @@ Refined refine(const Linearization<ld, 2>& lin, std::complex<double> start, cons
     return B;
   };
   // Newton converges until its steps stop shrinking (the rounding level); whether that
-  // level is good enough is judged below against the error bound.
+  // level is good enough is judged below against the error bound. In double the
+  // convergence is quadratic: after a step below sqrt(eps) |lambda| the error is at the
+  // rounding level already, and the step that would confirm it is skipped.
   W last_step = std::numeric_limits<W>::infinity();
   W final_step = last_step;
+  const W enough = std::is_same_v<W, double> ? std::sqrt(eps) : 4 * eps;
+  std::optional<BorderedSolver> solver;
   for (int it = 0; it < 16; ++it) {
     const Mat4s t = T(lambda);
-    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, t, x);
+    solver.emplace(bordered(lambda, t, x));
     const Vec4 r = t * x;  // in the working precision
     Eigen::Matrix<D, 5, 1> rhs;
     for (int i = 0; i < 4; ++i) rhs(i) = D(-r(i) * S(weight(i)));
     rhs(4) = D(0);
-    const Eigen::Matrix<D, 5, 1> step = B.partialPivLu().solve(rhs);
+    const Eigen::Matrix<D, 5, 1> step = solver->solve(rhs, false);
     if (!step.allFinite()) break;
     const W dl = magnitude_of(S(step(4)));
     lambda += S(step(4));
     for (int i = 0; i < 4; ++i) x(i) += S(step(i));
-    final_step = std::min(dl, last_step);
-    if (dl <= 4 * eps * magnitude_of(lambda) || (it >= 2 && dl > last_step / 2)) break;
+    final_step = std::is_same_v<W, double> && dl <= enough * magnitude_of(lambda) ? dl * dl / magnitude_of(lambda)
+                                                                                  : std::min(dl, last_step);
+    if (dl <= enough * magnitude_of(lambda) || (it >= 2 && dl > last_step / 2)) break;
     last_step = dl;
   }
-  // Left vector from the adjoint bordered system: B^H [y; eta] = e_5 gives
+  // Left vector from the adjoint bordered system (the last factorization, at the
+  // previous iterate, is close enough for a condition estimate): B^H [y; eta] = e_5 gives
   // T^H y = -eta c with eta ~ (T x)^H y / (c^H x) ~ 0: y is the left null vector of T.
   const Mat4s t = T(lambda);
-  Vec4 y;
-  {
-    const Eigen::Matrix<D, 5, 5> B = bordered(lambda, t, x);
+  Vec4 y = x;
+  if (solver) {
     Eigen::Matrix<D, 5, 1> e5 = Eigen::Matrix<D, 5, 1>::Zero();
     e5(4) = D(1);
-    const Eigen::Matrix<D, 5, 1> z = B.partialPivLu().adjoint().solve(e5);
+    const Eigen::Matrix<D, 5, 1> z = solver->solve(e5, true);
     for (int i = 0; i < 4; ++i) y(i) = S(z(i)) * S(weight(i));  // undo the row weighting
     if (!y.allFinite() || y.isZero(0)) y = x;
   }

@@ -1,1 +1,744 @@
+// Continuation of equilibrium branches (continuation.hpp) and of their fold and Hopf
+// points in a second parameter (boundaries.hpp), against results derived by hand here:
+//
+//  - the folds of the together family in omega, from the existence condition of its
+//    closed form (model.md §5), a quadratic in omega^2;
+//  - the branch point at U = m1 l1 + m2 l2 where the balanced family merges with the
+//    together one, and at omega = omega_n the together fold sitting on it;
+//  - the Hopf points of the balanced state, from its characteristic polynomial derived
+//    by hand below (an 8th-degree polynomial in lambda, no matrix involved);
+//  - the two-parameter curves: friction does not move equilibria, so fold curves in
+//    (omega, d) are vertical, and every point of a Hopf curve has a pair +-i omega_H.
+//
+// Expected values never come from the program's output; where the program's value seeds
+// an independent Newton solve, the solve's answer does not depend on the seed.
 #include <catch2/catch.hpp>
+
+#include <gsl/gsl_errno.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include "abu/boundaries.hpp"
+#include "abu/continuation.hpp"
+#include "abu/equilibria.hpp"
+#include "abu/model.hpp"
+#include "abu/params.hpp"
+#include "abu/spectrum.hpp"
+
+namespace {
+
+using ld = long double;
+using cld = std::complex<ld>;
+using cd = std::complex<double>;
+using abu::Family;
+using abu::Label;
+constexpr ld kPi = std::numbers::pi_v<ld>;
+
+// The library's root finders are GSL's: report errors, never abort the test binary.
+void quiet_gsl() {
+  static const bool once = [] {
+    gsl_set_error_handler_off();
+    return true;
+  }();
+  (void)once;
+}
+
+// The default scene of model.md (coulomb friction); `viscous` gives its viscous twin.
+abu::Params base_params(bool viscous = false) {
+  abu::Params p;
+  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
+  p.omega = 900.0;
+  p.law = viscous ? abu::FrictionLaw::viscous : abu::FrictionLaw::coulomb;
+  p.kappa = 1e3;
+  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, viscous ? 1e-4 : 0.0, 0.0, 0.0, 0.0};
+  return p;
+}
+
+// M = M_r + m1 + m2, from the exact doubles, in long double.
+ld total_mass(const abu::Params& p) { return ld(p.rotor.mass) + ld(p.balls[0].mass) + ld(p.balls[1].mass); }
+// a = m1 l1 + m2 l2, the ball set's capacity, in long double.
+ld capacity(const abu::Params& p) {
+  return ld(p.balls[0].mass) * ld(p.balls[0].race_radius) + ld(p.balls[1].mass) * ld(p.balls[1].race_radius);
+}
+// omega_n = sqrt(k / M), in double as a scene would give it.
+double omega_n(const abu::Params& p) { return std::sqrt(p.rotor.stiffness / p.total_mass()); }
+
+abu::ParamRef param(const char* symbol) {
+  const auto ref = abu::parse_param(symbol, 2);
+  REQUIRE(ref.has_value());
+  return *ref;
+}
+
+ld relative(ld x, ld expected) { return std::abs(x - expected) / std::abs(expected); }
+
+// ---------------------------------------------------------------------------------------
+// Folds of the together family in omega (model.md §5). Its angle solves
+// K U sin b + C U cos b + C a = 0, i.e. U R sin(b + theta) = -C a with R = sqrt(K^2 + C^2):
+// two roots while |C a| < U R, a double root (a fold) where C^2 a^2 = U^2 (K^2 + C^2).
+// With x = omega^2, K = k - x M, C^2 = c^2 x this is the quadratic
+//     M^2 x^2 + (c^2 (1 - a^2 / U^2) - 2 k M) x + k^2 = 0,
+// whose roots multiply to (k / M)^2 = omega_n^4. The larger root from the formula without
+// cancellation (B < 0 here), the smaller from the product.
+std::vector<ld> together_fold_omegas(const abu::Params& p) {
+  const ld M = total_mass(p), k = p.rotor.stiffness, c = p.rotor.damping, U = p.rotor.unbalance, a = capacity(p);
+  const ld A = M * M, B = c * c * (1 - (a / U) * (a / U)) - 2 * k * M, C0 = k * k;
+  const ld disc = B * B - 4 * A * C0;
+  if (disc < 0 || B >= 0) return {};  // no real root, or both negative
+  const ld x_big = (-B + std::sqrt(disc)) / (2 * A);
+  const ld x_small = C0 / (A * x_big);
+  return {std::sqrt(x_small), std::sqrt(x_big)};
+}
+
+// ---------------------------------------------------------------------------------------
+// Characteristic polynomial of the balanced equilibrium (q = 0, equal balls at
+// b_{1,2} = pi -+ phi, cos phi = U / 2ml), derived by hand from model.md §3:
+//
+// Linearize with q1 = Q1 e^{lt}, q2 = Q2 e^{lt}, db_i = b_i e^{lt} and z+- = q1 +- i q2.
+// The rotor's complex equation gives, with P(l) = M (l + i w)^2 + c (l + i w) + k and
+// Pt(l) = M (l - i w)^2 + c (l - i w) + k,
+//     P  z+ =  i (w - i l)^2 sum_j m l e^{ i b_j} b_j = -i (l + i w)^2 sum_j m l e^{ i b_j} b_j,
+//     Pt z- = -i (w + i l)^2 sum_j m l e^{-i b_j} b_j =  i (l - i w)^2 sum_j m l e^{-i b_j} b_j,
+// the ball equation, with a = (l + i w)^2 z+ (and (l - i w)^2 z-) and the friction slope
+// dF/db' = -rho m l (coulomb: rho = (2/pi) mu w^2 kappa; viscous: rho = d / m),
+//     j m l l^2 b_i = -rho m l l b_i + (i m / 2) (a+ e^{-i b_i} - a- e^{i b_i}).
+// Eliminating z+-, with G+- = (l +- i w)^4 / P (resp. Pt) and D = b_2 - b_1:
+//     l (j l + rho) b_i = (m / 2) sum_j (G+ e^{i(b_j - b_i)} + G- e^{-i(b_j - b_i)}) b_j.
+// The 2x2 determinant, times P Pt, is the degree-8 polynomial (s = l (j l + rho))
+//     Phi(l) = s^2 P Pt - m s ((l + i w)^4 Pt + (l - i w)^4 P) + m^2 (l^2 + w^2)^4 sin^2 D,
+// with sin^2 D = sin^2 (2 phi) = 4 cos^2 phi sin^2 phi. Its roots are the 8 eigenvalues.
+struct BalancedScene {
+  ld M, k, c, m, l, j, U, rho_over_w2 = 0, rho_viscous = 0;  // rho = rho_over_w2 w^2 + rho_viscous
+};
+
+BalancedScene balanced_scene(const abu::Params& p) {
+  BalancedScene s{total_mass(p), p.rotor.stiffness, p.rotor.damping, p.balls[0].mass, p.balls[0].race_radius,
+                  p.balls[0].inertia_factor, p.rotor.unbalance};
+  if (p.law == abu::FrictionLaw::coulomb) s.rho_over_w2 = 2 / kPi * ld(p.balls[0].mu) * ld(p.kappa);
+  if (p.law == abu::FrictionLaw::viscous) s.rho_viscous = ld(p.balls[0].d) / ld(p.balls[0].mass);
+  return s;
+}
+
+cld balanced_characteristic(const BalancedScene& s, ld w, cld lambda) {
+  const cld i(0, 1);
+  const ld rho = s.rho_over_w2 * w * w + s.rho_viscous;
+  const ld cos_phi = s.U / (2 * s.m * s.l), sin2_phi = (1 - cos_phi) * (1 + cos_phi);
+  const ld sin2_D = 4 * cos_phi * cos_phi * sin2_phi;
+  const cld up = lambda + i * w, dn = lambda - i * w;
+  const cld P = s.M * up * up + s.c * up + s.k, Pt = s.M * dn * dn + s.c * dn + s.k;
+  const cld sigma = lambda * (s.j * lambda + rho);
+  const cld up2 = up * up, dn2 = dn * dn, l2w2 = lambda * lambda + w * w, l2w2_2 = l2w2 * l2w2;
+  return sigma * sigma * P * Pt - s.m * sigma * (up2 * up2 * Pt + dn2 * dn2 * P) + s.m * s.m * l2w2_2 * l2w2_2 * sin2_D;
+}
+
+// The Hopf point (w, nu) of the balanced state: Phi(i nu; w) = 0, two real equations in
+// two unknowns, by Newton in long double with central differences. Converged when the
+// step is at the rounding level (relative 1e-15 of both unknowns).
+struct HopfPoint {
+  ld omega = 0, frequency = 0;
+  bool converged = false;
+};
+
+HopfPoint balanced_hopf(const BalancedScene& s, ld omega_guess, ld frequency_guess) {
+  HopfPoint h{omega_guess, frequency_guess};
+  for (int it = 0; it < 60; ++it) {
+    const cld F = balanced_characteristic(s, h.omega, cld(0, h.frequency));
+    const ld hw = h.omega * 1e-9L, hn = h.frequency * 1e-7L;
+    const cld Fw = (balanced_characteristic(s, h.omega + hw, cld(0, h.frequency)) -
+                    balanced_characteristic(s, h.omega - hw, cld(0, h.frequency))) /
+                   (2 * hw);
+    const cld Fn = (balanced_characteristic(s, h.omega, cld(0, h.frequency + hn)) -
+                    balanced_characteristic(s, h.omega, cld(0, h.frequency - hn))) /
+                   (2 * hn);
+    const ld det = Fw.real() * Fn.imag() - Fn.real() * Fw.imag();
+    const ld dw = -(Fn.imag() * F.real() - Fn.real() * F.imag()) / det;
+    const ld dn = -(Fw.real() * F.imag() - Fw.imag() * F.real()) / det;
+    h.omega += dw;
+    h.frequency += dn;
+    if (std::abs(dw) <= 1e-15L * h.omega && std::abs(dn) <= 1e-15L * std::abs(h.frequency)) {
+      h.converged = h.frequency > 0;
+      return h;
+    }
+  }
+  return h;
+}
+
+// The spectrum at a configuration and parameter values given in long double, linearized
+// independently of the continuation (model.hpp's linearize, then spectrum.hpp).
+abu::Spectrum spectrum_at(abu::ParamsT<ld, 2> p, const abu::Coordinates<ld, 2>& s) {
+  return abu::compute_spectrum(abu::linearize(p, abu::at_rest<ld, 2>(s)));
+}
+
+cd nearest(const abu::Spectrum& sp, cd target) {
+  cd best = sp.eigenvalues[0];
+  for (const cd l : sp.eigenvalues)
+    if (std::abs(l - target) < std::abs(best - target)) best = l;
+  return best;
+}
+
+// Every number a branch reports is finite.
+bool finite(const abu::BranchPoint& pt) {
+  bool ok = std::isfinite(pt.parameter) && pt.position.allFinite() && std::isfinite(pt.tangent_parameter) &&
+            std::isfinite(pt.branch_test);
+  for (std::size_t k = 0; k < 8; ++k) {
+    ok = ok && std::isfinite(pt.modes[k].real()) && std::isfinite(pt.modes[k].imag());
+    ok = ok && std::isfinite(pt.spectrum.eigenvalues[k].real()) && std::isfinite(pt.spectrum.eigenvalues[k].imag());
+  }
+  return ok;
+}
+
+std::vector<const abu::SpecialPoint*> specials_of(const abu::ContinuationRun& run, Label label) {
+  std::vector<const abu::SpecialPoint*> out;
+  for (const auto& b : run.branches)
+    for (const auto& sp : b.specials)
+      if (sp.label == label) out.push_back(&sp);
+  return out;
+}
+
+// Wrapped angle difference.
+ld angle_difference(ld a, ld b) { return std::abs(std::remainder(a - b, 2 * kPi)); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// 1. Folds of the together family in omega.
+//
+// Tolerance 1e-10 relative. The located fold solves the augmented system (F, g) by Newton
+// in long double down to steps of 64 eps_ld ~ 7e-18 in the scaled unknowns; the parameter
+// is scaled by the interval (7.8 omega_n ~ 8 omega_fold), and the static equations lose
+// at most k / |K| digits to the cancellation in K = k - omega^2 M (printed below: <= 9
+// for c = 2, ~350 for c = 0.05): the fold is good to ~1e-14. The closed form is
+// evaluated in long double: K's cancellation costs k / |K| * eps_ld ~ 4e-17, and the
+// roots, relatively 3e-3 apart at worst (c = 0.05), amplify the coefficients' rounding
+// by ~1 / 3e-3: ~1e-16. 1e-10 leaves four orders for anything not foreseen.
+TEST_CASE("folds of the together family in omega at the closed-form roots", "[continuation]") {
+  quiet_gsl();
+  for (const double c : {2.0, 0.05}) {
+    abu::Params p = base_params();
+    p.rotor.damping = c;
+    const double wn = omega_n(p);
+    p.omega = 0.2 * wn;
+    const double to = 8 * wn;
+    const auto roots = together_fold_omegas(p);
+    INFO("c = " << c);
+    REQUIRE(roots.size() == 2);
+    // Both roots in the interval; at c = 0.05 they straddle omega_n within 0.2%.
+    for (const ld w : roots) {
+      REQUIRE(w > ld(p.omega));
+      REQUIRE(w < ld(to));
+      const ld K = ld(p.rotor.stiffness) - w * w * total_mass(p);
+      WARN("c = " << c << ": closed-form fold at omega = " << double(w) << ", k/|K| = " << double(p.rotor.stiffness / std::abs(K)));
+    }
+    const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), to, abu::ContinuationOptions{});
+    std::vector<bool> found(roots.size(), false);
+    int lp_count = 0;
+    for (const auto& b : run.branches) {
+      for (const auto& sp : b.specials) {
+        if (sp.label != Label::LP) continue;
+        ++lp_count;
+        INFO("LP at omega = " << double(sp.parameter) << " on a " << to_string(b.family) << " branch");
+        CHECK(b.family == Family::together);
+        CHECK(sp.family == Family::together);
+        CHECK(sp.converged);
+        ld best = std::numeric_limits<ld>::infinity();
+        std::size_t which = 0;
+        for (std::size_t r = 0; r < roots.size(); ++r)
+          if (relative(sp.parameter, roots[r]) < best) best = relative(sp.parameter, roots[r]), which = r;
+        WARN("c = " << c << ": LP rel err " << double(best) << " vs tol 1e-10");
+        CHECK(best <= 1e-10L);
+        if (best <= 1e-10L) found[which] = true;
+      }
+    }
+    // An LP at every root, and none anywhere else (the balanced family does not depend on
+    // omega; the opposite family, equal balls, has two roots at every omega).
+    CHECK(lp_count == int(roots.size()));
+    for (std::size_t r = 0; r < roots.size(); ++r) CHECK(found[r]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// 2. The branch point at U = m1 l1 + m2 l2 = a.
+//
+// At omega = 900 the two balanced points (b = pi -+ phi, cos phi = U / a) form one smooth
+// curve U = a cos phi through phi = 0, which turns back in U there; phi = 0 is b1 = b2 = pi,
+// q = 0, which also solves the together equation at U = a (K U sin pi + C U cos pi + C a = 0).
+// The together branch crosses it transversally (dU != 0 since K != 0): a pitchfork. So the
+// balanced family must stop at U = a and come back (both mirror points on one branch), and
+// the together branch must report the BP at U = a.
+//
+// Tolerance 1e-10 for the BP: it is located by Brent on det [F_u; t^T] along the chord to
+// 1e-15 of the scaled arclength (the parameter is scaled by the interval, a), each value
+// on the branch to rounding: ~1e-15 relative.
+TEST_CASE("branch point where the balanced family meets the together family (U = 2ml)", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const ld a = capacity(p);
+  const double a_double = 2 * p.balls[0].mass * p.balls[0].race_radius;
+  p.rotor.unbalance = 0.5 * a_double;
+  const abu::ContinuationRun run =
+      abu::continue_branches(p, param("U"), 1.5 * a_double, abu::ContinuationOptions{});
+
+  // The BP on the together branch.
+  int bps = 0;
+  for (const auto& b : run.branches) {
+    if (b.family != Family::together) continue;
+    for (const auto& sp : b.specials) {
+      if (sp.label != Label::BP) continue;
+      ++bps;
+      CHECK(sp.converged);
+      WARN("U: together BP rel err " << double(relative(sp.parameter, a)) << " vs tol 1e-10");
+      CHECK(relative(sp.parameter, a) <= 1e-10L);
+    }
+  }
+  CHECK(bps == 1);  // one together member passes through b = pi at U = a, the other does not
+
+  // The balanced branch: one branch carries both mirror points; it never exceeds U = a
+  // (beyond it no balanced point exists: a point there could exceed a only by the
+  // corrector's rounding, 1e-15) and comes back to the start value.
+  std::vector<const abu::Branch*> balanced;
+  for (const auto& b : run.branches)
+    if (b.family == Family::balanced) balanced.push_back(&b);
+  REQUIRE(balanced.size() == 1);
+  const abu::Branch& bal = *balanced[0];
+  ld top = 0;
+  for (const auto& pt : bal.points) {
+    CHECK(pt.family == Family::balanced);
+    top = std::max(top, pt.parameter);
+  }
+  WARN("U: highest balanced point at " << double(top / a) << " a");
+  CHECK(top <= a * (1 + 1e-12L));
+  CHECK(bal.stop[0] == abu::StopReason::end_of_range);
+  CHECK(bal.stop[1] == abu::StopReason::end_of_range);
+  REQUIRE(bal.points.size() >= 3);
+  const auto& first = bal.points.front();
+  const auto& last = bal.points.back();
+  CHECK(relative(first.parameter, ld(p.rotor.unbalance)) <= 1e-15L);
+  CHECK(relative(last.parameter, ld(p.rotor.unbalance)) <= 1e-15L);
+  // The far end is the mirror point: the balls' angles swapped (1e-12: both are polished
+  // equilibria, angles to rounding).
+  CHECK(angle_difference(first.position(2), last.position(3)) <= 1e-12L);
+  CHECK(angle_difference(first.position(3), last.position(2)) <= 1e-12L);
+  // It turns exactly once.
+  int turns = 0;
+  for (std::size_t i = 1; i < bal.points.size(); ++i)
+    turns += (bal.points[i - 1].tangent_parameter > 0) != (bal.points[i].tangent_parameter > 0);
+  CHECK(turns == 1);
+  // What the balanced branch reports at its turn: the fold there is also the branch point,
+  // where the fold's augmented system is singular; whatever is reported must lie at U <= a
+  // within one grid step (1e-2), and say so when it is not located.
+  CHECK(!bal.specials.empty());
+  for (const auto& sp : bal.specials) {
+    INFO(to_string(sp.label) << " at U = " << double(sp.parameter / a) << " a, converged " << sp.converged << ": "
+                             << sp.note);
+    WARN("U: balanced branch reports " << to_string(sp.label) << " at " << double(sp.parameter / a)
+                                       << " a, converged " << sp.converged);
+    CHECK(sp.parameter <= a * (1 + 1e-10L));
+    CHECK(sp.parameter >= a * (1 - 1e-2L));
+    if (sp.converged) CHECK(relative(sp.parameter, a) <= 1e-10L);
+    if (!sp.converged) CHECK(!sp.note.empty());
+  }
+}
+
+// At omega = omega_n (K = k - omega^2 M is rounding, |K| / C ~ 1e-14): the together roots
+// exist iff |C a| <= U sqrt(K^2 + C^2), i.e. U >= a C / sqrt(K^2 + C^2) = a (1 - O(1e-28)):
+// only for U >= a, where cos b = -a / U gives b = pi -+ arccos(a / U), the two roots merging
+// at b = pi, q = 0 when U = a. That is the balanced merge point too. So the together branch
+// (which starts at the far end, U = 1.5 a) turns at U = a (LP) exactly where the balanced
+// curve crosses it (F_u has rank 3 there: BP). Both are reported; the tolerance 1e-8
+// allows for Newton on the fold's augmented system, singular at a branch point, stopping at
+// the square root of the rounding level (sqrt(eps_ld) ~ 3e-10).
+TEST_CASE("at omega = omega_n the together fold sits on the branch point", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  p.omega = omega_n(p);
+  const ld a = capacity(p);
+  const double a_double = 2 * p.balls[0].mass * p.balls[0].race_radius;
+  p.rotor.unbalance = 0.5 * a_double;
+  const abu::ContinuationRun run =
+      abu::continue_branches(p, param("U"), 1.5 * a_double, abu::ContinuationOptions{});
+  bool lp = false, bp = false;
+  int together_branches = 0;
+  for (const auto& b : run.branches) {
+    for (const auto& pt : b.points) {
+      // The families exist on either side of U = a only (1e-12: the corrector's rounding).
+      if (pt.family == Family::together) CHECK(pt.parameter >= a * (1 - 1e-12L));
+      if (b.family == Family::balanced) CHECK(pt.parameter <= a * (1 + 1e-12L));
+    }
+    if (b.family != Family::together) continue;
+    ++together_branches;
+    for (const auto& sp : b.specials) {
+      if (!sp.converged) continue;
+      WARN("omega_n: together branch " << to_string(sp.label) << " rel err " << double(relative(sp.parameter, a))
+                                       << " vs tol 1e-8");
+      if (sp.label == Label::LP && relative(sp.parameter, a) <= 1e-8L) lp = true;
+      if (sp.label == Label::BP && relative(sp.parameter, a) <= 1e-8L) bp = true;
+    }
+  }
+  CHECK(together_branches == 1);  // both roots on one branch, through its fold
+  CHECK(lp);
+  CHECK(bp);
+}
+
+// ---------------------------------------------------------------------------------------
+// 3. Stiff Hopf point (model.md §8): coulomb kappa = 1e6.
+//
+// Quasi-static limit of the characteristic polynomial above (rho -> infinity, |l| << w):
+// the balls creep as db_i' = (m w^2 / rho) sum_j Re(H e^{i(b_j - b_i)}) b_j with
+// H = w^2 / (K + i C): trace 2 (m w^2 / rho) Re H vanishes at K = 0, omega = omega_n, with
+// frequency (m w^2 / rho) |H| |sin D| = pi m omega_n |sin D| / (2 mu kappa c). The
+// corrections are of relative order |l| / w and M |l| / c (~1e-8 and 3e-7 here), so the
+// Hopf point lies within a few omega_H of omega_n and omega_H is the formula to ~1e-6.
+// The exact values come from Phi(i nu; w) = 0 (Newton, long double; the program's point
+// only seeds it).
+TEST_CASE("stiff friction: the balanced Hopf point a hair above omega_n", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  p.kappa = 1e6;
+  const double wn = omega_n(p);
+  p.omega = 0.8 * wn;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 1.5 * wn, abu::ContinuationOptions{},
+                                                          abu::StartSelection{Family::balanced, std::nullopt});
+  const BalancedScene scene = balanced_scene(p);
+  const ld cos_phi = scene.U / (2 * scene.m * scene.l);
+  const ld sin_D = 2 * cos_phi * std::sqrt(1 - cos_phi * cos_phi);
+  const ld nu0 = kPi * scene.m * ld(wn) * sin_D / (2 * ld(p.balls[0].mu) * ld(p.kappa) * scene.c);
+  REQUIRE(run.branches.size() == 2);
+  std::vector<double> lyapunov;
+  for (const auto& b : run.branches) {
+    REQUIRE(b.family == Family::balanced);
+    REQUIRE(b.specials.size() == 1);
+    const auto& sp = b.specials[0];
+    CHECK(sp.label == Label::HB);  // a complex pair crossing, not a real one
+    REQUIRE(sp.converged);
+    CHECK(sp.family == Family::balanced);
+    CHECK(std::abs(sp.n_unstable_before - sp.n_unstable_after) == 2);
+    // A hair above omega_n.
+    CHECK(sp.parameter > ld(wn));
+    CHECK(sp.parameter < ld(wn) * (1 + 1e-3L));
+    WARN("stiff: (omega_HB - omega_n) / omega_n = " << double((sp.parameter - wn) / wn) << ", omega_H / omega_n = "
+                                                    << sp.frequency / wn);
+    // The frequency: 1e-8 omega_n (the quasi-static formula ~ 1 / kappa: eight orders below
+    // omega_n at kappa = 1e6, five at the default kappa = 1e3).
+    CHECK(sp.frequency > 1e-9 * wn);
+    CHECK(sp.frequency < 1e-7 * wn);
+    WARN("stiff: omega_H vs quasi-static formula rel " << double(relative(sp.frequency, nu0)) << " vs tol 1e-4");
+    CHECK(relative(sp.frequency, nu0) <= 1e-4L);
+    // Against the exact characteristic polynomial. Tolerances: omega_HB 1e-12 (both solve
+    // their systems to long-double rounding; the Hopf point's sensitivity to the pencil's
+    // rounding is ~ omega_H / omega_n... well below), omega_H 1e-10 (the brief's; it is
+    // reported in double).
+    const HopfPoint exact = balanced_hopf(scene, sp.parameter, sp.frequency);
+    REQUIRE(exact.converged);
+    WARN("stiff: omega_HB rel err vs Phi root " << double(relative(sp.parameter, exact.omega))
+                                                << " (tol 1e-12), omega_H rel err "
+                                                << double(relative(sp.frequency, exact.frequency)) << " (tol 1e-10)");
+    CHECK(relative(sp.parameter, exact.omega) <= 1e-12L);
+    CHECK(relative(sp.frequency, exact.frequency) <= 1e-10L);
+    // At the located point a pair sits on the imaginary axis: the augmented system makes
+    // T(i omega_H) singular to long-double rounding; the recomputed eigenvalue carries the
+    // refined spectrum's error (cond * backward error ~ 1e-16 relative to |lambda|). 1e-10.
+    abu::ParamsT<ld, 2> pl = p.cast<ld>();
+    pl.omega = sp.parameter;
+    const abu::Spectrum s = spectrum_at(pl, sp.position);
+    const cd up = nearest(s, cd(0, sp.frequency)), down = nearest(s, cd(0, -sp.frequency));
+    WARN("stiff: |Re lambda| / |lambda| = " << std::abs(up.real()) / std::abs(up) << " (tol 1e-10), Im rel err "
+                                            << std::abs(up.imag() - sp.frequency) / sp.frequency);
+    CHECK(std::abs(up.real()) <= 1e-10 * std::abs(up));
+    CHECK(std::abs(up.imag() - sp.frequency) <= 1e-10 * sp.frequency);
+    CHECK(std::abs(down - std::conj(up)) <= 1e-10 * std::abs(up));
+    lyapunov.push_back(sp.lyapunov);
+  }
+  // The two balanced points are one configuration with the balls swapped: same l1 in exact
+  // arithmetic. Only its sign is checked here (see the report on its accuracy at kappa 1e6).
+  REQUIRE(lyapunov.size() == 2);
+  CHECK(lyapunov[0] * lyapunov[1] > 0);
+  WARN("stiff: l1 = " << lyapunov[0] << ", " << lyapunov[1] << " rel diff "
+                      << std::abs(lyapunov[0] - lyapunov[1]) / std::abs(lyapunov[0]));
+}
+
+// ---------------------------------------------------------------------------------------
+// 4. The Hopf point of the balanced state at the default kappa = 1e3.
+TEST_CASE("balanced Hopf point: pair on the axis, mirror branches agree", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const double wn = omega_n(p);
+  p.omega = 0.2 * wn;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 8 * wn, abu::ContinuationOptions{},
+                                                          abu::StartSelection{Family::balanced, std::nullopt});
+  REQUIRE(run.branches.size() == 2);
+  const BalancedScene scene = balanced_scene(p);
+  std::vector<double> lyapunov;
+  for (const auto& b : run.branches) {
+    REQUIRE(b.specials.size() == 1);
+    const auto& sp = b.specials[0];
+    REQUIRE(sp.label == Label::HB);
+    REQUIRE(sp.converged);
+    const HopfPoint exact = balanced_hopf(scene, sp.parameter, sp.frequency);
+    REQUIRE(exact.converged);
+    WARN("kappa 1e3: omega_HB rel err vs Phi root " << double(relative(sp.parameter, exact.omega))
+                                                    << " (tol 1e-12), omega_H rel err "
+                                                    << double(relative(sp.frequency, exact.frequency)) << " (tol 1e-10)");
+    CHECK(relative(sp.parameter, exact.omega) <= 1e-12L);
+    CHECK(relative(sp.frequency, exact.frequency) <= 1e-10L);
+    // Recomputed spectrum: +-i omega_H (1e-10, as in the stiff case).
+    abu::ParamsT<ld, 2> pl = p.cast<ld>();
+    pl.omega = sp.parameter;
+    const abu::Spectrum s = spectrum_at(pl, sp.position);
+    const cd up = nearest(s, cd(0, sp.frequency)), down = nearest(s, cd(0, -sp.frequency));
+    WARN("kappa 1e3: |Re lambda| / |lambda| = " << std::abs(up.real()) / std::abs(up) << " (tol 1e-10), Im rel err "
+                                                << std::abs(up.imag() - sp.frequency) / sp.frequency);
+    CHECK(std::abs(up.real()) <= 1e-10 * std::abs(up));
+    CHECK(std::abs(up.imag() - sp.frequency) <= 1e-10 * sp.frequency);
+    CHECK(std::abs(down - std::conj(up)) <= 1e-10 * std::abs(up));
+    // The eigenvalue the special point reports is that pair's.
+    CHECK(std::abs(sp.eigenvalue - up) <= 1e-10 * std::abs(up));
+    lyapunov.push_back(sp.lyapunov);
+  }
+  // l1 is identical in exact arithmetic on the two mirror branches (ball swap symmetry);
+  // computed by Richardson-extrapolated finite differences (~1e-5 relative): 1e-3.
+  REQUIRE(lyapunov.size() == 2);
+  CHECK(lyapunov[0] * lyapunov[1] > 0);
+  const double diff = std::abs(lyapunov[0] - lyapunov[1]) / std::abs(lyapunov[0]);
+  WARN("kappa 1e3: l1 = " << lyapunov[0] << ", " << lyapunov[1] << " rel diff " << diff << " vs tol 1e-3");
+  CHECK(diff <= 1e-3);
+}
+
+// ---------------------------------------------------------------------------------------
+// 5. The same family continued forwards and backwards gives the same special points.
+// Tolerance 1e-10: each is located by its augmented system to ~1e-14 (see test 1),
+// independently of the grid that bracketed it.
+TEST_CASE("forwards and backwards continuation find the same special points", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const double wn = omega_n(p);
+  const abu::StartSelection together{Family::together, std::nullopt};
+  p.omega = 0.2 * wn;
+  const abu::ContinuationRun forward = abu::continue_branches(p, param("omega"), 8 * wn, {}, together);
+  p.omega = 8 * wn;
+  const abu::ContinuationRun backward = abu::continue_branches(p, param("omega"), 0.2 * wn, {}, together);
+  const auto collect = [](const abu::ContinuationRun& run) {
+    std::vector<std::pair<Label, ld>> out;
+    for (const auto& b : run.branches)
+      for (const auto& sp : b.specials) out.emplace_back(sp.label, sp.parameter);
+    std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+    return out;
+  };
+  const auto f = collect(forward), b = collect(backward);
+  CHECK(f.size() == 2);  // the two folds of test 1
+  REQUIRE(f.size() == b.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    CHECK(f[i].first == b[i].first);
+    WARN("forward/backward " << to_string(f[i].first) << " rel diff " << double(relative(b[i].second, f[i].second))
+                             << " vs tol 1e-10");
+    CHECK(relative(b[i].second, f[i].second) <= 1e-10L);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// 6. Failure is explicit.
+TEST_CASE("a continuation that cannot finish says why; parameters stay physical", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const double wn = omega_n(p);
+  {
+    p.omega = 0.2 * wn;
+    abu::ContinuationOptions o;
+    o.max_steps = 3;
+    REQUIRE_FALSE(abu::options_violation(o).has_value());
+    const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 8 * wn, o);
+    REQUIRE(!run.branches.empty());
+    for (const auto& b : run.branches) {
+      // Every start is at an end of the interval: the branch runs one way, and stops short.
+      CHECK(b.stop[1] == abu::StopReason::max_steps);
+      CHECK(!b.stop_detail[1].empty());
+      CHECK(b.points.size() <= 4);  // the start and at most 3 steps
+      for (const auto& pt : b.points) CHECK(finite(pt));
+    }
+  }
+  {
+    // m from its default down to a tiny positive value: every point keeps m > 0.
+    p = base_params();
+    const double to = 1e-8;
+    const abu::ContinuationRun run = abu::continue_branches(p, param("m"), to, {});
+    REQUIRE(!run.branches.empty());
+    bool reaches_end = false;
+    for (const auto& b : run.branches) {
+      for (const auto& pt : b.points) {
+        CHECK(finite(pt));
+        CHECK(pt.parameter > 0);
+        CHECK(pt.parameter >= ld(to) * (1 - 1e-15L));
+        CHECK(pt.parameter <= ld(p.balls[0].mass) * (1 + 1e-15L));
+        reaches_end = reaches_end || (pt.label == Label::EP && relative(pt.parameter, ld(to)) <= 1e-15L);
+      }
+      for (std::size_t end = 0; end < 2; ++end)
+        if (b.stop[end] != abu::StopReason::end_of_range) CHECK(!b.stop_detail[end].empty());
+    }
+    CHECK(reaches_end);  // the together and opposite families exist down to m -> 0
+  }
+}
+
+// Known defects (see the report), kept as documentation: [!mayfail] runs and reports them
+// without failing the suite.
+//  a) The range check comes before the end-of-interval check in the step loop: a step
+//     that overshoots the end value m = 1e-8 into m < 0 stops the branch with
+//     invalid_parameter instead of landing on the end value.
+//  b) At the pitchfork m = U / (2 l) the balanced branch's BP locator wanders off (its
+//     corrector is not confined to the bracket) and reports m = 0, outside the interval.
+TEST_CASE("continuing m towards a tiny positive value ends at that value", "[continuation][!mayfail]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const double to = 1e-8;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("m"), to, {});
+  for (const auto& b : run.branches) {
+    INFO(to_string(b.family) << " " << b.member << ": " << b.stop_detail[0] << " | " << b.stop_detail[1]);
+    // The interval [1e-8, 3.3e-5] is physical throughout: no end may stop on the range rule.
+    for (std::size_t end = 0; end < 2; ++end) CHECK(b.stop[end] != abu::StopReason::invalid_parameter);
+    for (const auto& sp : b.specials) {
+      INFO(to_string(sp.label) << " at m = " << double(sp.parameter) << ": " << sp.note);
+      CHECK(sp.parameter >= ld(to));
+      CHECK(sp.parameter <= ld(p.balls[0].mass));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// 7. Eigenvalue tracking: nothing lost, no jumps between conjugates.
+TEST_CASE("tracked modes are the spectrum, and cross the real axis only through it", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  const double wn = omega_n(p);
+  p.omega = 0.2 * wn;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 8 * wn, {});
+  REQUIRE(!run.branches.empty());
+  double worst_set = 0;
+  int checked_pairs = 0;
+  for (const auto& b : run.branches) {
+    INFO(to_string(b.family) << " branch, member " << b.member);
+    for (std::size_t i = 0; i < b.points.size(); ++i) {
+      const auto& pt = b.points[i];
+      // The tracked modes are a permutation of the sorted eigenvalues (exact copies).
+      auto modes = pt.modes;
+      auto sorted = pt.spectrum.eigenvalues;
+      const auto order = [](cd x, cd y) { return x.real() != y.real() ? x.real() < y.real() : x.imag() < y.imag(); };
+      std::sort(modes.begin(), modes.end(), order);
+      std::sort(sorted.begin(), sorted.end(), order);
+      for (std::size_t k = 0; k < 8; ++k) {
+        const double d = std::abs(modes[k] - sorted[k]) / std::abs(sorted[k]);
+        worst_set = std::max(worst_set, d);
+        CHECK(d <= 1e-14);
+      }
+      if (i == 0) continue;
+      // A mode's imaginary part changes sign only through the real axis: at one of the two
+      // points it is real (|Im| <= 1e-6 |lambda|). Else the tracking swapped conjugates.
+      const auto& prev = b.points[i - 1];
+      for (std::size_t k = 0; k < 8; ++k) {
+        const cd x = prev.modes[k], y = pt.modes[k];
+        if ((x.imag() > 0 && y.imag() < 0) || (x.imag() < 0 && y.imag() > 0)) {
+          INFO("mode " << k << " from " << x << " at " << double(prev.parameter) << " to " << y << " at "
+                       << double(pt.parameter));
+          CHECK(std::min(std::abs(x.imag()) / std::abs(x), std::abs(y.imag()) / std::abs(y)) <= 1e-6);
+        }
+        ++checked_pairs;
+      }
+    }
+  }
+  WARN("tracking: modes vs spectrum worst rel diff " << worst_set << " (tol 1e-14), " << checked_pairs
+                                                     << " mode steps checked");
+}
+
+// ---------------------------------------------------------------------------------------
+// 8. Two parameters: the viscous twin's fold and Hopf points continued in d.
+TEST_CASE("fold curves are vertical in (omega, d); the balanced Hopf curve reaches d = 1e-3", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params(true);
+  const double wn = omega_n(p);
+  p.omega = 0.2 * wn;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 8 * wn, {});
+  const double d_end = 1e-3;
+  const abu::BoundaryRun curves = abu::continue_boundaries(p, run, param("d"), d_end, {});
+  REQUIRE(!curves.curves.empty());
+
+  // Fold curves: F does not depend on d (friction vanishes at rest, model.md §4), so the
+  // fold stays at the same omega: every point to 1e-12 relative (the curve corrector's
+  // convergence, 1e-12 in the scaled unknowns, times the interval / omega ~ 8).
+  const auto fold_roots = together_fold_omegas(p);
+  int folds = 0;
+  for (const auto& c : curves.curves) {
+    if (c.kind != Label::LP) continue;
+    ++folds;
+    REQUIRE(!c.points.empty());
+    const ld w0 = c.points.front().parameter;
+    ld worst = 0;
+    for (const auto& pt : c.points) worst = std::max(worst, relative(pt.parameter, w0));
+    WARN("fold curve at omega = " << double(w0) << ": omega spread " << double(worst) << " vs tol 1e-12");
+    CHECK(worst <= 1e-12L);
+    // ... and it is one of the closed-form folds (1e-10 as in test 1).
+    ld best = std::numeric_limits<ld>::infinity();
+    for (const ld w : fold_roots) best = std::min(best, relative(w0, w));
+    CHECK(best <= 1e-10L);
+    // It spans the whole d interval.
+    ld dmin = std::numeric_limits<ld>::infinity(), dmax = 0;
+    for (const auto& pt : c.points) dmin = std::min(dmin, pt.parameter2), dmax = std::max(dmax, pt.parameter2);
+    CHECK(relative(dmin, ld(p.balls[0].d)) <= 1e-12L);
+    CHECK(relative(dmax, ld(d_end)) <= 1e-12L);
+  }
+  CHECK(folds == 2);
+
+  // The Hopf curve from the balanced HB (its mirror is skipped as the same curve).
+  const abu::BoundaryCurve* hopf = nullptr;
+  int balanced_hopf_curves = 0;
+  for (const auto& c : curves.curves) {
+    REQUIRE(c.source_branch >= 1);
+    REQUIRE(c.source_branch <= int(run.branches.size()));
+    if (c.kind == Label::HB && run.branches[std::size_t(c.source_branch - 1)].family == Family::balanced) {
+      hopf = &c;
+      ++balanced_hopf_curves;
+    }
+  }
+  CHECK(balanced_hopf_curves == 1);
+  REQUIRE(hopf != nullptr);
+  REQUIRE(hopf->points.size() >= 3);
+  const auto& far = hopf->points.back();
+  CHECK(far.label == Label::EP);
+  CHECK(relative(far.parameter2, ld(d_end)) <= 1e-12L);
+  CHECK(relative(hopf->points.front().parameter2, ld(p.balls[0].d)) <= 1e-12L);
+
+  // A few sampled points (ends included) are Hopf points: a pair +-i omega_H in the
+  // spectrum recomputed at (omega, d, position). The curve's points are converged to 1e-12
+  // in the scaled unknowns; the pair then sits on the axis to ~1e-12 relative: 1e-8.
+  const std::size_t n = hopf->points.size();
+  for (const std::size_t i : {std::size_t(0), n / 4, n / 2, 3 * n / 4, n - 1}) {
+    const auto& pt = hopf->points[i];
+    INFO("Hopf curve point " << i << " at omega = " << double(pt.parameter) << ", d = " << double(pt.parameter2));
+    CHECK(pt.family == Family::balanced);
+    abu::ParamsT<ld, 2> pl = p.cast<ld>();
+    pl.omega = pt.parameter;
+    for (auto& ball : pl.balls) ball.d = pt.parameter2;
+    const abu::Spectrum s = spectrum_at(pl, pt.position);
+    const double f = double(pt.frequency);
+    const cd up = nearest(s, cd(0, f));
+    WARN("Hopf curve point " << i << ": |Re|/|lambda| " << std::abs(up.real()) / std::abs(up) << ", Im rel err "
+                             << std::abs(up.imag() - f) / f << " (tol 1e-8)");
+    CHECK(std::abs(up.real()) <= 1e-8 * std::abs(up));
+    CHECK(std::abs(up.imag() - f) <= 1e-8 * f);
+  }
+  // The far end against the hand-derived characteristic polynomial at d = 1e-3 (viscous:
+  // rho = d / m). Tolerance 1e-8: the curve point is converged to 1e-12 in the scaled
+  // unknowns; Phi's root to rounding.
+  abu::Params pd = p;
+  for (auto& ball : pd.balls) ball.d = d_end;
+  const HopfPoint exact = balanced_hopf(balanced_scene(pd), far.parameter, far.frequency);
+  REQUIRE(exact.converged);
+  WARN("Hopf curve far end: omega rel err vs Phi root " << double(relative(far.parameter, exact.omega))
+                                                        << ", omega_H rel err "
+                                                        << double(relative(far.frequency, exact.frequency))
+                                                        << " (tol 1e-8)");
+  CHECK(relative(far.parameter, exact.omega) <= 1e-8L);
+  CHECK(relative(far.frequency, exact.frequency) <= 1e-8L);
+}

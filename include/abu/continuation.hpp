@@ -101,7 +101,22 @@ struct Branch {
   long double start_parameter = 0;
 };
 
+/// What a run did, for benchmarks and the output's comments.
+struct ContinuationStats {
+  long steps = 0;              ///< accepted points
+  long rejected = 0;           ///< predictor-corrector steps retried with a smaller step
+  long newton_iterations = 0;  ///< corrector iterations, accepted and rejected steps alike
+  long tracked_spectra = 0;    ///< spectra by eigenvalue continuation from the last point
+  long full_spectra = 0;       ///< spectra computed afresh (starts, fallbacks, special points)
+  ContinuationStats& operator+=(const ContinuationStats& o) {
+    steps += o.steps, rejected += o.rejected, newton_iterations += o.newton_iterations;
+    tracked_spectra += o.tracked_spectra, full_spectra += o.full_spectra;
+    return *this;
+  }
+};
+
 struct ContinuationRun {
+  ContinuationStats stats;
   ParamRef param;
   double from = 0, to = 0;
   std::vector<Branch> branches;

@@ -112,29 +112,34 @@ def compare_checks():
             row(4, "LP", float(lps[1].v), *st(lps[1]), "together", nb=2, na=1),
             row(5, "EP", hi, 0.0, 0.0, 2.1, 4.18, "balanced")]
     variants = {
-        "exact values": (base, True),
-        "missing Hopf point": ([r for r in base if ",HB," not in r], False),
+        "exact values": (base, True, "PASS found HB"),
+        "missing Hopf point": ([r for r in base if ",HB," not in r], False, "FAIL missed HB"),
         "Hopf point at a neutral saddle": (base + [row(6, "HB", float(ns.v), *st(ns), "opposite", float(abs(ns.crit)),
-                                                       1e-3, 1, 1, 1)], False),
-        "frequency off 1e-6": ([r.replace(repr(f), repr(f * (1 + 1e-6))) for r in base], False),
-        "fold off 1e-7": ([r.replace(repr(float(lps[1].v)), repr(float(lps[1].v) * (1 + 1e-7))) for r in base], False),
-        "fold labelled BP": ([r.replace(f",LP,{float(lps[1].v)!r}", f",BP,{float(lps[1].v)!r}") for r in base], False),
-        "Hopf point on the wrong family": ([r.replace(",balanced," + repr(f), ",together," + repr(f)) for r in base], False),
-        "wrong counts": ([r.replace(f",{l1!r},1,2,0", f",{l1!r},1,2,1") for r in base], False),
-        "wrong l1 sign": ([r.replace(f",{l1!r},", f",{-l1!r},") for r in base], False),
-        "MX row": (base + [row(7, "MX", 300.0, 0.0, 0.0, 1.0, 1.0, "together", conv=0)], False),
+                                                       1e-3, 1, 1, 1)], False, "neutral saddle"),
+        "frequency off 1e-6": ([r.replace(repr(f), repr(f * (1 + 1e-6))) for r in base], False, "FREQUENCY"),
+        "fold off 1e-7": ([r.replace(repr(float(lps[1].v)), repr(float(lps[1].v) * (1 + 1e-7))) for r in base], False,
+                          "rel err 1.0e-07"),
+        "fold labelled BP": ([r.replace(f",LP,{float(lps[1].v)!r}", f",BP,{float(lps[1].v)!r}") for r in base], False,
+                             "reference says LP"),
+        "Hopf point on the wrong family": ([r.replace(",balanced," + repr(f), ",together," + repr(f)) for r in base], False,
+                                          "FAMILY together"),
+        "wrong counts": ([r.replace(f",{l1!r},1,2,0", f",{l1!r},1,2,1") for r in base], False, "N_UNSTABLE"),
+        "wrong l1 sign": ([r.replace(f",{l1!r},", f",{-l1!r},") for r in base], False, "LYAPUNOV SIGN"),
+        "MX row": (base + [row(7, "MX", 300.0, 0.0, 0.0, 1.0, 1.0, "together", conv=0)], False, "MX (continuation failed)"),
         "not converged": (base[:4] + [row(3, "LP", float(lps[0].v), *st(lps[0]), "together", conv=0, nb=0, na=1)]
-                          + base[5:], False),
+                          + base[5:], False, "NOT CONVERGED"),
     }
     with tempfile.TemporaryDirectory() as tmp:
-        for name, (rows, want) in variants.items():
+        for name, (rows, want, why) in variants.items():
             path = os.path.join(tmp, "special_omega.csv")
             with open(path, "w") as fh:
                 fh.write("# hand-made test file\n" + "\n".join(rows) + "\n")
             out = io.StringIO()
             got = S.compare(path, p, "omega", lo, hi, specials=sps, notes=notes, out=out)
-            check(got == want, f"{name}: {'PASS' if got else 'FAIL'} (expected {'PASS' if want else 'FAIL'})")
-            if got != want:
+            good = got == want and why in out.getvalue()
+            check(good, f"{name}: {'PASS' if got else 'FAIL'} (expected {'PASS' if want else 'FAIL'}, "
+                        f"report says {why!r}: {why in out.getvalue()})")
+            if not good:
                 print(out.getvalue())
 
 
