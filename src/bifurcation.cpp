@@ -21,7 +21,9 @@ constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon();
 // O(1)): truncation ~h^2 and rounding ~eps_ld / h balance near 1e-7; Newton only needs
 // the rows to a few digits, the location's accuracy comes from the analytic residuals.
 constexpr ld kStep = 1e-7L;
-constexpr int kMaxIterations = 40;
+// Newton converges linearly (rate ~1/2) where the augmented system is singular at its
+// root, as the fold system is at a pitchfork approached along its fork: up to ~60 steps.
+constexpr int kMaxIterations = 80;
 
 // Solves the bordered system [M b; c^H 0] [v; g] = [0; 1] for g (the minimally
 // augmented test function); M is equilibrated by the caller.
@@ -36,22 +38,34 @@ S bordered_g(const Eigen::Matrix<S, 4, 4>& m, const Eigen::Matrix<S, 4, 1>& b, c
   return B.partialPivLu().solve(rhs)(4);
 }
 
-// Newton with a square Jacobian; stops where the steps stop shrinking.
+// Newton with a square Jacobian; stops where the steps stop shrinking. Where the
+// system is singular at its root (the fold system at a pitchfork, approached along the
+// fork) the steps bounce along the near-null direction while the residual reaches the
+// rounding level: there convergence is judged by the residual, and the best iterate kept.
 template <int Dim, class Residual, class JacobianFn>
 bool newton(Eigen::Matrix<ld, Dim, 1>& y, const Residual& residual, const JacobianFn& jacobian, int& iterations) {
   ld last = std::numeric_limits<ld>::infinity();
+  Eigen::Matrix<ld, Dim, 1> best = y;
+  ld best_residual = std::numeric_limits<ld>::infinity();
   for (iterations = 0; iterations < kMaxIterations; ++iterations) {
     const Eigen::Matrix<ld, Dim, 1> r = residual(y);
+    const ld size_r = r.cwiseAbs().maxCoeff();
+    if (size_r < best_residual) best = y, best_residual = size_r;
     const Eigen::Matrix<ld, Dim, Dim> D = jacobian(y);
     const Eigen::Matrix<ld, Dim, 1> step = D.partialPivLu().solve(-r);
-    if (!step.allFinite()) return false;
+    if (!step.allFinite()) break;
     y += step;
     const ld size = step.cwiseAbs().maxCoeff();
     if (size <= 64 * kEpsLong) return true;
-    if (iterations >= 3 && size > last / 2) return size <= 1e-13L;  // stagnated at rounding level
+    if (iterations >= 3 && size > 0.9L * last) {
+      if (size <= 1e-13L) return true;  // stagnated at the rounding level
+      break;
+    }
     last = size;
   }
-  return false;
+  const ld final_residual = residual(y).cwiseAbs().maxCoeff();
+  if (final_residual > best_residual) y = best;
+  return std::min(final_residual, best_residual) <= 1e-15L;
 }
 
 // Central differences of a vector function of y along unit vector k.

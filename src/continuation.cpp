@@ -5,12 +5,14 @@
 #include <gsl/gsl_roots.h>
 
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "abu/bifurcation.hpp"
+#include "abu/errors.hpp"
 #include "abu/static_equations.hpp"
 
 namespace abu {
@@ -225,8 +227,8 @@ class Tracer {
   }
   void add(const Vec5& z, const Vec5& t);
   void detect(std::size_t a);
-  void locate_fold_between(std::size_t a);
-  void locate_branch_point_between(std::size_t a);
+  void locate_singular_between(std::size_t a, bool fold_test);
+  std::optional<Vec5> root_on_branch(std::size_t a, bool fold_test) const;
   void locate_hopf_between(std::size_t a);
   SpecialPoint special_at(Label label, const Vec5& z, std::size_t a) const;
 
@@ -329,11 +331,6 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
       }
       continue;
     }
-    if (const auto rule = range_rule(c.z)) {
-      stop = StopReason::invalid_parameter;
-      detail = fmt::format("{} would become {:.17g}: {}", to_string(eq_.param()), double(eq_.parameter(c.z)), *rule);
-      return;
-    }
     if (c.z(4) < 0 || c.z(4) > 1) {
       // The end of the interval: the equilibrium at the end value exactly.
       const ld end = c.z(4) > 1 ? 1 : 0;
@@ -352,6 +349,13 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
         detail = fmt::format("no equilibrium found at the end value {}={:.17g}", to_string(eq_.param()),
                              double(eq_.parameter(guess)));
       }
+      return;
+    }
+    // Inside the interval the parameter can still leave its physical range only if the
+    // interval itself crosses it (the library's callers check the end value).
+    if (const auto rule = range_rule(c.z)) {
+      stop = StopReason::invalid_parameter;
+      detail = fmt::format("{} would become {:.17g}: {}", to_string(eq_.param()), double(eq_.parameter(c.z)), *rule);
       return;
     }
     // Eigenvalue tracking needs the modes to move little per step: else halve the step.
@@ -386,8 +390,11 @@ void Tracer::run(const Vec5& z0, const Vec5& t0) {
 void Tracer::detect(std::size_t a) {
   const BranchPoint& pa = points[a];
   const BranchPoint& pb = points[a + 1];
-  if ((pa.tangent_parameter > 0) != (pb.tangent_parameter > 0)) locate_fold_between(a);
-  if ((pa.branch_test > 0) != (pb.branch_test > 0)) locate_branch_point_between(a);
+  const bool fold_test = (pa.tangent_parameter > 0) != (pb.tangent_parameter > 0);
+  const bool branch_test_changed = (pa.branch_test > 0) != (pb.branch_test > 0);
+  // Both mark a point where F_s is singular; along the fork of a pitchfork both change
+  // sign at once (the fork turns there): one singular point, classified when located.
+  if (fold_test || branch_test_changed) locate_singular_between(a, fold_test);
   if (hopf_test_sign(pa.spectrum) != hopf_test_sign(pb.spectrum)) locate_hopf_between(a);
 }
 
@@ -419,30 +426,51 @@ bool inside(const Vec5& za, const Vec5& zb, const Vec5& z) {
   return distance(z, za) <= 2 * chord && distance(z, zb) <= 2 * chord;
 }
 
-void Tracer::locate_fold_between(std::size_t a) {
-  const ld ta = points[a].tangent_parameter, tb = points[a + 1].tangent_parameter;
-  const Vec5 guess = zs_[a] + (ta / (ta - tb)) * (zs_[a + 1] - zs_[a]);
+void Tracer::locate_singular_between(std::size_t a, bool fold_test) {
+  // The singular point solves the fold's augmented system (F = 0, F_s singular); where
+  // that fails (fold and branch point coinciding, F_s of rank 2) the test function's root
+  // on the branch is found by Brent's method instead. Then: a fold if F_p is outside the
+  // range of F_s (w^T F_p != 0, w its left null vector), a branch point if inside.
+  const ld fa = fold_test ? ld(points[a].tangent_parameter) : ld(points[a].branch_test);
+  const ld fb = fold_test ? ld(points[a + 1].tangent_parameter) : ld(points[a + 1].branch_test);
+  const Vec5 guess = zs_[a] + (fa / (fa - fb)) * (zs_[a + 1] - zs_[a]);
   const Located f = locate_fold(eq_, guess);
-  const bool ok = f.converged && inside(zs_[a], zs_[a + 1], f.z);
-  SpecialPoint sp = special_at(Label::LP, ok ? f.z : guess, a);
-  sp.converged = ok;
-  const Spectrum s = compute_spectrum(eq_.linearization(sp.converged ? f.z : guess));
-  sp.eigenvalue = nearest(s, 0.0);
-  if (!ok) sp.note = "fold detected (t_p changes sign) but its augmented system did not converge";
+  std::optional<Vec5> z;
+  if (f.converged && inside(zs_[a], zs_[a + 1], f.z)) z = f.z;
+  if (!z) z = root_on_branch(a, fold_test);
+  if (!z) {
+    SpecialPoint sp = special_at(fold_test ? Label::LP : Label::BP, guess, a);
+    sp.eigenvalue = nearest(compute_spectrum(eq_.linearization(guess)), 0.0);
+    sp.note = "a singular point was detected here but could not be located (neither its augmented system nor the "
+              "test function's root on the branch converged)";
+    specials.push_back(sp);
+    return;
+  }
+  const Mat45 DF = eq_.jacobian(*z);
+  const Eigen::JacobiSVD<Eigen::Matrix<ld, 4, 4>> svd(DF.leftCols<4>(), Eigen::ComputeFullU);
+  const ld in_range = std::abs(svd.matrixU().col(3).dot(DF.col(4))) / DF.col(4).norm();
+  // w^T F_p / |F_p|: 0 at a branch point, of order 1 at a fold. Measured: 1e-22 where a
+  // branch crosses a branch point, 2e-7 on the fork of a pitchfork (whose location is
+  // exact in the parameter, uncertain by ~1e-8 along the null direction), 0.999 at the
+  // folds of the together family. 1e-5 separates them by orders of magnitude.
+  SpecialPoint sp = special_at(in_range <= 1e-5L ? Label::BP : Label::LP, *z, a);
+  sp.converged = true;
+  sp.eigenvalue = nearest(compute_spectrum(eq_.linearization(*z)), 0.0);
   specials.push_back(sp);
 }
 
-void Tracer::locate_branch_point_between(std::size_t a) {
-  // det [F_u; t^T] along the chord from z_a to z_b, each value on the branch (the
-  // corrector with the chord as constraint direction); Brent's method (GSL) on it.
+std::optional<Vec5> Tracer::root_on_branch(std::size_t a, bool fold_test) const {
+  // The test function (t_p, or det [F_u; t^T]) along the chord from z_a to z_b, each value
+  // on the branch (the corrector with the chord as constraint direction); Brent (GSL).
   const Vec5 za = zs_[a];
   const ld length = (zs_[a + 1] - za).norm();
   const Vec5 d = (zs_[a + 1] - za) / length;
   struct Context {
     const StaticEquations* eq;
     Vec5 za, d, t;
+    bool fold_test;
     bool failed = false;
-  } ctx{&eq_, za, d, ts_[a]};
+  } ctx{&eq_, za, d, ts_[a], fold_test};
   gsl_function fn;
   fn.params = &ctx;
   fn.function = [](double sigma, void* raw) -> double {
@@ -450,7 +478,7 @@ void Tracer::locate_branch_point_between(std::size_t a) {
     const Corrected on = correct(*c->eq, c->za + ld(sigma) * c->d, c->d);
     if (!on.converged) c->failed = true;
     const Vec5 t = tangent(on.jacobian, c->t);
-    return double(branch_test(on.jacobian, t));
+    return c->fold_test ? double(t(4)) : double(branch_test(on.jacobian, t));
   };
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   double lo = 0, hi = double(length), root = 0.5 * hi;
@@ -467,11 +495,8 @@ void Tracer::locate_branch_point_between(std::size_t a) {
   }
   gsl_root_fsolver_free(solver);
   const Corrected on = correct(eq_, za + ld(root) * d, d);
-  SpecialPoint sp = special_at(Label::BP, on.z, a);
-  sp.converged = ok && on.converged && !ctx.failed;
-  sp.eigenvalue = nearest(compute_spectrum(eq_.linearization(on.z)), 0.0);
-  if (!sp.converged) sp.note = "branch point detected but not located to full accuracy";
-  specials.push_back(sp);
+  if (!(ok && on.converged && !ctx.failed && inside(zs_[a], zs_[a + 1], on.z))) return std::nullopt;
+  return on.z;
 }
 
 void Tracer::locate_hopf_between(std::size_t a) {
@@ -645,6 +670,8 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
   run.param = param;
   run.from = get(p, param);
   run.to = to;
+  if (const auto rule = range_violation(param.quantity, to)) throw InputError("continuation", 0, to_string(param), *rule);
+  if (to == run.from) throw InputError("continuation", 0, to_string(param), "the end value equals the start value");
   const StaticEquations eq(p, param, run.from, ld(to) - ld(run.from));
   // Branches from the equilibria at the start value; then, so that no branch of the
   // interval is missed, from those at the far end that no branch has reached (a family
@@ -672,6 +699,27 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
     }
     run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options, run.stats));
   }
+  // A singular point one branch could not locate may be one another branch located: two
+  // branches meeting where a fold and a branch point coincide (F_s of rank 2) are
+  // approachable only along one of them. Adopt that location, and say so.
+  for (auto& b : run.branches)
+    for (auto& sp : b.specials) {
+      if (sp.converged || (sp.label != Label::LP && sp.label != Label::BP)) continue;
+      // Close in the scaled unknowns, the parameter included (a fold's parameter lies
+      // beyond both of its bracketing points, so the bracket itself cannot be the test).
+      for (std::size_t k = 0; k < run.branches.size() && !sp.converged; ++k)
+        for (const auto& other : run.branches[k].specials) {
+          if (!other.converged || (other.label != Label::LP && other.label != Label::BP)) continue;
+          if (distance(eq.scaled(other.position, other.parameter), eq.scaled(sp.position, sp.parameter)) > 1e-2L) continue;
+          sp.label = other.label;
+          sp.parameter = other.parameter;
+          sp.position = other.position;
+          sp.eigenvalue = other.eigenvalue;
+          sp.converged = true;
+          sp.note = fmt::format("located on branch {}, which meets this one there", k + 1);
+          break;
+        }
+    }
   return run;
 }
 

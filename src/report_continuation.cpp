@@ -144,7 +144,7 @@ std::string continuation_warnings(const ContinuationRun& run) {
       if (b.stop[std::size_t(end)] != StopReason::end_of_range && b.stop[std::size_t(end)] != StopReason::closed_loop)
         out += "warning: " + stop_line(b, k, end) + "\n";
     for (const auto& sp : b.specials)
-      if (!sp.converged || !sp.note.empty())
+      if (!sp.converged || (!sp.note.empty() && sp.note.rfind("located on branch", 0) != 0))
         out += fmt::format("warning: branch {}: {} at {}={:.17g}: {}\n", k + 1, to_string(sp.label),
                            to_string(run.param), double(sp.parameter), sp.note.empty() ? "not converged" : sp.note);
   }
