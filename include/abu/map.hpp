@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 
+#include "abu/characteristic.hpp"
 #include "abu/equilibria.hpp"
 #include "abu/scene.hpp"
 
@@ -77,9 +78,30 @@ class CellAnalyzer {
   void analyze(int ix, int iy, MapCell& out);
 
  private:
+  // What is known of one equilibrium in the current column.
+  struct Tracked {
+    Equilibrium equilibrium;
+    Linearization<long double, 2> linearization;  // at the last cell (y-dependent part aside)
+    FrictionSplit split;                          // friction on y: the column's polynomials
+    std::complex<double> rightmost{};             // at the previous cell, for Newton
+    bool have_roots = false;
+  };
+  void start_column(int ix);
+  void fill(MapEquilibrium& m, const Equilibrium& e) const;
+  // Stability, n_unstable and abscissa of tracked equilibrium t for polynomial p; falls
+  // back to the full spectrum of `lin` when the fast decision is not certain.
+  void decide(Tracked& t, const Polynomial& p, const Linearization<long double, 2>& lin, MapEquilibrium& m,
+              MapCell& cell);
+
   Params base_;
   Axis x_, y_;
   CellMethod method_;
+  bool friction_y_ = false;  // y only changes the balls' friction: equilibria fixed per column
+  int column_ = -1;
+  Params column_params_;
+  std::array<Tracked, 6> tracked_{};
+  int tracked_count_ = 0;
+  unsigned column_degeneracy_ = degeneracy_none;
 };
 
 }  // namespace abu
