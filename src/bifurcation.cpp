@@ -79,6 +79,47 @@ auto central_difference(const Fn& fn, const Eigen::Matrix<ld, Dim, 1>& y, int k)
 
 }  // namespace
 
+// The determinant of
+// the bialternate product 2J (.) I: its factors are 2 Re lambda for each conjugate pair
+// and lambda_i + lambda_j for each pair of real eigenvalues (the rest pair up into
+// positive |.|^2). It changes sign where a complex pair crosses the imaginary axis (and
+// at neutral saddles, which the location then tells apart). Factors inside their error
+// bands are left out: their sign is noise (e.g. the conservative case's centres).
+int hopf_test_sign(const Spectrum& sp) {
+  int sign = 1;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto li = sp.eigenvalues[i];
+    if (li.imag() > 0) {
+      if (!sp.on_axis[i] && li.real() < 0) sign = -sign;
+      continue;
+    }
+    if (li.imag() != 0) continue;
+    for (std::size_t j = i + 1; j < 8; ++j) {
+      const auto lj = sp.eigenvalues[j];
+      if (lj.imag() != 0) continue;
+      const double sum = li.real() + lj.real();
+      if (std::abs(sum) > 8 * (sp.error[i] + sp.error[j]) && sum < 0) sign = -sign;
+    }
+  }
+  return sign;
+}
+
+// The complex pair that crosses between two spectra: an upper-half-plane eigenvalue of
+// `a`, clear of the real axis, whose nearest counterpart in `b` is too and lies on the
+// other side of the imaginary axis.
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a, const Spectrum& b) {
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto la = a.eigenvalues[i];
+    if (!(la.imag() > 8 * a.error[i])) continue;
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < 8; ++j)
+      if (std::abs(b.eigenvalues[j] - la) < std::abs(b.eigenvalues[best] - la)) best = j;
+    const auto lb = b.eigenvalues[best];
+    if (lb.imag() > 8 * b.error[best] && (la.real() > 0) != (lb.real() > 0)) return std::pair{la, lb};
+  }
+  return std::nullopt;
+}
+
 FoldCondition::FoldCondition(const StaticEquations& eq, const Vec5& z) {
   // Border with the left null vector as column (outside the range of F_s) and the right
   // null vector as row (not orthogonal to its kernel): then the bordered matrix is regular.

@@ -92,13 +92,6 @@ struct Tests {
   ld static_det = 0, lyapunov = 0;   // Hopf curves (zero-Hopf, generalized Hopf)
 };
 
-int sign_of_hopf_test(const Spectrum& sp) {
-  int sign = 1;
-  for (std::size_t i = 0; i < 8; ++i)
-    if (sp.eigenvalues[i].imag() > 0 && !sp.on_axis[i] && sp.eigenvalues[i].real() < 0) sign = -sign;
-  return sign;
-}
-
 template <int N>
 class CurveTracer {
  public:
@@ -171,7 +164,7 @@ Tests CurveTracer<N>::tests(const Vec& y, const Tests* previous) const {
   } else {
     t.fold = fold_coefficients(eq, z, previous ? &previous->fold : nullptr);
     const Spectrum sp = compute_spectrum(eq.linearization(z), SpectrumMethod::refined, 1);
-    t.hopf_sign = sign_of_hopf_test(sp);
+    t.hopf_sign = hopf_test_sign(sp);
     t.n_unstable = sp.n_unstable;
   }
   return t;

@@ -13,7 +13,9 @@
 
 #include "abu/bifurcation.hpp"
 #include "abu/errors.hpp"
+#include "abu/corrector.hpp"
 #include "abu/static_equations.hpp"
+#include "abu/tracking.hpp"
 
 namespace abu {
 
@@ -21,185 +23,7 @@ namespace {
 
 using ld = long double;
 using Vec5 = StaticEquations::Vec5;
-using Mat5 = Eigen::Matrix<ld, 5, 5>;
-constexpr ld kTwoPi = 2 * std::numbers::pi_v<ld>;
-
-ld wrapped_difference(ld a, ld b) { return std::abs(std::remainder(a - b, kTwoPi)); }
-
-// Distance between two scaled points with the angles compared modulo 2 pi.
-ld distance(const Vec5& a, const Vec5& b) {
-  return std::max({std::abs(a(0) - b(0)), std::abs(a(1) - b(1)), wrapped_difference(a(2), b(2)),
-                   wrapped_difference(a(3), b(3)), std::abs(a(4) - b(4))});
-}
-
 using Mat45 = StaticEquations::Mat45;
-
-struct Corrected {
-  Vec5 z;
-  bool converged = false;
-  int iterations = 0;
-  Mat45 jacobian = Mat45::Zero();  // F_u of the last iteration: within rounding of the result
-};
-
-// Newton on [F(z); d . (z - z_pred)] = 0: the pseudo-arclength corrector (d the tangent),
-// or, with d = e_5, the equilibrium at a fixed parameter. Converged when the steps
-// reach the rounding level and F is at the rounding level of double or below.
-Corrected correct(const StaticEquations& eq, const Vec5& z_pred, const Vec5& d) {
-  Corrected c{z_pred};
-  ld last = std::numeric_limits<ld>::infinity();
-  for (int it = 0; it < 12; ++it) {
-    Mat5 M;
-    c.jacobian = eq.jacobian(c.z);
-    M.topRows<4>() = c.jacobian;
-    M.row(4) = d.transpose();
-    Vec5 r;
-    r << eq.residual(c.z), d.dot(c.z - z_pred);
-    const Vec5 step = M.partialPivLu().solve(-r);
-    if (!step.allFinite()) return c;
-    c.z += step;
-    c.iterations = it + 1;
-    const ld size = step.cwiseAbs().maxCoeff();
-    const bool small = size <= 1e-15L || (it >= 2 && size > last / 2 && size <= 1e-12L);
-    if (small || (it >= 2 && size > last / 2)) {
-      c.converged = small && eq.residual(c.z).cwiseAbs().maxCoeff() <= 1e-15L;
-      return c;
-    }
-    if (size > 1) return c;  // diverging: far outside any reasonable step
-    last = size;
-  }
-  return c;
-}
-
-// Unit tangent: the null vector of F_u, oriented along `previous`.
-Vec5 tangent(const Mat45& DF, const Vec5& previous) {
-  Mat5 M;
-  M.topRows<4>() = DF;
-  M.row(4) = previous.transpose();
-  Vec5 e5 = Vec5::Zero();
-  e5(4) = 1;
-  Vec5 t = M.partialPivLu().solve(e5);
-  t.normalize();
-  if (t.dot(previous) < 0) t = -t;
-  return t;
-}
-
-// det [F_u; t^T]: changes sign at a branch point, not at a fold.
-ld branch_test(const Mat45& DF, const Vec5& t) {
-  Mat5 M;
-  M.topRows<4>() = DF;
-  M.row(4) = t.transpose();
-  return M.partialPivLu().determinant();
-}
-
-// Sign of the Hopf test function prod_{i<j} (lambda_i + lambda_j), the determinant of
-// the bialternate product 2J (.) I: its factors are 2 Re lambda for each conjugate pair
-// and lambda_i + lambda_j for each pair of real eigenvalues (the rest pair up into
-// positive |.|^2). It changes sign where a complex pair crosses the imaginary axis (and
-// at neutral saddles, which the location then tells apart). Factors inside their error
-// bands are left out: their sign is noise (e.g. the conservative case's centres).
-int hopf_test_sign(const Spectrum& sp) {
-  int sign = 1;
-  for (std::size_t i = 0; i < 8; ++i) {
-    const auto li = sp.eigenvalues[i];
-    if (li.imag() > 0) {
-      if (!sp.on_axis[i] && li.real() < 0) sign = -sign;
-      continue;
-    }
-    if (li.imag() != 0) continue;
-    for (std::size_t j = i + 1; j < 8; ++j) {
-      const auto lj = sp.eigenvalues[j];
-      if (lj.imag() != 0) continue;
-      const double sum = li.real() + lj.real();
-      if (std::abs(sum) > 8 * (sp.error[i] + sp.error[j]) && sum < 0) sign = -sign;
-    }
-  }
-  return sign;
-}
-
-// The complex pair that crosses between two spectra: an upper-half-plane eigenvalue of
-// `a`, clear of the real axis, whose nearest counterpart in `b` is too and lies on the
-// other side of the imaginary axis.
-std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a, const Spectrum& b) {
-  for (std::size_t i = 0; i < 8; ++i) {
-    const auto la = a.eigenvalues[i];
-    if (!(la.imag() > 8 * a.error[i])) continue;
-    std::size_t best = 0;
-    for (std::size_t j = 1; j < 8; ++j)
-      if (std::abs(b.eigenvalues[j] - la) < std::abs(b.eigenvalues[best] - la)) best = j;
-    const auto lb = b.eigenvalues[best];
-    if (lb.imag() > 8 * b.error[best] && (la.real() > 0) != (lb.real() > 0)) return std::pair{la, lb};
-  }
-  return std::nullopt;
-}
-
-using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
-
-// What a mode is expected to be at the next point: its eigenvalue extrapolated along
-// the branch and its eigenvector (q measured in the displacement scale, so that rotor
-// and ball components weigh alike).
-struct ModePrediction {
-  std::array<std::complex<double>, 8> values{};
-  std::array<Vec4c, 8> vectors{};     ///< q in displacement-scale units, unit norm (overlaps)
-  std::array<Vec4c, 8> si_vectors{};  ///< as computed (Newton start vectors)
-};
-
-double overlap(const Vec4c& a, const Vec4c& b) { return std::abs(a.dot(b)); }
-
-// Assigns the new eigenvalues to the predicted modes, best match first; the cost of a
-// match adds the relative eigenvalue distance and the eigenvector mismatch 1 - |<a, b>|,
-// so that two modes with nearly equal eigenvalues (one per ball) keep their identity.
-// `source[k]` is the index in sp of mode k.
-void track(const ModePrediction& predicted, const Spectrum& sp, const std::array<Vec4c, 8>& scaled_vectors,
-           std::array<std::complex<double>, 8>& modes, std::array<int, 8>& source) {
-  std::array<bool, 8> used_mode{}, used_new{};
-  for (int round = 0; round < 8; ++round) {
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t bi = 0, bj = 0;
-    for (std::size_t i = 0; i < 8; ++i) {
-      if (used_mode[i]) continue;
-      for (std::size_t j = 0; j < 8; ++j) {
-        if (used_new[j]) continue;
-        const auto p = predicted.values[i], l = sp.eigenvalues[j];
-        const double d = std::abs(l - p) / (std::abs(l) + std::abs(p) + std::numeric_limits<double>::min()) +
-                         (1 - overlap(predicted.vectors[i], scaled_vectors[j]));
-        if (d < best) best = d, bi = i, bj = j;
-      }
-    }
-    used_mode[bi] = used_new[bj] = true;
-    modes[bi] = sp.eigenvalues[bj];
-    source[bi] = int(bj);
-  }
-}
-
-// The match of mode k is certain when its eigenvalue lands within half its predicted
-// distance to the nearest other mode (its own conjugate excluded: that pairing is
-// symmetric), or, failing that, when its eigenvector is nearly the predicted one and
-// clearly unlike that of every eigenvalue that landed as close to the prediction (two
-// modes with nearly equal eigenvalues, one per ball, moving together). Returns the
-// largest landing error / half-separation among the uncertain matches.
-double tracking_ambiguity(const ModePrediction& predicted, const Spectrum& sp,
-                          const std::array<Vec4c, 8>& scaled_vectors, const std::array<int, 8>& source) {
-  double worst = 0;
-  for (std::size_t k = 0; k < 8; ++k) {
-    const auto j = std::size_t(source[k]);
-    const auto pk = predicted.values[k];
-    const double miss = std::abs(sp.eigenvalues[j] - pk);
-    if (miss <= 8 * sp.error[j]) continue;
-    double separation = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < 8; ++i)
-      if (i != k && predicted.values[i] != std::conj(pk))
-        separation = std::min(separation, std::abs(predicted.values[i] - pk));
-    if (miss <= separation / 2) continue;
-    const double own = overlap(predicted.vectors[k], scaled_vectors[j]);
-    double rival = 0;
-    for (std::size_t i = 0; i < 8; ++i)
-      if (i != j && sp.eigenvalues[i] != std::conj(sp.eigenvalues[j]) && std::abs(sp.eigenvalues[i] - pk) <= 2 * miss)
-        rival = std::max(rival, overlap(predicted.vectors[k], scaled_vectors[i]));
-    if (own >= 0.9 && rival <= 0.5 * own) continue;
-    worst = std::max(worst, miss / (separation / 2));
-  }
-  return worst;
-}
 
 // One direction of one branch.
 class Tracer {
@@ -616,7 +440,7 @@ std::optional<std::string> options_violation(const ContinuationOptions& o) {
 Family classify(const Params& p, const Coordinates<long double, 2>& s) {
   const ld length = displacement_scale(p.cast<ld>());
   if (std::hypot(s(0), s(1)) <= 1e-7L * length) return Family::balanced;
-  const ld apart = wrapped_difference(s(2), s(3));
+  const ld apart = std::abs(std::remainder(s(2) - s(3), 2 * std::numbers::pi_v<ld>));
   return apart < std::numbers::pi_v<ld> / 2 ? Family::together : Family::opposite;
 }
 

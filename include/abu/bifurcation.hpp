@@ -22,6 +22,10 @@
 
 #include <complex>
 
+#include <optional>
+#include <utility>
+
+#include "abu/spectrum.hpp"
 #include "abu/static_equations.hpp"
 
 namespace abu {
@@ -64,6 +68,18 @@ struct FoldCoefficients {
 };
 FoldCoefficients fold_coefficients(const StaticEquations& eq, const StaticEquations::Vec5& z,
                                    const FoldCoefficients* previous = nullptr);
+
+/// Sign of the Hopf test function prod_{i<j} (lambda_i + lambda_j): +1 or -1. It changes
+/// where a complex pair crosses the imaginary axis, and at neutral saddles (a real pair
+/// lambda, -lambda), which the location tells apart. Factors within their error bands are
+/// left out (their sign is noise: the conservative case's centres).
+int hopf_test_sign(const Spectrum& sp);
+
+/// The complex pair that crosses the imaginary axis between two spectra: an upper-half-
+/// plane eigenvalue of `a` clear of the real axis whose nearest counterpart in `b` is too
+/// and lies on the other side.
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a,
+                                                                                    const Spectrum& b);
 
 struct Located {
   StaticEquations::Vec5 z = StaticEquations::Vec5::Zero();
