@@ -38,6 +38,19 @@ class CurveSystem {
   ld omega(const Vec& y) const { return hopf ? omega0_ * y(6) : 0; }
   static Vec5 z(const Vec& y) { return y.template head<5>(); }
 
+  // Hopf curves: keeps the scaled frequency y(6) = w / w0 at most 2 by raising w0 (never
+  // lowering it: towards a Bogdanov-Takens point w must be free to reach 0). Otherwise a
+  // curve along which w grows 1000-fold (coulomb, mu from 0.1 to 1e-4) is almost all
+  // arclength in w and takes 10^4 steps.
+  void rescale_frequency(Vec& y, Vec& t) {
+    if (!hopf || y(N - 1) <= 2) return;
+    const ld r = y(N - 1);
+    omega0_ *= r;
+    y(N - 1) = 1;
+    t(N - 1) /= r;
+    t.normalize();
+  }
+
   // Rebuilds the fold / Hopf condition's borders at y (the null vectors move along the curve).
   void refresh(const Vec& y) {
     const StaticEquations eq = at(y);
@@ -277,6 +290,7 @@ void CurveTracer<N>::run(const Vec& y0, const Vec& t0, BoundaryCurve& out, int e
     y = c.y;
     t = t_new;
     tests_y = tn;
+    sys_.rescale_frequency(y, t);
     sys_.refresh(y);
     pts.push_back(point(y, Label::none));
     const ld relative_error = (c.y - y_pred).norm() / ds;

@@ -385,7 +385,8 @@ std::vector<Equilibrium> start_points(const Params& p, const StartSelection& sta
                                   out.back().residual));
     return out;
   }
-  for (const auto& e : find_equilibria(p).points()) {
+  const EquilibriumSet found = find_equilibria(p);
+  for (const auto& e : found.points()) {
     if (start.family && e.family != *start.family) continue;
     if (e.is_set) {
       notes.push_back(fmt::format("{} {} is a circle of equilibria (U = 0): continuation needs isolated "

@@ -68,8 +68,11 @@ struct Equilibrium {
 class EquilibriumSet {
  public:
   void add(const Equilibrium& e);
-  std::span<const Equilibrium> points() const { return {points_.data(), count_}; }
-  std::span<Equilibrium> points() { return {points_.data(), count_}; }
+  std::span<const Equilibrium> points() const& { return {points_.data(), count_}; }
+  std::span<Equilibrium> points() & { return {points_.data(), count_}; }
+  // The span views storage inside the set: on a temporary it would dangle (a range-for over
+  // find_equilibria(p).points() did, caught by ASan), so that use does not compile.
+  std::span<const Equilibrium> points() const&& = delete;
   unsigned degeneracy = degeneracy_none;
 
  private:

@@ -55,18 +55,23 @@ int timing(const std::string& scene_path, int points, int repeats) {
   // Inputs of each phase, prepared once so that every phase is timed alone.
   std::vector<std::pair<std::size_t, abu::Equilibrium>> closed, polished;
   std::vector<std::pair<std::size_t, abu::Linearization<long double, 2>>> lins;
-  for (std::size_t i = 0; i < grid.size(); ++i)
-    for (const auto& e : abu::closed_form_equilibria(grid[i]).points()) {
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const abu::EquilibriumSet set = abu::closed_form_equilibria(grid[i]);
+    for (const auto& e : set.points()) {
       closed.emplace_back(i, e);
       polished.emplace_back(i, abu::polish_equilibrium(grid[i], e));
       lins.emplace_back(i, abu::linearize(grid[i].cast<long double>(), polished.back().second.state()));
     }
+  }
   const double n = double(closed.size());
   volatile double sink = 0;
   std::vector<double> t_closed, t_polish, t_jac, t_dense, t_structured, t_refined, t_plain, t_total;
   for (int r = 0; r < repeats; ++r) {
     auto t0 = Clock::now();
-    for (const auto& p : grid) sink = sink + double(abu::closed_form_equilibria(p).points().size());
+    for (const auto& p : grid) {
+      const abu::EquilibriumSet set = abu::closed_form_equilibria(p);
+      sink = sink + double(set.points().size());
+    }
     t_closed.push_back(seconds_since(t0) / n);
     t0 = Clock::now();
     for (const auto& [i, e] : closed) sink = sink + abu::polish_equilibrium(grid[i], e).residual;
@@ -87,8 +92,10 @@ int timing(const std::string& scene_path, int points, int repeats) {
     t_plain.push_back(seconds_since(t0) / n);
     // The whole pipeline as the CLI runs it.
     t0 = Clock::now();
-    for (const auto& p : grid)
-      for (const auto& e : abu::find_equilibria(p).points()) sink = sink + abu::equilibrium_spectrum(p, e).abscissa;
+    for (const auto& p : grid) {
+      const abu::EquilibriumSet set = abu::find_equilibria(p);
+      for (const auto& e : set.points()) sink = sink + abu::equilibrium_spectrum(p, e).abscissa;
+    }
     t_total.push_back(seconds_since(t0) / n);
   }
   const auto ns = [](const std::vector<double>& v) { return median(v) * 1e9; };

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# MPI maps (issue 4): `mpirun -n 2` and `-n 3` write exactly the bytes of the
+# single-process run, and an MPI run resumes the tiles of an interrupted single-process
+# run. Loopback only (shared memory between ranks on this machine).
+#   check_mpi.sh MPI_BINARY SOURCE_DIR MPIEXEC
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+mpiexec=$3
+scene=$src/data/scenes/default.toml
+work=$(mktemp -d)
+pid=0
+trap '[ "$pid" -gt 0 ] && kill -9 "$pid" 2>/dev/null; rm -rf "$work"' EXIT
+fails=0
+pass() { echo "ok   $1"; }
+fail() { echo "FAIL $1"; fails=$((fails + 1)); }
+check() { if eval "$2"; then pass "$1"; else fail "$1"; fi; }
+run_mpi() {  # ranks, args...
+  local n=$1
+  shift
+  "$mpiexec" --allow-run-as-root --oversubscribe --mca btl self,vader -n "$n" "$bin" "$@"
+}
+X=omega:150:600:300
+Y=mu:1e-4:0.1:40:log
+"$bin" map "$scene" --x "$X" --y "$Y" --quiet --no-chart -o "$work/one"
+check "single process exits 0" "[ $? -eq 0 ]"
+for n in 2 3; do
+  run_mpi $n map "$scene" --x "$X" --y "$Y" --quiet --no-chart --threads 1 -o "$work/mpi$n"
+  check "mpirun -n $n exits 0" "[ $? -eq 0 ]"
+  for f in map_omega_mu.csv summary_omega_mu.csv boundary_omega_mu.csv; do
+    check "mpirun -n $n: $f has the bytes of the single-process run" "cmp -s '$work/one/$f' '$work/mpi$n/$f'"
+  done
+done
+# Interrupted on one process, finished on two ranks.
+tiles=$work/cut/.map_omega_mu.tiles
+"$bin" map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --threads 1 -o "$work/cut" 2>/dev/null &
+pid=$!
+for _ in $(seq 2000); do
+  [ "$(ls "$tiles" 2>/dev/null | grep -c '^tile')" -ge 3 ] && break
+  sleep 0.01
+done
+kill -KILL $pid
+wait $pid 2>/dev/null
+n=$(ls "$tiles" 2>/dev/null | grep -c '^tile')
+check "the single-process run was cut ($n of 38 tiles)" "[ $n -ge 3 ] && [ $n -lt 38 ]"
+run_mpi 2 map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --resume -o "$work/cut"
+check "mpirun -n 2 --resume exits 0" "[ $? -eq 0 ]"
+check "resumed across ranks: same bytes" "cmp -s '$work/one/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
+run_mpi 2 map "$scene" --x omega:1:2:0 --y "$Y" --quiet -o "$work/bad" 2>/dev/null
+check "bad axis under mpirun: exit 2, nothing written" "[ $? -eq 2 ] && [ ! -e '$work/bad' ]"
+echo "$fails failure(s)"
+[ "$fails" -eq 0 ]
