@@ -369,9 +369,15 @@ Refined refine(const Linearization<ld, 2>& lin, std::complex<double> start, cons
   const W den = std::abs(y.dot(dT(lambda) * x));  // dot() conjugates its first argument
   const W abs_condition = den > 0 ? num / den : std::numeric_limits<W>::infinity();
   eta = std::max(eta, eps);
-  // Converged: the last Newton step is at the rounding level of the eigenvalue itself or
-  // below its first-order error bound (a zero eigenvalue has no relative rounding level).
-  const bool converged = std::isfinite(std::abs(lambda)) &&
+  // Converged: the backward error is small, and the last Newton step is at the rounding
+  // level of the eigenvalue itself or below its first-order error bound (a zero
+  // eigenvalue has no relative rounding level). Without the first condition an iterate
+  // stalled between two close real eigenvalues passed (eta 4e-4 .. 0.5: its large eta and
+  // condition made a large "error bound"; seen tracking a complex pair through its split
+  // into two real eigenvalues). The limit 1e-8 ~ sqrt(eps_double) admits multiple
+  // eigenvalues, where Newton stalls near sqrt(eps) of the working precision (merging
+  // equilibria: eta ~ 1e-11 in long double), and nothing that has not converged.
+  const bool converged = std::isfinite(std::abs(lambda)) && eta <= W(1e-8) &&
                          (final_step <= 1e3 * eps * std::abs(lambda) || final_step <= 8 * abs_condition * eta);
   Vec4c unscaled;
   for (int i = 0; i < 4; ++i) {

@@ -699,6 +699,46 @@ TEST_CASE("tracked modes are the spectrum and never swap with their conjugates",
                                                      << worst_conj << " (tol 0.5)");
 }
 
+// Regression: at mu = 1e-4 the balanced branch's unstable complex pair crosses the axis at
+// the Hopf point and, a few rad/s later, splits into two real eigenvalues; a long step
+// (the balanced state does not move with omega) jumped over both. Newton from the
+// extrapolated complex pair stalled between the two real eigenvalues and was taken as
+// converged, so the tracked spectrum was wrong and the Hopf point was missed.
+TEST_CASE("tracked spectra agree with fresh ones where a complex pair splits (mu = 1e-4)", "[continuation]") {
+  quiet_gsl();
+  abu::Params p = base_params();
+  abu::set(p, param("mu"), 1e-4);
+  p.omega = 150;
+  const abu::ContinuationRun run = abu::continue_branches(p, param("omega"), 600, abu::ContinuationOptions{},
+                                                          abu::StartSelection{Family::balanced, std::nullopt});
+  REQUIRE(run.branches.size() == 2);
+  double worst = 0;
+  for (const auto& b : run.branches) {
+    for (const auto& pt : b.points) {
+      abu::Params q = p;
+      q.omega = double(pt.parameter);
+      abu::Equilibrium e;
+      e.position = pt.position;
+      const abu::Spectrum fresh = abu::equilibrium_spectrum(q, e);
+      // Both are refined to ~1e-12 of |lambda| (the 40-digit reference tests hold them to
+      // 1e-8); 1e-8 separates that from a wrong eigenvalue (here off by 20 %).
+      for (const auto& f : fresh.eigenvalues) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const auto& t : pt.spectrum.eigenvalues) nearest = std::min(nearest, std::abs(t - f) / std::abs(f));
+        INFO("omega " << double(pt.parameter) << ": fresh eigenvalue " << f);
+        CHECK(nearest <= 1e-8);
+        worst = std::max(worst, nearest);
+      }
+    }
+    // The Hopf point (n_unstable 2 -> 0) is found on both mirror branches.
+    REQUIRE(b.specials.size() == 1);
+    CHECK(b.specials[0].label == Label::HB);
+    CHECK(b.specials[0].parameter > 249);
+    CHECK(b.specials[0].parameter < 251);
+  }
+  MARGIN("tracked vs fresh spectra at mu = 1e-4: worst relative difference " << worst << " (tol 1e-8)");
+}
+
 // ---------------------------------------------------------------------------------------
 // 8. Two parameters: the viscous twin's fold and Hopf points continued in d.
 TEST_CASE("fold curves are vertical in omega-d and the balanced Hopf curve reaches d = 1e-3", "[continuation]") {
