@@ -11,8 +11,10 @@
 #  5. the 1000 x 1000 (omega, mu) stability map: cells/s and eigenproblems/s with 1 and all
 #     threads, the fast decision's disagreement with full eigenvalues, the whole
 #     `stability-scan map` run;
-#  6. the numpy/scipy baseline (../shared/peers/numpy) on the same 1000 x 1000 map, and the
-#     ratio of throughputs.
+#  6. the numpy/scipy baseline (../shared/peers/numpy) on the same 1000 x 1000 map, and its
+#     stability flags against the analyzer's;
+#  7. the same comparison with stiff friction (kappa = 1e6), where the baseline's flags are
+#     wrong in a third of the cells: the differing cells checked at 40 digits.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
@@ -24,7 +26,7 @@ echo "## 1. default scene"
 $bench timing data/scenes/default.toml --points 2000 --repeat 5
 echo "## 2. stiff friction"
 stiff=$(mktemp --suffix=.toml)
-trap 'rm -f "$stiff" "$stiff.csv"' EXIT
+trap 'rm -rf "$stiff" "$stiff.csv" "$stiff.map" "$stiff.np.csv"' EXIT
 sed 's/^kappa = 1.0e3 .*/kappa = 1.0e6/' data/scenes/default.toml >"$stiff"
 $bench timing "$stiff" --points 2000 --repeat 5
 echo "## 3. accuracy against the 40-digit reference"
@@ -44,14 +46,27 @@ echo "whole process 'stability-scan continue' (parse, all branches, special poin
 rm -rf "$stiff.cont"
 echo "## 5. stability map, 1000 x 1000"
 build/tests/benchmarks/bench_map data/scenes/default.toml --nx 1000 --ny 1000 --sample 20
+omega_grid=omega:49.98625566927664:1999.4502267710656   # 0.2 .. 8 omega_n, the baseline's grid
 t0=$(date +%s%N)
-build/stability-scan map data/scenes/default.toml --x omega:49.98625566927664:1999.4502267710656:1000 \
-  --y mu:1e-4:1e-1:1000:log --quiet --no-boundaries -o "$stiff.map" >/dev/null 2>&1 || echo "(map command failed)"
+build/stability-scan map data/scenes/default.toml --x $omega_grid:1000 --y mu:1e-4:1e-1:1000:log --no-boundaries \
+  -o "$stiff.map" 2>&1 | tail -1
 map_ms=$(( ($(date +%s%N) - t0) / 1000000 ))
-echo "whole 'stability-scan map' 1000 x 1000 with CSVs and charts: ${map_ms} ms"
-rm -rf "$stiff.map"
+echo "whole 'stability-scan map' 1000 x 1000, $(nproc) threads, CSVs (long + summary) and 4 charts: ${map_ms} ms"
 peers=${ABU_PEERS:-../shared/peers/numpy}
-if [ -f "$peers/stability_map.py" ]; then
+peers=$(cd "$peers" 2>/dev/null && pwd || true)
+if [ -n "$peers" ] && [ -f "$peers/stability_map.py" ]; then
   echo "## 6. numpy baseline, the same 1000 x 1000 coulomb map (stacked numpy.linalg.eigvals, one core)"
-  (cd "$peers" && /usr/bin/python3 stability_map.py --nx 1000 --ny 1000 --law coulomb --out - | grep -E "eigenproblems per second|wall time|sign not trustworthy")
+  (cd "$peers" && /usr/bin/python3 stability_map.py --nx 1000 --ny 1000 --law coulomb --out "$stiff.np.csv" |
+    grep -E "eigenproblems per second|wall time|sign not trustworthy")
+  /usr/bin/python3 tests/benchmarks/compare_numpy_map.py "$stiff.np.csv" "$stiff.map/map_omega_mu.csv" \
+    --binary build/stability-scan --scene data/scenes/default.toml --verify 3
+  echo "## 7. stiff coulomb (kappa = 1e6), 300 x 300: stability flags of the baseline against the analyzer"
+  (cd "$peers" && /usr/bin/python3 stability_map.py --nx 300 --ny 300 --law coulomb --kappa 1e6 --out "$stiff.np.csv" |
+    grep -E "eigenproblems per second|sign not trustworthy")
+  build/stability-scan map data/scenes/default.toml --set kappa=1e6 --x $omega_grid:300 --y mu:1e-4:1e-1:300:log \
+    --no-boundaries --no-chart --quiet --fresh -o "$stiff.map"
+  /usr/bin/python3 tests/benchmarks/compare_numpy_map.py "$stiff.np.csv" "$stiff.map/map_omega_mu.csv" \
+    --binary build/stability-scan --scene data/scenes/default.toml --verify 5
+  rm -f "$stiff.np.csv"
 fi
+rm -rf "$stiff.map"
