@@ -203,6 +203,34 @@ cd nearest(const abu::Spectrum& sp, cd target) {
   return best;
 }
 
+// A located Hopf point of the balanced state against the exact one (Newton on Phi) and
+// against the spectrum recomputed at it.
+void check_hopf_point(const abu::Params& p, const abu::SpecialPoint& sp, const HopfPoint& exact, const char* tag) {
+  // omega_HB to 1e-12: both sides solve their equations to long-double rounding (Phi's
+  // terms cancel by ~1, K's by k / |K| ~ 1e8 at kappa = 1e6: 1e-19 * 1e8 = 1e-11 relative
+  // in K, i.e. ~1e-19 in omega). omega_H to 1e-10: the program reports it in double;
+  // Phi's root is good to ~1e-15.
+  MARGIN(tag << ": omega_HB rel err vs Phi root " << double(relative(sp.parameter, exact.omega))
+             << " (tol 1e-12), omega_H rel err " << double(relative(sp.frequency, exact.frequency))
+             << " (tol 1e-10)");
+  CHECK(relative(sp.parameter, exact.omega) <= 1e-12L);
+  CHECK(relative(sp.frequency, exact.frequency) <= 1e-10L);
+  // At the located point a pair sits on the imaginary axis: the augmented system makes
+  // T(i omega_H) singular to long-double rounding; the recomputed eigenvalue carries the
+  // refined spectrum's error (cond * backward error ~ 1e-16 relative to |lambda|). 1e-10.
+  abu::ParamsT<ld, 2> pl = p.cast<ld>();
+  pl.omega = sp.parameter;
+  const abu::Spectrum s = spectrum_at(pl, sp.position);
+  const cd up = nearest(s, cd(0, sp.frequency)), down = nearest(s, cd(0, -sp.frequency));
+  MARGIN(tag << ": |Re lambda| / |lambda| = " << std::abs(up.real()) / std::abs(up) << " (tol 1e-10), Im rel err "
+             << std::abs(up.imag() - sp.frequency) / sp.frequency);
+  CHECK(std::abs(up.real()) <= 1e-10 * std::abs(up));
+  CHECK(std::abs(up.imag() - sp.frequency) <= 1e-10 * sp.frequency);
+  CHECK(std::abs(down - std::conj(up)) <= 1e-10 * std::abs(up));
+  // The eigenvalue the special point reports is that pair's.
+  CHECK(std::abs(sp.eigenvalue - up) <= 1e-10 * std::abs(up));
+}
+
 // Every number a branch reports is finite.
 bool finite(const abu::BranchPoint& pt) {
   bool ok = std::isfinite(pt.parameter) && pt.position.allFinite() && std::isfinite(pt.tangent_parameter) &&
@@ -445,28 +473,7 @@ TEST_CASE("stiff friction puts the balanced Hopf point a hair above omega_n", "[
     // Its neglected terms are of relative order M omega_H / c ~ 3e-7: 1e-5.
     MARGIN("stiff: omega_H vs quasi-static formula rel " << double(relative(sp.frequency, nu0)) << " vs tol 1e-5");
     CHECK(relative(sp.frequency, nu0) <= 1e-5L);
-    // Against the exact characteristic polynomial. omega_HB to 1e-12: both sides solve
-    // their equations to long-double rounding (Phi's terms cancel by ~1, K's by k / |K|
-    // ~ 1e8 here: 1e-19 * 1e8 = 1e-11 relative in K, i.e. ~1e-19 in omega). omega_H to
-    // 1e-10: the program reports it in double; Phi's root is good to ~1e-15.
-    MARGIN("stiff: omega_HB rel err vs Phi root " << double(relative(sp.parameter, exact.omega))
-                                                << " (tol 1e-12), omega_H rel err "
-                                                << double(relative(sp.frequency, exact.frequency)) << " (tol 1e-10)");
-    CHECK(relative(sp.parameter, exact.omega) <= 1e-12L);
-    CHECK(relative(sp.frequency, exact.frequency) <= 1e-10L);
-    // At the located point a pair sits on the imaginary axis: the augmented system makes
-    // T(i omega_H) singular to long-double rounding; the recomputed eigenvalue carries the
-    // refined spectrum's error (cond * backward error ~ 1e-16 relative to |lambda|). 1e-10.
-    abu::ParamsT<ld, 2> pl = p.cast<ld>();
-    pl.omega = sp.parameter;
-    const abu::Spectrum s = spectrum_at(pl, sp.position);
-    const cd up = nearest(s, cd(0, sp.frequency)), down = nearest(s, cd(0, -sp.frequency));
-    MARGIN("stiff: |Re lambda| / |lambda| = " << std::abs(up.real()) / std::abs(up) << " (tol 1e-10), Im rel err "
-                                            << std::abs(up.imag() - sp.frequency) / sp.frequency);
-    CHECK(std::abs(up.real()) <= 1e-10 * std::abs(up));
-    CHECK(std::abs(up.imag() - sp.frequency) <= 1e-10 * sp.frequency);
-    CHECK(std::abs(down - std::conj(up)) <= 1e-10 * std::abs(up));
-    CHECK(std::abs(sp.eigenvalue - up) <= 1e-10 * std::abs(up));
+    check_hopf_point(p, sp, exact, "stiff");
     lyapunov.push_back(sp.lyapunov);
   }
   // The two balanced points are one configuration with the balls swapped: same l1 in exact
@@ -499,23 +506,7 @@ TEST_CASE("the balanced Hopf point has a pair on the axis and one l1 on both mir
     const auto& sp = b.specials[0];
     REQUIRE(sp.label == Label::HB);
     REQUIRE(sp.converged);
-    MARGIN("kappa 1e3: omega_HB rel err vs Phi root " << double(relative(sp.parameter, exact.omega))
-                                                    << " (tol 1e-12), omega_H rel err "
-                                                    << double(relative(sp.frequency, exact.frequency)) << " (tol 1e-10)");
-    CHECK(relative(sp.parameter, exact.omega) <= 1e-12L);
-    CHECK(relative(sp.frequency, exact.frequency) <= 1e-10L);
-    // Recomputed spectrum: +-i omega_H (1e-10, as in the stiff case).
-    abu::ParamsT<ld, 2> pl = p.cast<ld>();
-    pl.omega = sp.parameter;
-    const abu::Spectrum s = spectrum_at(pl, sp.position);
-    const cd up = nearest(s, cd(0, sp.frequency)), down = nearest(s, cd(0, -sp.frequency));
-    MARGIN("kappa 1e3: |Re lambda| / |lambda| = " << std::abs(up.real()) / std::abs(up) << " (tol 1e-10), Im rel err "
-                                                << std::abs(up.imag() - sp.frequency) / sp.frequency);
-    CHECK(std::abs(up.real()) <= 1e-10 * std::abs(up));
-    CHECK(std::abs(up.imag() - sp.frequency) <= 1e-10 * sp.frequency);
-    CHECK(std::abs(down - std::conj(up)) <= 1e-10 * std::abs(up));
-    // The eigenvalue the special point reports is that pair's.
-    CHECK(std::abs(sp.eigenvalue - up) <= 1e-10 * std::abs(up));
+    check_hopf_point(p, sp, exact, "kappa 1e3");
     lyapunov.push_back(sp.lyapunov);
   }
   // l1 is identical in exact arithmetic on the two mirror branches (ball swap symmetry);

@@ -8,7 +8,8 @@
 //
 //   abu::MapJob job{params, x, y, abu::CellMethod::fast, header};
 //   abu::TileStore store(dir / abu::tile_directory_name(job), job, abu::TileStore::Mode::fresh);
-//   abu::MapRunStats stats = abu::compute_tiles(job, store.missing(), options, store.writer());
+//   abu::MapRunStats stats = abu::compute_tiles(job, store.missing(), options,
+//       [&](int tile, abu::TileText&& text) { store.put(tile, text); });
 //   abu::assemble(job, store, long_csv_stream, summary_csv_stream);
 #pragma once
 

@@ -8,10 +8,7 @@ src=$(cd "$2" && pwd)
 scene=$src/data/scenes/default.toml
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-fails=0
-pass() { echo "ok   $1"; }
-fail() { echo "FAIL $1"; fails=$((fails + 1)); }
-check() { if eval "$2"; then pass "$1"; else fail "$1"; fi; }
+. "$(dirname "$0")/../contract.sh"
 
 # --- equilibria: CSV shape -------------------------------------------------------------
 "$bin" equilibria "$scene" --format csv >"$work/eq.csv" 2>"$work/eq.err"
@@ -134,5 +131,4 @@ TOML
 bad "three balls: not supported yet" equilibria "$work/three.toml" -o out.csv
 grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
 
-echo "$fails failure(s)"
-[ $fails -eq 0 ]
+finish

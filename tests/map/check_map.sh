@@ -10,10 +10,7 @@ scene=$src/data/scenes/default.toml
 work=$(mktemp -d)
 trap '[ "$pid" -gt 0 ] && kill -9 "$pid" 2>/dev/null; rm -rf "$work"' EXIT
 pid=0
-fails=0
-pass() { echo "ok   $1"; }
-fail() { echo "FAIL $1"; fails=$((fails + 1)); }
-check() { if eval "$2"; then pass "$1"; else fail "$1"; fi; }
+. "$(dirname "$0")/../contract.sh"
 rows() { grep -v '^#' "$1" | tail -n +2; }
 
 # A small (omega, mu) map across the balancing speed, coulomb friction from the scene.
@@ -79,16 +76,13 @@ interrupt() {  # signal, then wait for the run to be cut after a few tiles
   "$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/cut" --threads 1 \
     2>"$work/cut.err" &
   pid=$!
-  for _ in $(seq 2000); do
-    [ "$(ls "$tiles" 2>/dev/null | grep -c '^tile')" -ge 3 ] && break
-    sleep 0.01
-  done
+  wait_for_tiles "$tiles" 3
   kill "-$1" $pid
   wait $pid
   echo $?
 }
 code=$(interrupt KILL)
-n=$(ls "$tiles" 2>/dev/null | grep -c '^tile')
+n=$(tile_count "$tiles")
 check "killed run left complete tiles and no output ($n of 100)" "[ $n -ge 3 ] && [ $n -lt 100 ] && [ ! -e '$work/cut/map_omega_mu.csv' ]"
 resume_map -o "$work/cut" 2>"$work/again.err"
 check "without --resume the leftover tiles are not discarded silently (exit 2)" "[ $? -eq 2 ] && grep -q -- '--resume' '$work/again.err'"
@@ -152,5 +146,4 @@ bad "ball radius" "does not enter" --x omega:100:200:5 --y r:0.0001:0.001:5
 bad "race radius below the ball radius" "must be" --x omega:100:200:5 --y l:0.0001:0.01:5
 bad "equal ends with N > 1" "are equal" --x omega:100:100:5 --y mu:0.001:0.01:5
 
-echo "$fails failure(s)"
-[ "$fails" -eq 0 ]
+finish

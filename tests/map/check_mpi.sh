@@ -11,10 +11,7 @@ scene=$src/data/scenes/default.toml
 work=$(mktemp -d)
 pid=0
 trap '[ "$pid" -gt 0 ] && kill -9 "$pid" 2>/dev/null; rm -rf "$work"' EXIT
-fails=0
-pass() { echo "ok   $1"; }
-fail() { echo "FAIL $1"; fails=$((fails + 1)); }
-check() { if eval "$2"; then pass "$1"; else fail "$1"; fi; }
+. "$(dirname "$0")/../contract.sh"
 run_mpi() {  # ranks, args...
   local n=$1
   shift
@@ -37,18 +34,14 @@ done
 tiles=$work/cut/.map_omega_mu.tiles
 "$bin" map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --threads 1 -o "$work/cut" 2>/dev/null &
 pid=$!
-for _ in $(seq 2000); do
-  [ "$(ls "$tiles" 2>/dev/null | grep -c '^tile')" -ge 3 ] && break
-  sleep 0.01
-done
+wait_for_tiles "$tiles" 3
 kill -KILL $pid
 wait $pid 2>/dev/null
-n=$(ls "$tiles" 2>/dev/null | grep -c '^tile')
+n=$(tile_count "$tiles")
 check "the single-process run was cut ($n of 38 tiles)" "[ $n -ge 3 ] && [ $n -lt 38 ]"
 run_mpi 2 map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --resume -o "$work/cut"
 check "mpirun -n 2 --resume exits 0" "[ $? -eq 0 ]"
 check "resumed across ranks: same bytes" "cmp -s '$work/one/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
 run_mpi 2 map "$scene" --x omega:1:2:0 --y "$Y" --quiet -o "$work/bad" 2>/dev/null
 check "bad axis under mpirun: exit 2, nothing written" "[ $? -eq 2 ] && [ ! -e '$work/bad' ]"
-echo "$fails failure(s)"
-[ "$fails" -eq 0 ]
+finish
