@@ -25,13 +25,13 @@
 #include <optional>
 #include <vector>
 
-#include "abu/boundaries.hpp"
-#include "abu/continuation.hpp"
-#include "abu/errors.hpp"
-#include "abu/equilibria.hpp"
-#include "abu/model.hpp"
-#include "abu/params.hpp"
-#include "abu/spectrum.hpp"
+#include "abu/continuation/boundaries.hpp"
+#include "abu/continuation/continuation.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/equilibria/equilibria.hpp"
+#include "abu/model/model.hpp"
+#include "abu/core/params.hpp"
+#include "abu/linear/spectrum.hpp"
 
 // The observed margins (error against tolerance) go with each check's failure message;
 // build with -DABU_SHOW_MARGINS to print them on every run.

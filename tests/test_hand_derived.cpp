@@ -12,11 +12,11 @@
 
 #include <Eigen/Cholesky>
 
-#include "abu/equilibria.hpp"
-#include "abu/model.hpp"
-#include "abu/params.hpp"
-#include "abu/scan.hpp"
-#include "abu/spectrum.hpp"
+#include "abu/equilibria/equilibria.hpp"
+#include "abu/model/model.hpp"
+#include "abu/core/params.hpp"
+#include "abu/scan/scan.hpp"
+#include "abu/linear/spectrum.hpp"
 
 namespace {
 

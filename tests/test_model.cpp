@@ -21,9 +21,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "abu/friction.hpp"
-#include "abu/model.hpp"
-#include "abu/params.hpp"
+#include "abu/model/friction.hpp"
+#include "abu/model/model.hpp"
+#include "abu/core/params.hpp"
 
 using namespace abu;
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "abu/errors.hpp"
-#include "abu/scene.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/io/scene.hpp"
 
 namespace fs = std::filesystem;
 

@@ -3,9 +3,9 @@
 
 #include <exception>
 
-#include "abu/cli.hpp"
-#include "abu/errors.hpp"
-#include "abu/params.hpp"
+#include "cli.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/core/params.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {

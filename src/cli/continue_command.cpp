@@ -6,12 +6,12 @@
 #include <charconv>
 #include <sstream>
 
-#include "abu/cli.hpp"
-#include "abu/boundaries.hpp"
-#include "abu/continuation.hpp"
-#include "abu/errors.hpp"
-#include "abu/io.hpp"
-#include "abu/report.hpp"
+#include "cli.hpp"
+#include "abu/continuation/boundaries.hpp"
+#include "abu/continuation/continuation.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {

@@ -4,10 +4,10 @@
 
 #include <cstdio>
 
-#include "abu/cli.hpp"
-#include "abu/io.hpp"
-#include "abu/report.hpp"
-#include "abu/scan.hpp"
+#include "cli.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report.hpp"
+#include "abu/scan/scan.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {

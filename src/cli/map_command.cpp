@@ -9,13 +9,13 @@
 
 #include <unistd.h>
 
-#include "abu/boundaries.hpp"
-#include "abu/cli.hpp"
-#include "abu/errors.hpp"
-#include "abu/io.hpp"
-#include "abu/map_driver.hpp"
-#include "abu/map_mpi.hpp"
-#include "abu/report.hpp"
+#include "abu/continuation/boundaries.hpp"
+#include "cli.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
+#include "abu/scan/map_driver.hpp"
+#include "abu/scan/map_mpi.hpp"
+#include "abu/io/report.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {

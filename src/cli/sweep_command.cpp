@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "abu/cli.hpp"
-#include "abu/errors.hpp"
-#include "abu/io.hpp"
-#include "abu/report.hpp"
-#include "abu/scan.hpp"
+#include "cli.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report.hpp"
+#include "abu/scan/scan.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {

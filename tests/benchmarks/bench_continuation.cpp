@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "abu/continuation.hpp"
-#include "abu/scan.hpp"
-#include "abu/scene.hpp"
+#include "abu/continuation/continuation.hpp"
+#include "abu/scan/scan.hpp"
+#include "abu/io/scene.hpp"
 
 namespace {
 

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "abu/equilibria.hpp"
-#include "abu/scene.hpp"
-#include "abu/spectrum.hpp"
+#include "abu/equilibria/equilibria.hpp"
+#include "abu/io/scene.hpp"
+#include "abu/linear/spectrum.hpp"
 
 namespace {
 

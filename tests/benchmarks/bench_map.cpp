@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "abu/map.hpp"
+#include "abu/scan/map.hpp"
 
 namespace {
 

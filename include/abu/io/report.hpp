@@ -1,0 +1,48 @@
+// The output formats of an analysis: the equilibria CSV / JSON / table and the sweep
+// CSV. Every file starts with the provenance header (io.hpp) and documents its columns
+// in comment lines; numbers are in shortest round-trip form, states in SI in the state
+// order of model.md §2, eigenvalues in 1/s.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "abu/continuation/boundaries.hpp"
+#include "abu/continuation/continuation.hpp"
+#include "abu/scan/scan.hpp"
+
+namespace abu {
+
+/// Column documentation shared by the CSV files.
+std::string_view equilibrium_columns_doc();
+
+/// `family,q1,q2,beta1,beta2,residual,spectral_abscissa,stable,re1,im1,...,re8,im8`.
+std::string equilibria_csv(const Analysis& a, std::string_view header);
+std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
+                            const Params& p);
+std::string equilibria_table(const Analysis& a, const Params& p);
+
+/// Long format, one row per equilibrium per value, ordered by family, member, value so
+/// that each member of a family is one contiguous series:
+/// `step,<param>,family,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,re1,...,im8`.
+std::string sweep_csv(const SweepResult& s, std::string_view header);
+
+/// Continuation: one row per branch point,
+/// `branch,point,label,<param>,q1,q2,beta1,beta2,q_abs,family,stable,n_unstable,re1,im1,...,re8,im8`
+/// with the eigenvalues in tracked order (eigenvalue k is the same mode along a branch).
+std::string branch_csv(const ContinuationRun& run, std::string_view header);
+/// One row per special point (and an MX row where a branch ended in failure):
+/// `branch,label,<param>,q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lyapunov,converged,n_unstable_before,n_unstable_after`.
+std::string special_points_csv(const ContinuationRun& run, std::string_view header);
+/// Two-parameter curves, one row per curve point (codimension-two points included, by
+/// label): `curve,kind,point,label,<param>,<param2>,q1,q2,beta1,beta2,q_abs,family,frequency`.
+std::string boundary_csv(const BoundaryRun& run, std::string_view header);
+
+/// How each branch ended, one line per end that is not the end of the interval (stderr).
+std::string continuation_warnings(const ContinuationRun& run);
+
+/// Warnings for the user (stderr): equilibria whose polish or spectrum did not
+/// converge, ill-conditioned spectra; `where` says at which parameter value.
+std::string analysis_warnings(const Analysis& a, std::string_view where);
+
+}  // namespace abu

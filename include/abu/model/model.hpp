@@ -1,0 +1,101 @@
+// The equations of motion of model.md §3 for N balls, their linearization (§6) and
+// their derivatives with respect to the parameters.
+//
+// Mass-matrix form A(beta) s'' = b(s, s') with s = (q1, q2, beta_1..beta_N); the state
+// is x = (s, s') in that order everywhere (model.md §2). The linearization is kept in
+// second-order form
+//
+//     A ds'' + C ds' + K ds = 0,   C = -db/ds',   K = -db/ds + (dA/ds) s''
+//
+// so that the spectrum can be computed from the quadratic eigenproblem
+// det(lambda^2 A + lambda C + K) = 0 (see spectrum.hpp); `jacobian` assembles the
+// first-order J = [[0, I], [-A^-1 K, -A^-1 C]] from it. Everything is templated on the
+// scalar: double, long double (refinement) and std::complex<double> (complex-step
+// checks), instantiated for N = 2 and N = 3 balls.
+//
+//   abu::State<double, 2> x = ...;
+//   auto f = abu::vector_field(p, x);
+//   auto J = abu::jacobian(p, x);                       // analytic, any state
+//   auto dfdw = abu::parameter_derivative(p, x, *abu::parse_param("omega", 2));
+#pragma once
+
+#include <Eigen/Core>
+
+#include "abu/core/params.hpp"
+
+namespace abu {
+
+template <class T, int N>
+using Coordinates = Eigen::Matrix<T, N + 2, 1>;  ///< s = (q1, q2, beta_1..beta_N)
+template <class T, int N>
+using State = Eigen::Matrix<T, 2 * N + 4, 1>;  ///< x = (s, s')
+template <class T, int N>
+using DofMatrix = Eigen::Matrix<T, N + 2, N + 2>;
+template <class T, int N>
+using StateMatrix = Eigen::Matrix<T, 2 * N + 4, 2 * N + 4>;
+
+/// Second-order linearization A ds'' + C ds' + K ds = 0 about a state (model.md §6).
+/// C holds the support damping, the friction slopes and the gyroscopic (skew) coupling;
+/// K the support stiffness, the centrifugal softening and the circulatory terms.
+template <class T, int N>
+struct Linearization {
+  DofMatrix<T, N> mass;       ///< A(beta), symmetric positive definite
+  DofMatrix<T, N> damping;    ///< C = -db/ds'
+  DofMatrix<T, N> stiffness;  ///< K = -db/ds + (dA/ds) s''
+};
+
+/// A(beta) of model.md §3 (each ball equation multiplied by l_i).
+template <class T, int N>
+DofMatrix<T, N> mass_matrix(const ParamsT<T, N>& p, const Coordinates<T, N>& s);
+
+/// b(s, s'): the right-hand side of A s'' = b (model.md §3).
+template <class T, int N>
+Coordinates<T, N> generalized_forces(const ParamsT<T, N>& p, const State<T, N>& x);
+
+/// x' = f(x) = (s', A^-1 b).
+template <class T, int N>
+State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x);
+
+/// Second-order linearization at any state (the off-equilibrium term included in K).
+template <class T, int N>
+Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x);
+
+/// First-order Jacobian df/dx from a linearization: [[0, I], [-A^-1 K, -A^-1 C]].
+template <class T, int N>
+StateMatrix<T, N> jacobian(const Linearization<T, N>& lin);
+
+/// Analytic df/dx at any state (model.md §6 including -A^-1 (dA/ds) s'').
+template <class T, int N>
+StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x);
+
+/// Analytic df/dp for any parameter of params.hpp (every-ball references sum over the
+/// balls): (0, A^-1 (db/dp - (dA/dp) s'')).
+template <class T, int N>
+State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
+
+/// Analytic db/dp: the parameter derivative of the generalized forces, which is what
+/// the static equations b(s, 0; p) = 0 of continuation need.
+template <class T, int N>
+Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
+
+/// Natural displacement scale (U + sum m_i l_i) / M [m]: the rotor excursion the
+/// unbalance and the ball set can cause. Internal computations measure q in this unit
+/// so that micrometres and radians are equally well conditioned.
+template <class T, int N>
+T displacement_scale(const ParamsT<T, N>& p);
+
+/// Natural magnitude of each static equation b_i(s, 0) (model.md §5): the size of its
+/// largest terms. |b_i| / scale_i is the dimensionless residual reported for
+/// equilibria; rounding level is about 1e-16.
+template <class T, int N>
+Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T, N>& s);
+
+/// The state (s, 0) of a configuration at rest.
+template <class T, int N>
+State<T, N> at_rest(const Coordinates<T, N>& s) {
+  State<T, N> x = State<T, N>::Zero();
+  x.template head<N + 2>() = s;
+  return x;
+}
+
+}  // namespace abu

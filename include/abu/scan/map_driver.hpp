@@ -1,0 +1,137 @@
+// Running a stability map: the grid cut into tiles of whole columns, tiles computed on
+// all threads (and, in an MPI build, on all ranks: map_mpi.hpp), each tile written to
+// disk atomically as it finishes, the CSVs assembled from the tiles in order.
+//
+// Determinism: a tile's text depends only on the job and the tile index (CellAnalyzer
+// starts every column afresh), and the files are the tiles concatenated in index order,
+// so 1 thread, N threads, N ranks and an interrupted-then-resumed run give the same bytes.
+//
+//   abu::MapJob job{params, x, y, abu::CellMethod::fast, header};
+//   abu::TileStore store(dir / abu::tile_directory_name(job), job, abu::TileStore::Mode::fresh);
+//   abu::MapRunStats stats = abu::compute_tiles(job, store.missing(), options,
+//       [&](int tile, abu::TileText&& text) { store.put(tile, text); });
+//   abu::assemble(job, store, long_csv_stream, summary_csv_stream);
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "abu/scan/map.hpp"
+
+namespace abu {
+
+/// Columns (x values) per tile: small enough for progress and resume, large enough that
+/// a tile (8 x ny cells) dwarfs the cost of writing it.
+inline constexpr int kTileColumns = 8;
+
+/// Everything that determines a map's output.
+struct MapJob {
+  Params params;
+  Axis x, y;
+  CellMethod method = CellMethod::fast;
+  /// Provenance comment block ("# " lines) on top of both CSVs.
+  std::string provenance;
+};
+
+int tile_count(const MapJob& job);
+
+/// The computed text of one tile: its rows of the long CSV and of the summary CSV.
+struct TileText {
+  std::string rows, summary;
+  long cells = 0, equilibria = 0, fallbacks = 0;
+};
+
+/// Computes tile `tile` with `analyzer` (one per thread). Throws NumericalError naming the
+/// cell if a value is not finite.
+TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer);
+
+/// Comment block and column names of the long CSV (one row per equilibrium per cell) and
+/// of the summary CSV (one row per cell).
+std::string map_csv_header(const MapJob& job);
+std::string summary_csv_header(const MapJob& job);
+/// "map_X_Y.csv", "summary_X_Y.csv", ".map_X_Y.tiles".
+std::string map_file_name(const MapJob& job);
+std::string summary_file_name(const MapJob& job);
+std::string tile_directory_name(const MapJob& job);
+
+/// The tiles of one map on disk: a directory holding a manifest (the job's headers: a
+/// resumed run must be the same map) and one file per finished tile, each written under a
+/// temporary name and renamed, so a present tile is complete. Thread-safe.
+class TileStore {
+ public:
+  enum class Mode {
+    fresh,   ///< the directory must not exist (an interrupted run is not discarded silently)
+    resume,  ///< keep the tiles of an interrupted run of the same map
+    discard  ///< remove an earlier run's tiles, start over
+  };
+  /// Throws InputError (origin "--resume" / "-o") when the mode's rule is broken.
+  TileStore(std::filesystem::path directory, const MapJob& job, Mode mode);
+  bool has(int tile) const;
+  /// Tiles not on disk yet, ascending.
+  std::vector<int> missing() const;
+  void put(int tile, const TileText& text) const;
+  /// Appends tile `tile`'s long rows to `rows` and its summary rows to `summary`.
+  void append(int tile, std::ostream& rows, std::ostream& summary) const;
+  /// Removes the directory (after the assembled files are in place).
+  void remove() const;
+  const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  std::filesystem::path tile_path(int tile) const;
+  std::filesystem::path directory_;
+  int tiles_ = 0;
+};
+
+/// Progress and ETA of a map on stderr: one '\r'-updated line on a terminal, a line every
+/// few seconds otherwise. Thread-safe; silent when disabled.
+class ProgressMeter {
+ public:
+  /// `total` tiles in the map, `before` of them already done (resumed).
+  ProgressMeter(int total, int before, bool enabled);
+  void tile_done(long cells);
+  /// Ends the line (terminal) after the last update.
+  void finish();
+
+ private:
+  void print_locked(bool final_line);
+  std::mutex mutex_;
+  int total_, done_, before_;
+  long cells_ = 0;
+  bool enabled_, terminal_;
+  std::chrono::steady_clock::time_point start_, last_print_;
+};
+
+struct MapRunOptions {
+  int threads = 1;
+  /// Set from a signal handler: workers stop after their current tile.
+  const std::atomic<bool>* stop = nullptr;
+  ProgressMeter* progress = nullptr;
+};
+
+struct MapRunStats {
+  int tiles = 0;  ///< computed in this call
+  long cells = 0, equilibria = 0, fallbacks = 0;
+  double seconds = 0;
+  bool interrupted = false;
+};
+
+/// Called from worker threads with each finished tile; must be thread-safe.
+using TileSink = std::function<void(int tile, TileText&& text)>;
+
+/// Computes `tiles` on options.threads threads (an atomic counter hands out tiles, one
+/// CellAnalyzer per thread) and passes each to `sink`. `wait` (if set) runs on the
+/// calling thread while the workers run, and must return once `done()` is true (MPI uses
+/// it to receive other ranks' tiles). Rethrows a worker's exception after all stopped.
+MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
+                          const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait = {});
+
+/// Writes the two CSVs: headers, then every tile's rows in tile order.
+void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv);
+
+}  // namespace abu

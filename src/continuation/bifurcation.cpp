@@ -1,0 +1,336 @@
+#include "abu/continuation/bifurcation.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+namespace abu {
+
+namespace {
+
+using ld = long double;
+using cld = std::complex<ld>;
+using Vec5 = StaticEquations::Vec5;
+using Mat4 = Eigen::Matrix<ld, 4, 4>;
+using Mat4c = Eigen::Matrix<cld, 4, 4>;
+using Vec4c = Eigen::Matrix<cld, 4, 1>;
+constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon();
+// Central-difference step for the derivative rows of g, in the scaled unknowns (all
+// O(1)): truncation ~h^2 and rounding ~eps_ld / h balance near 1e-7; Newton only needs
+// the rows to a few digits, the location's accuracy comes from the analytic residuals.
+constexpr ld kStep = 1e-7L;
+// Newton converges linearly (rate ~1/2) where the augmented system is singular at its
+// root, as the fold system is at a pitchfork approached along its fork: up to ~60 steps.
+constexpr int kMaxIterations = 80;
+
+// Solves the bordered system [M b; c^H 0] [v; g] = [0; 1] for g (the minimally
+// augmented test function); M is equilibrated by the caller.
+template <class S>
+S bordered_g(const Eigen::Matrix<S, 4, 4>& m, const Eigen::Matrix<S, 4, 1>& b, const Eigen::Matrix<S, 4, 1>& c) {
+  Eigen::Matrix<S, 5, 5> B = Eigen::Matrix<S, 5, 5>::Zero();
+  B.template topLeftCorner<4, 4>() = m;
+  B.template topRightCorner<4, 1>() = b;
+  B.template bottomLeftCorner<1, 4>() = c.adjoint();
+  Eigen::Matrix<S, 5, 1> rhs = Eigen::Matrix<S, 5, 1>::Zero();
+  rhs(4) = S(1);
+  return B.partialPivLu().solve(rhs)(4);
+}
+
+// Newton with a square Jacobian; stops where the steps stop shrinking. Where the
+// system is singular at its root (the fold system at a pitchfork, approached along the
+// fork) the steps bounce along the near-null direction while the residual reaches the
+// rounding level: there convergence is judged by the residual, and the best iterate kept.
+template <int Dim, class Residual, class JacobianFn>
+bool newton(Eigen::Matrix<ld, Dim, 1>& y, const Residual& residual, const JacobianFn& jacobian, int& iterations) {
+  ld last = std::numeric_limits<ld>::infinity();
+  Eigen::Matrix<ld, Dim, 1> best = y;
+  ld best_residual = std::numeric_limits<ld>::infinity();
+  for (iterations = 0; iterations < kMaxIterations; ++iterations) {
+    const Eigen::Matrix<ld, Dim, 1> r = residual(y);
+    const ld size_r = r.cwiseAbs().maxCoeff();
+    if (size_r < best_residual) best = y, best_residual = size_r;
+    const Eigen::Matrix<ld, Dim, Dim> D = jacobian(y);
+    const Eigen::Matrix<ld, Dim, 1> step = D.partialPivLu().solve(-r);
+    if (!step.allFinite()) break;
+    y += step;
+    const ld size = step.cwiseAbs().maxCoeff();
+    if (size <= 64 * kEpsLong) return true;
+    if (iterations >= 3 && size > 0.9L * last) {
+      if (size <= 1e-13L) return true;  // stagnated at the rounding level
+      break;
+    }
+    last = size;
+  }
+  const ld final_residual = residual(y).cwiseAbs().maxCoeff();
+  if (final_residual > best_residual) y = best;
+  return std::min(final_residual, best_residual) <= 1e-15L;
+}
+
+// Central differences of a vector function of y along unit vector k.
+template <int Dim, class Fn>
+auto central_difference(const Fn& fn, const Eigen::Matrix<ld, Dim, 1>& y, int k) {
+  Eigen::Matrix<ld, Dim, 1> yp = y, ym = y;
+  yp(k) += kStep;
+  ym(k) -= kStep;
+  return ((fn(yp) - fn(ym)) / (2 * kStep)).eval();
+}
+
+}  // namespace
+
+// The determinant of
+// the bialternate product 2J (.) I: its factors are 2 Re lambda for each conjugate pair
+// and lambda_i + lambda_j for each pair of real eigenvalues (the rest pair up into
+// positive |.|^2). It changes sign where a complex pair crosses the imaginary axis (and
+// at neutral saddles, which the location then tells apart). Factors inside their error
+// bands are left out: their sign is noise (e.g. the conservative case's centres).
+int hopf_test_sign(const Spectrum& sp) {
+  int sign = 1;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto li = sp.eigenvalues[i];
+    if (li.imag() > 0) {
+      if (!sp.on_axis[i] && li.real() < 0) sign = -sign;
+      continue;
+    }
+    if (li.imag() != 0) continue;
+    for (std::size_t j = i + 1; j < 8; ++j) {
+      const auto lj = sp.eigenvalues[j];
+      if (lj.imag() != 0) continue;
+      const double sum = li.real() + lj.real();
+      if (std::abs(sum) > 8 * (sp.error[i] + sp.error[j]) && sum < 0) sign = -sign;
+    }
+  }
+  return sign;
+}
+
+// The complex pair that crosses between two spectra: an upper-half-plane eigenvalue of
+// `a`, clear of the real axis, whose nearest counterpart in `b` is too and lies on the
+// other side of the imaginary axis.
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a, const Spectrum& b) {
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto la = a.eigenvalues[i];
+    if (!(la.imag() > 8 * a.error[i])) continue;
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < 8; ++j)
+      if (std::abs(b.eigenvalues[j] - la) < std::abs(b.eigenvalues[best] - la)) best = j;
+    const auto lb = b.eigenvalues[best];
+    if (lb.imag() > 8 * b.error[best] && (la.real() > 0) != (lb.real() > 0)) return std::pair{la, lb};
+  }
+  return std::nullopt;
+}
+
+FoldCondition::FoldCondition(const StaticEquations& eq, const Vec5& z) {
+  // Border with the left null vector as column (outside the range of F_s) and the right
+  // null vector as row (not orthogonal to its kernel): then the bordered matrix is regular.
+  const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(3);
+  right_ = svd.matrixV().col(3);
+}
+
+long double FoldCondition::operator()(const StaticEquations& eq, const Vec5& z) const {
+  return bordered_g<ld>(eq.jacobian(z).leftCols<4>(), left_, right_);
+}
+
+namespace {
+Mat4c hopf_pencil(const StaticEquations& eq, const Vec5& z, ld w) {
+  const auto lin = eq.linearization(z);
+  const cld l(0, w);
+  return (l * l) * lin.mass.cast<cld>() + l * lin.damping.cast<cld>() + lin.stiffness.cast<cld>();
+}
+}  // namespace
+
+HopfCondition::HopfCondition(const StaticEquations& eq, const Vec5& z, long double omega) {
+  const Mat4c T0 = hopf_pencil(eq, z, omega);
+  for (int i = 0; i < 4; ++i) rows_(i) = 1 / T0.row(i).cwiseAbs().maxCoeff();
+  for (int j = 0; j < 4; ++j) cols_(j) = 1 / (rows_.asDiagonal() * T0).col(j).cwiseAbs().maxCoeff();
+  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * T0 * cols_.cast<cld>().asDiagonal();
+  const Eigen::JacobiSVD<Mat4c> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(3);
+  right_ = svd.matrixV().col(3);
+}
+
+std::complex<long double> HopfCondition::operator()(const StaticEquations& eq, const Vec5& z,
+                                                    long double omega) const {
+  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * hopf_pencil(eq, z, omega) * cols_.cast<cld>().asDiagonal();
+  return bordered_g<cld>(scaled, left_, right_);
+}
+
+FoldCoefficients fold_coefficients(const StaticEquations& eq, const Vec5& z, const FoldCoefficients* previous) {
+  const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix<ld, 4, 1> w = svd.matrixU().col(3), v = svd.matrixV().col(3);
+  if (previous && w.dot(previous->left) < 0) w = -w;
+  if (previous && v.dot(previous->right) < 0) v = -v;
+  // F_ss[v, v] by a central second difference along v in the scaled unknowns (the
+  // parameter fixed), with the row scaling of z for all three values.
+  constexpr ld h = 1e-5L;
+  Vec5 dz = Vec5::Zero();
+  dz.head<4>() = v;
+  const Eigen::Matrix<ld, 4, 1> scale = eq.residual_scale(z);
+  // The unscaled b(y) measured in the fixed sizes at z (returned by value: an Eigen
+  // expression would outlive the temporaries it refers to).
+  const auto raw = [&](const Vec5& y) -> Eigen::Matrix<ld, 4, 1> {
+    return eq.residual(y).cwiseProduct(eq.residual_scale(y)).cwiseQuotient(scale);
+  };
+  const Eigen::Matrix<ld, 4, 1> second = (raw(z + h * dz) - 2 * raw(z) + raw(z - h * dz)) / (h * h);
+  FoldCoefficients c;
+  c.right = v;
+  c.left = w;
+  c.cusp = w.dot(second);
+  // w^T C v with w, v mapped back to the unscaled equations and unknowns.
+  const auto lin = eq.linearization(z);
+  const Eigen::Matrix<ld, 4, 1> w_raw = scale.cwiseInverse().cwiseProduct(w);
+  const Eigen::Matrix<ld, 4, 1> v_raw(v(0) * eq.length(), v(1) * eq.length(), v(2), v(3));
+  c.bogdanov_takens = w_raw.dot(lin.damping * v_raw);
+  return c;
+}
+
+Located locate_fold(const StaticEquations& eq, const Vec5& z_guess) {
+  const FoldCondition g(eq, z_guess);
+  const auto residual = [&](const Vec5& z) {
+    Vec5 r;
+    r << eq.residual(z), g(eq, z);
+    return r;
+  };
+  const auto jacobian = [&](const Vec5& z) {
+    Eigen::Matrix<ld, 5, 5> D;
+    D.topRows<4>() = eq.jacobian(z);
+    for (int k = 0; k < 5; ++k) D(4, k) = central_difference<5>([&](const Vec5& y) {
+                                           Eigen::Matrix<ld, 1, 1> v;
+                                           v << g(eq, y);
+                                           return v;
+                                         }, z, k)(0);
+    return D;
+  };
+  Located out;
+  out.z = z_guess;
+  out.converged = newton<5>(out.z, residual, jacobian, out.iterations) &&
+                  eq.residual(out.z).cwiseAbs().maxCoeff() <= 1e-15L;
+  return out;
+}
+
+Located locate_hopf(const StaticEquations& eq, const Vec5& z_guess, long double omega_guess) {
+  // Unknowns y = (z, w / w_guess).
+  const HopfCondition condition(eq, z_guess, omega_guess);
+  using Vec6 = Eigen::Matrix<ld, 6, 1>;
+  const auto split = [&](const Vec6& y) {
+    Vec5 z = y.head<5>();
+    return std::pair<Vec5, ld>(z, y(5) * omega_guess);
+  };
+  const auto g = [&](const Vec6& y) {
+    const auto [z, w] = split(y);
+    const cld v = condition(eq, z, w);
+    Eigen::Matrix<ld, 2, 1> out;
+    out << v.real(), v.imag();
+    return out;
+  };
+  const auto residual = [&](const Vec6& y) {
+    Vec6 r;
+    r << eq.residual(split(y).first), g(y);
+    return r;
+  };
+  const auto jacobian = [&](const Vec6& y) {
+    Eigen::Matrix<ld, 6, 6> D = Eigen::Matrix<ld, 6, 6>::Zero();
+    D.topLeftCorner<4, 5>() = eq.jacobian(split(y).first);
+    for (int k = 0; k < 6; ++k) D.block<2, 1>(4, k) = central_difference<6>(g, y, k);
+    return D;
+  };
+  Vec6 y;
+  y << z_guess, 1;
+  Located out;
+  out.converged = newton<6>(y, residual, jacobian, out.iterations) &&
+                  eq.residual(split(y).first).cwiseAbs().maxCoeff() <= 1e-15L && y(5) > 0;
+  out.z = split(y).first;
+  out.frequency = split(y).second;
+  return out;
+}
+
+double first_lyapunov_coefficient(const Params& p, const Coordinates<long double, 2>& s, long double omega) {
+  using Vec8 = Eigen::Matrix<ld, 8, 1>;
+  using Vec8c = Eigen::Matrix<cld, 8, 1>;
+  const auto pl = p.cast<ld>();
+  const State<ld, 2> x0 = at_rest<ld, 2>(s);
+  const Linearization<ld, 2> lin = linearize(pl, x0);
+  const Mat4c A = lin.mass.cast<cld>(), Cm = lin.damping.cast<cld>(), K = lin.stiffness.cast<cld>();
+  const auto pencil = [&](cld mu) -> Mat4c { return (mu * mu) * A + mu * Cm + K; };
+  // Everything through the 4x4 pencil T(mu) = mu^2 A + mu C + K (equilibrated), never the
+  // stiff 8x8 J: J = [[0, I], [-A^-1 K, -A^-1 C]] gives
+  //   right eigenvector q = (x, i w x),           T(i w) x = 0,
+  //   left eigenvector  p = conj(i w v A + v C, v A),  v T(i w) = 0 (v a row),
+  //   resolvent (mu - J)^-1 r = (z1, mu z1 - r1), z1 = T(mu)^-1 (A r2 + (mu A + C) r1).
+  const cld iw(0, omega);
+  const Mat4c T = pencil(iw);
+  Eigen::Matrix<ld, 4, 1> rows, cols;
+  for (int i = 0; i < 4; ++i) rows(i) = 1 / T.row(i).cwiseAbs().maxCoeff();
+  for (int j = 0; j < 4; ++j) cols(j) = 1 / (rows.asDiagonal() * T).col(j).cwiseAbs().maxCoeff();
+  const Mat4c Ts = rows.cast<cld>().asDiagonal() * T * cols.cast<cld>().asDiagonal();
+  const Eigen::JacobiSVD<Mat4c> svd(Ts, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vec4c x = cols.cast<cld>().asDiagonal() * svd.matrixV().col(3);                 // T x = 0
+  const Vec4c v = (rows.cast<cld>().asDiagonal() * svd.matrixU().col(3).conjugate());   // v^T T = 0
+  Vec8c q;
+  q << x, iw * x;
+  const Eigen::Matrix<cld, 1, 4> vr = v.transpose();
+  Vec8c pv;
+  pv << (iw * vr * A + vr * Cm).transpose().conjugate(), (vr * A).transpose().conjugate();
+  q /= q.norm();
+  pv /= std::conj(pv.dot(q));  // <p, q> = p^H q = 1
+  const auto resolvent = [&](cld mu, const Vec8c& r) -> Vec8c {
+    const Vec4c r1 = r.head<4>(), r2 = r.tail<4>();
+    const Vec4c z1 = pencil(mu).partialPivLu().solve(Vec4c(A * r2 + (mu * A + Cm) * r1));
+    Vec8c z;
+    z << z1, mu * z1 - r1;
+    return z;
+  };
+  // Directional differences with a step that is h0 in the natural scales of the state
+  // (displacement scale for q, 1 for angles, omega times those for the rates).
+  const ld length = displacement_scale(pl);
+  Vec8 scale;
+  scale << length, length, 1, 1, length * omega, length * omega, omega, omega;
+  const auto f = [&](const Vec8& y) -> Vec8 { return vector_field(pl, State<ld, 2>(y)); };
+  const auto step_for = [&](std::initializer_list<const Vec8*> dirs, ld h0) {
+    ld size = 0;
+    for (const Vec8* d : dirs) size = std::max(size, d->cwiseQuotient(scale).cwiseAbs().maxCoeff());
+    return size > 0 ? h0 / size : h0;
+  };
+  // Symmetric bilinear and trilinear forms of f at x0: central differences (exact for
+  // quadratic resp. cubic terms, error O(h^2)) Richardson-extrapolated from h and 2h to
+  // O(h^4), with h large enough that rounding (eps_ld / h^3 for C) stays below 1e-10.
+  // Measured: the two mirror-image Hopf points of the default scene's balanced branches
+  // (the same l1 in exact arithmetic) agree to 1.1e-5 relative (1.4e-3 before these steps).
+  const auto B_at = [&](const Vec8& u, const Vec8& w, ld h) -> Vec8 {
+    return (f(x0 + h * u + h * w) - f(x0 + h * u - h * w) - f(x0 - h * u + h * w) + f(x0 - h * u - h * w)) /
+           (4 * h * h);
+  };
+  const auto C_at = [&](const Vec8& u, const Vec8& w, const Vec8& y, ld h) -> Vec8 {
+    Vec8 sum = Vec8::Zero();
+    for (int a = -1; a <= 1; a += 2)
+      for (int b = -1; b <= 1; b += 2)
+        for (int c = -1; c <= 1; c += 2)
+          sum += ld(a * b * c) * f(x0 + h * (ld(a) * u + ld(b) * w + ld(c) * y));
+    return sum / (8 * h * h * h);
+  };
+  const auto B = [&](const Vec8& u, const Vec8& w) -> Vec8 {
+    const ld h = step_for({&u, &w}, 1e-4L);
+    return (4 * B_at(u, w, h) - B_at(u, w, 2 * h)) / 3;
+  };
+  const auto C3 = [&](const Vec8& u, const Vec8& w, const Vec8& y) -> Vec8 {
+    const ld h = step_for({&u, &w, &y}, 1e-3L);
+    return (4 * C_at(u, w, y, h) - C_at(u, w, y, 2 * h)) / 3;
+  };
+  const auto Bc = [&](const Vec8c& u, const Vec8c& w) -> Vec8c {  // complex bilinear extension
+    const Vec8 ur = u.real(), ui = u.imag(), wr = w.real(), wi = w.imag();
+    const Vec8 re = B(ur, wr) - B(ui, wi), im = B(ur, wi) + B(ui, wr);
+    return re.cast<cld>() + cld(0, 1) * im.cast<cld>();
+  };
+  const Vec8 qr = q.real(), qi = q.imag();
+  // C(q, q, conj q) = C(a,a,a) + C(a,b,b) + i (C(a,a,b) + C(b,b,b)) for q = a + i b.
+  const Vec8c Cqqq =
+      (C3(qr, qr, qr) + C3(qr, qi, qi)).cast<cld>() + cld(0, 1) * (C3(qr, qr, qi) + C3(qi, qi, qi)).cast<cld>();
+  const Vec8c Bqq = Bc(q, q), Bqqbar = Bc(q, q.conjugate());
+  const Vec8c r1 = -resolvent(0, Bqqbar);             // J^-1 B(q, conj q)
+  const Vec8c r2 = resolvent(cld(0, 2 * omega), Bqq);  // (2 i w - J)^-1 B(q, q)
+  const cld sum = pv.dot(Cqqq) - cld(2) * pv.dot(Bc(q, r1)) + pv.dot(Bc(q.conjugate(), r2));
+  return double(sum.real() / (2 * omega));
+}
+
+}  // namespace abu

@@ -1,0 +1,154 @@
+// Output formats of continuation runs (declared in report.hpp).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "abu/io/io.hpp"
+#include "abu/io/report.hpp"
+
+namespace abu {
+
+namespace {
+
+std::string num(double v, std::string_view what) { return format_number(v, what); }
+
+long double wrap(long double beta) { return wrap_angle(beta); }
+
+std::string position_cells(const Coordinates<long double, 2>& s) {
+  return fmt::format("{},{},{},{},{}", num(double(s(0)), "q1"), num(double(s(1)), "q2"),
+                     num(double(wrap(s(2))), "beta1"), num(double(wrap(s(3))), "beta2"),
+                     num(std::hypot(double(s(0)), double(s(1))), "|q|"));
+}
+
+std::string stop_line(const Branch& b, std::size_t k, int end) {
+  const std::string_view side = end == 0 ? "start side" : "far side";
+  return fmt::format("branch {} ({} {}) {}: {}{}{}", k + 1, to_string(b.family), b.member, side,
+                     to_string(b.stop[std::size_t(end)]), b.stop_detail[std::size_t(end)].empty() ? "" : ": ",
+                     b.stop_detail[std::size_t(end)]);
+}
+
+bool failed(StopReason r) { return r == StopReason::step_underflow || r == StopReason::max_steps; }
+
+std::string run_comments(const ContinuationRun& run) {
+  const auto& st = run.stats;
+  std::string out = fmt::format(
+      "# run: {} points, {} steps retried, {} Newton iterations, {} spectra by eigenvalue continuation, {} computed "
+      "afresh\n",
+      st.steps, st.rejected, st.newton_iterations, st.tracked_spectra, st.full_spectra);
+  for (std::size_t k = 0; k < run.branches.size(); ++k)
+    for (int end = 0; end < 2; ++end) out += "# " + stop_line(run.branches[k], k, end) + "\n";
+  for (const auto& n : run.notes) out += "# note: " + n + "\n";
+  return out;
+}
+
+}  // namespace
+
+std::string branch_csv(const ContinuationRun& run, std::string_view header) {
+  const std::string name = to_string(run.param);
+  std::string out(header);
+  out += fmt::format(
+      "# continuation in {} [{}] from {} to {}; pseudo-arclength, points ordered along each branch\n"
+      "# columns: branch (1-based), point (index along the branch), label (EP at the ends; special points are in "
+      "special_{}.csv),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
+      "n_unstable,\n#   re_k im_k [1/s]: eigenvalue k in TRACKED order (matched from point to point: k stays the "
+      "same mode along a branch)\n",
+      name, unit(run.param.quantity), run.from, run.to, name);
+  out += run_comments(run);
+  out += fmt::format("branch,point,label,{},q1,q2,beta1,beta2,q_abs,family,stable,n_unstable", name);
+  for (int k = 1; k <= 8; ++k) out += fmt::format(",re{},im{}", k, k);
+  out += "\n";
+  for (std::size_t b = 0; b < run.branches.size(); ++b) {
+    const auto& branch = run.branches[b];
+    for (std::size_t i = 0; i < branch.points.size(); ++i) {
+      const auto& pt = branch.points[i];
+      out += fmt::format("{},{},{},{},{},{},{},{}", b + 1, i, to_string(pt.label), num(double(pt.parameter), name),
+                         position_cells(pt.position), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
+      for (const auto& l : pt.modes) out += fmt::format(",{},{}", num(l.real(), "eigenvalue"), num(l.imag(), "eigenvalue"));
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+std::string special_points_csv(const ContinuationRun& run, std::string_view header) {
+  const std::string name = to_string(run.param);
+  std::string out(header);
+  out += fmt::format(
+      "# special points of the continuation in {} [{}]: LP fold, BP branch point, HB Hopf, MX a branch that ended "
+      "in failure\n# columns: branch, label, {} (located by an augmented system to the rounding level), q1 q2 [m], "
+      "beta1 beta2 [rad], q_abs [m], family,\n#   frequency [rad/s] (HB), re im [1/s] the critical eigenvalue, "
+      "lyapunov = first Lyapunov coefficient (HB; < 0 supercritical, > 0 subcritical; state in SI, <q,q> = 1),\n"
+      "#   converged (1/0), n_unstable before/after along the branch\n",
+      name, unit(run.param.quantity), name);
+  out += run_comments(run);
+  out += fmt::format(
+      "branch,label,{},q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lyapunov,converged,n_unstable_before,"
+      "n_unstable_after\n",
+      name);
+  for (std::size_t b = 0; b < run.branches.size(); ++b) {
+    const auto& branch = run.branches[b];
+    for (const auto& sp : branch.specials)
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", b + 1, to_string(sp.label),
+                         num(double(sp.parameter), name), position_cells(sp.position), to_string(sp.family),
+                         num(sp.frequency, "frequency"), num(sp.eigenvalue.real(), "eigenvalue"),
+                         num(sp.eigenvalue.imag(), "eigenvalue"), num(sp.lyapunov, "lyapunov"), sp.converged ? 1 : 0,
+                         sp.n_unstable_before, sp.n_unstable_after);
+    for (int end = 0; end < 2; ++end) {
+      if (!failed(branch.stop[std::size_t(end)])) continue;
+      const auto& pt = end == 0 ? branch.points.front() : branch.points.back();
+      out += fmt::format("{},MX,{},{},{},0,0,0,0,0,{},{}\n", b + 1, num(double(pt.parameter), name),
+                         position_cells(pt.position), to_string(branch.family), pt.spectrum.n_unstable,
+                         pt.spectrum.n_unstable);
+    }
+  }
+  return out;
+}
+
+std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
+  const std::string n1 = to_string(run.param), n2 = to_string(run.param2);
+  std::string out(header);
+  out += fmt::format(
+      "# two-parameter continuation of the fold (LP) and Hopf (HB) points in ({} [{}], {} [{}]) over {} .. {} x {} .. "
+      "{}\n# columns: curve, kind (LP fold curve, HB Hopf curve), point (index along the curve), label (EP end, BT "
+      "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp, GH generalized Hopf: where the curve meets them, located by "
+      "interpolating their test functions), the two\n#   parameters, q1 q2 [m], beta1 beta2 [rad], q_abs [m], family, "
+      "frequency [rad/s] (Hopf curves)\n",
+      n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
+  for (std::size_t c = 0; c < run.curves.size(); ++c)
+    for (int end = 0; end < 2; ++end) {
+      const auto& curve = run.curves[c];
+      out += fmt::format("# curve {} ({} from branch {}) {} end: {}{}{}\n", c + 1, to_string(curve.kind),
+                         curve.source_branch, end == 0 ? "first" : "last", to_string(curve.stop[std::size_t(end)]),
+                         curve.stop_detail[std::size_t(end)].empty() ? "" : ": ", curve.stop_detail[std::size_t(end)]);
+    }
+  for (const auto& n : run.notes) out += "# note: " + n + "\n";
+  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,frequency\n", n1, n2);
+  for (std::size_t c = 0; c < run.curves.size(); ++c) {
+    const auto& curve = run.curves[c];
+    for (std::size_t i = 0; i < curve.points.size(); ++i) {
+      const auto& pt = curve.points[i];
+      out += fmt::format("{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
+                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2), position_cells(pt.position),
+                         to_string(pt.family), num(double(pt.frequency), "frequency"));
+    }
+  }
+  return out;
+}
+
+std::string continuation_warnings(const ContinuationRun& run) {
+  std::string out;
+  for (std::size_t k = 0; k < run.branches.size(); ++k) {
+    const auto& b = run.branches[k];
+    for (int end = 0; end < 2; ++end)
+      if (b.stop[std::size_t(end)] != StopReason::end_of_range && b.stop[std::size_t(end)] != StopReason::closed_loop)
+        out += "warning: " + stop_line(b, k, end) + "\n";
+    for (const auto& sp : b.specials)
+      if (!sp.converged || (!sp.note.empty() && sp.note.rfind("located on branch", 0) != 0))
+        out += fmt::format("warning: branch {}: {} at {}={:.17g}: {}\n", k + 1, to_string(sp.label),
+                           to_string(run.param), double(sp.parameter), sp.note.empty() ? "not converged" : sp.note);
+  }
+  return out;
+}
+
+}  // namespace abu

@@ -1,0 +1,342 @@
+#include "abu/scan/map_driver.hpp"
+
+#include <fmt/compile.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <exception>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <thread>
+
+#include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
+
+namespace abu {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string axis_name(const Axis& a) { return to_string(a.param); }
+
+// No NaN reaches a file: a non-finite value is a numerical failure naming its cell.
+void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
+  if (!std::isfinite(value))
+    throw NumericalError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {} is not finite", ix, iy,
+                                     axis_name(job.x), job.x.value(ix), axis_name(job.y), job.y.value(iy), what));
+}
+
+std::string axis_description(const Axis& a) {
+  return fmt::format("{} [{}]: {} values from {} to {}{}", axis_name(a), unit(a.param.quantity), a.count,
+                     format_number(a.from), format_number(a.to), a.logarithmic ? ", evenly spaced in log" : "");
+}
+
+std::string common_header(const MapJob& job) {
+  return job.provenance + fmt::format("# map: x = {}\n#      y = {}\n#      stability decided by the {} method\n",
+                                      axis_description(job.x), axis_description(job.y),
+                                      job.method == CellMethod::fast ? "fast (characteristic polynomial, Routh)"
+                                                                     : "full (refined eigenvalues)");
+}
+
+}  // namespace
+
+int tile_count(const MapJob& job) { return (job.x.count + kTileColumns - 1) / kTileColumns; }
+
+std::string map_file_name(const MapJob& job) {
+  return fmt::format("map_{}_{}.csv", axis_name(job.x), axis_name(job.y));
+}
+std::string summary_file_name(const MapJob& job) {
+  return fmt::format("summary_{}_{}.csv", axis_name(job.x), axis_name(job.y));
+}
+std::string tile_directory_name(const MapJob& job) {
+  return fmt::format(".map_{}_{}.tiles", axis_name(job.x), axis_name(job.y));
+}
+
+std::string map_csv_header(const MapJob& job) {
+  const std::string x = axis_name(job.x), y = axis_name(job.y);
+  return common_header(job) +
+         fmt::format(
+             "# one row per equilibrium per cell, cells in order ix (x index) outer, iy inner; a family absent "
+             "from a cell has no row (summary_{0}_{1}.csv counts them)\n"
+             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; family = balanced|together|opposite "
+             "(model.md §5); member = which root of the family's closed form (1 or 2);\n"
+             "#   stable = 1 if every eigenvalue has negative real part, else 0; n_unstable = eigenvalues with "
+             "positive real part; spectral_abscissa [1/s] = largest real part;\n"
+             "#   q_abs [m] = |q|, the residual vibration: the rotor centre's whirl radius, which is also the "
+             "amplitude in the fixed frame (x_fixed = R(omega t) q, model.md §2);\n"
+             "#   beta1, beta2 [rad] ball angles from the unbalance direction, in [0, 2 pi)\n"
+             "ix,iy,{0},{1},family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2\n",
+             x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
+}
+
+std::string summary_csv_header(const MapJob& job) {
+  const std::string x = axis_name(job.x), y = axis_name(job.y);
+  return common_header(job) +
+         fmt::format(
+             "# one row per cell, in order ix outer, iy inner\n"
+             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balanced, together, opposite = how many "
+             "equilibria of the family exist (0 = none);\n"
+             "#   balanced_stable = 1 if a balanced equilibrium is stable, 0 if none is, empty if there is no "
+             "balanced state; n_stable = stable equilibria in the cell;\n"
+             "#   best_family, best_member, best_q_abs [m] = the stable equilibrium with the least residual "
+             "vibration |q| (empty if none is stable);\n"
+             "#   degenerate = bit flags: 1 U = 0 (circle of balanced states), 2 balanced merges with together, "
+             "4 balanced merges with opposite, 8 K = C = 0, 16 together double root, 32 opposite double root\n"
+             "ix,iy,{0},{1},balanced,together,opposite,balanced_stable,n_stable,best_family,best_member,best_q_abs,"
+             "degenerate\n",
+             x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
+}
+
+TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer) {
+  TileText text;
+  const int first = tile * kTileColumns, last = std::min(job.x.count, first + kTileColumns);
+  std::vector<std::string> y_values(std::size_t(job.y.count));
+  for (int iy = 0; iy < job.y.count; ++iy) y_values[std::size_t(iy)] = format_number(job.y.value(iy), "y value");
+  // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
+  // and a format string parsed per row would be most of that.
+  fmt::memory_buffer rows, summary;
+  rows.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 6 * 140);
+  summary.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 80);
+  MapCell cell;
+  for (int ix = first; ix < last; ++ix) {
+    const std::string x_value = format_number(job.x.value(ix), "x value");
+    for (int iy = 0; iy < job.y.count; ++iy) {
+      analyzer.analyze(ix, iy, cell);
+      ++text.cells;
+      text.equilibria += cell.count;
+      text.fallbacks += cell.fallbacks;
+      const std::string_view x = x_value, y = y_values[std::size_t(iy)];
+      std::array<int, 3> members{};
+      int balanced_stable = -1, n_stable = 0;
+      for (int k = 0; k < cell.count; ++k) {
+        const MapEquilibrium& e = cell.equilibria[std::size_t(k)];
+        ++members[std::size_t(e.family)];
+        n_stable += e.stable;
+        if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
+        check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
+        check_finite(e.q_abs, job, ix, iy, "|q|");
+        check_finite(e.beta1, job, ix, iy, "beta1");
+        check_finite(e.beta2, job, ix, iy, "beta2");
+        fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x, y,
+                       to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
+                       e.beta1, e.beta2);
+      }
+      fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},"), ix, iy, x, y, members[0],
+                     members[1], members[2]);
+      if (balanced_stable >= 0) fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), balanced_stable);
+      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},"), n_stable);
+      if (const int best = cell.best_stable(); best >= 0) {
+        const MapEquilibrium& e = cell.equilibria[std::size_t(best)];
+        fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{}"), to_string(e.family), int(e.member), e.q_abs);
+      } else {
+        fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
+      }
+      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+    }
+  }
+  text.rows.assign(rows.data(), rows.size());
+  text.summary.assign(summary.data(), summary.size());
+  return text;
+}
+
+// ---------------------------------------------------------------------------------------
+// Tiles on disk
+
+namespace {
+
+std::string manifest_of(const MapJob& job) {
+  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", kTileColumns, tile_count(job)) +
+         map_csv_header(job) + summary_csv_header(job);
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string content(fs::file_size(path), '\0');
+  in.read(content.data(), std::streamsize(content.size()));
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
+  return content;
+}
+
+// Writes under a temporary name and renames: a reader sees the whole file or none.
+void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {}) {
+  fs::path part = path;
+  part += ".part";
+  {
+    std::ofstream out(part, std::ios::binary | std::ios::trunc);
+    out.write(a.data(), std::streamsize(a.size()));
+    out.write(b.data(), std::streamsize(b.size()));
+    out.write(c.data(), std::streamsize(c.size()));
+    out.flush();
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", part.string()));
+  }
+  fs::rename(part, path);
+}
+
+}  // namespace
+
+TileStore::TileStore(fs::path directory, const MapJob& job, Mode mode)
+    : directory_(std::move(directory)), tiles_(tile_count(job)) {
+  const std::string manifest = manifest_of(job);
+  const fs::path manifest_path = directory_ / "manifest";
+  std::error_code ec;
+  const bool exists = fs::exists(directory_, ec);
+  if (exists && mode == Mode::fresh)
+    throw InputError("-o", 0, directory_.string(),
+                     "holds the tiles of an interrupted map; continue it with --resume or start over with --fresh");
+  if (exists && mode == Mode::resume) {
+    if (!fs::exists(manifest_path) || read_file(manifest_path) != manifest)
+      throw InputError("--resume", 0, directory_.string(),
+                       "these tiles belong to a different map (scene, --set, axes, method or program version "
+                       "differ); run with --fresh to start over");
+    // Temporaries of tiles whose writing was cut short.
+    for (const auto& entry : fs::directory_iterator(directory_))
+      if (entry.path().extension() == ".part") fs::remove(entry.path());
+    return;
+  }
+  if (exists) fs::remove_all(directory_);
+  fs::create_directories(directory_);
+  write_atomically(manifest_path, manifest);
+}
+
+fs::path TileStore::tile_path(int tile) const { return directory_ / fmt::format("tile{:06}", tile); }
+
+bool TileStore::has(int tile) const {
+  std::error_code ec;
+  return fs::exists(tile_path(tile), ec);
+}
+
+std::vector<int> TileStore::missing() const {
+  std::vector<int> out;
+  for (int t = 0; t < tiles_; ++t)
+    if (!has(t)) out.push_back(t);
+  return out;
+}
+
+// A tile file: "<rows bytes> <summary bytes>\n", the rows, the summary rows.
+void TileStore::put(int tile, const TileText& text) const {
+  write_atomically(tile_path(tile), fmt::format("{} {}\n", text.rows.size(), text.summary.size()), text.rows,
+                   text.summary);
+}
+
+void TileStore::append(int tile, std::ostream& rows, std::ostream& summary) const {
+  const std::string content = read_file(tile_path(tile));
+  const auto newline = content.find('\n');
+  std::size_t n_rows = 0, n_summary = 0;
+  std::istringstream sizes(content.substr(0, newline));
+  sizes >> n_rows >> n_summary;
+  if (newline == std::string::npos || !sizes || newline + 1 + n_rows + n_summary != content.size())
+    throw std::runtime_error(fmt::format("{}: damaged tile file; rerun with --fresh", tile_path(tile).string()));
+  rows.write(content.data() + newline + 1, std::streamsize(n_rows));
+  summary.write(content.data() + newline + 1 + n_rows, std::streamsize(n_summary));
+}
+
+void TileStore::remove() const { fs::remove_all(directory_); }
+
+// ---------------------------------------------------------------------------------------
+// Progress
+
+ProgressMeter::ProgressMeter(int total, int before, bool enabled)
+    : total_(total), done_(before), before_(before), enabled_(enabled), terminal_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()), last_print_(start_) {}
+
+void ProgressMeter::tile_done(long cells) {
+  if (!enabled_) return;
+  std::lock_guard lock(mutex_);
+  ++done_;
+  cells_ += cells;
+  const auto now = std::chrono::steady_clock::now();
+  const double since = std::chrono::duration<double>(now - last_print_).count();
+  if (since >= (terminal_ ? 0.2 : 5.0)) {
+    last_print_ = now;
+    print_locked(false);
+  }
+}
+
+void ProgressMeter::finish() {
+  if (!enabled_) return;
+  std::lock_guard lock(mutex_);
+  print_locked(true);
+}
+
+void ProgressMeter::print_locked(bool final_line) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const int fresh = done_ - before_;
+  std::string eta = "--";
+  if (fresh > 0 && done_ < total_) {
+    const double seconds = elapsed / fresh * (total_ - done_);
+    eta = seconds < 120 ? fmt::format("{:.0f} s", seconds) : fmt::format("{:.1f} min", seconds / 60);
+  } else if (done_ >= total_) {
+    eta = "0 s";
+  }
+  fmt::print(stderr, "{}map: {}/{} tiles ({:.1f}%), {:.3g} cells/s, elapsed {:.1f} s, ETA {}{}",
+             terminal_ ? "\r" : "", done_, total_, 100.0 * done_ / std::max(total_, 1),
+             elapsed > 0 ? double(cells_) / elapsed : 0.0, elapsed, eta, terminal_ && !final_line ? "   " : "\n");
+}
+
+// ---------------------------------------------------------------------------------------
+// Threads
+
+MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
+                          const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait) {
+  MapRunStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> running{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  std::exception_ptr error;
+  const auto stopped = [&] { return failed.load() || (options.stop && options.stop->load()); };
+  const auto worker = [&] {
+    try {
+      CellAnalyzer analyzer(job.params, job.x, job.y, job.method);
+      for (std::size_t i = next++; i < tiles.size() && !stopped(); i = next++) {
+        TileText text = compute_tile(job, tiles[i], analyzer);
+        const long cells = text.cells;
+        {
+          std::lock_guard lock(mutex);
+          ++stats.tiles;
+          stats.cells += text.cells;
+          stats.equilibria += text.equilibria;
+          stats.fallbacks += text.fallbacks;
+        }
+        sink(tiles[i], std::move(text));
+        if (options.progress) options.progress->tile_done(cells);
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!error) error = std::current_exception();
+      failed = true;
+    }
+    --running;
+  };
+  const int n_threads = std::max(1, std::min<int>(options.threads, int(tiles.size())));
+  running = n_threads;
+  std::vector<std::thread> pool;
+  pool.reserve(std::size_t(n_threads));
+  for (int t = 0; t < n_threads; ++t) pool.emplace_back(worker);
+  if (wait) {
+    try {
+      wait([&] { return running.load() == 0; });
+    } catch (...) {
+      failed = true;
+      for (auto& th : pool) th.join();
+      throw;
+    }
+  }
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.interrupted = stats.tiles < int(tiles.size());
+  return stats;
+}
+
+void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv) {
+  map_csv << map_csv_header(job);
+  summary_csv << summary_csv_header(job);
+  for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv);
+}
+
+}  // namespace abu

@@ -1,0 +1,41 @@
+#include "abu/scan/scan.hpp"
+
+#include <cmath>
+
+namespace abu {
+
+Analysis analyze(const Params& p, SpectrumMethod method) {
+  Analysis a;
+  a.equilibria = find_equilibria(p);
+  const auto points = a.equilibria.points();
+  for (std::size_t i = 0; i < points.size(); ++i) a.spectra[i] = equilibrium_spectrum(p, points[i], method);
+  return a;
+}
+
+std::vector<double> grid_values(double from, double to, int steps, bool logarithmic) {
+  std::vector<double> values(std::size_t(steps) + 1);
+  for (int i = 0; i <= steps; ++i) {
+    const double t = double(i) / double(steps);
+    double v = logarithmic ? std::exp(std::log(from) + t * (std::log(to) - std::log(from)))
+                           : from + t * (to - from);
+    if (i == 0) v = from;
+    if (i == steps) v = to;
+    values[std::size_t(i)] = v;
+  }
+  return values;
+}
+
+SweepResult sweep(const Params& base, ParamRef param, const std::vector<double>& values) {
+  SweepResult r;
+  r.param = param;
+  r.values = values;
+  r.points.reserve(values.size());
+  Params p = base;
+  for (double v : values) {
+    set(p, param, v);
+    r.points.push_back(analyze(p));
+  }
+  return r;
+}
+
+}  // namespace abu
