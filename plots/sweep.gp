@@ -2,7 +2,8 @@
 # per equilibrium family (both members of a family share it), stable solid, unstable
 # dashed. Reads the CSV written by `stability-scan sweep`; re-run by hand with
 #   gnuplot -e "csv='out/sweep_omega.csv'; png='sweep.png'; param='omega'; unit='rad/s'; logx='0'; title='x'" plots/sweep.gp
-# Columns used: 1 step, 2 parameter, 3 family, 4 member, 9 q_abs [m], 11 spectral_abscissa [1/s], 12 stable.
+# Columns are read by their header names: step, the parameter's symbol, family, member, q_abs [m],
+# spectral_abscissa [1/s], stable.
 if (!exists("csv")) csv = 'out/sweep_omega.csv'
 if (!exists("png")) png = 'sweep.png'
 if (!exists("param")) param = 'omega'
@@ -18,9 +19,9 @@ set datafile columnheaders
 
 # A series is one (family, member); it is drawn only where its stability matches `st`.
 # The line breaks where the series is absent at some values (the step index jumps).
-series(fam, mem, st, y) = (strcol(3) eq fam && column(4) == mem) ? \
-    (gap = (last >= 0 && column(1) != last + 1), last = column(1), \
-     (column(12) == st && !gap) ? y : NaN) : NaN
+series(fam, mem, st, y) = (strcol("family") eq fam && column("member") == mem) ? \
+    (gap = (last >= 0 && column("step") != last + 1), last = column("step"), \
+     (column("stable") == st && !gap) ? y : NaN) : NaN
 
 # Signed log for the abscissa, which spans -10 .. +1e-7 1/s and whose sign is the point:
 # S(a) = sgn(a) log10(1 + |a| / a0), with a0 = 1e-12 1/s.
@@ -49,14 +50,14 @@ set logscale y
 set ylabel '|q| [m] (rotor excursion, rotating frame)'
 set format y '10^{%T}'
 plot \
-  last = -1, csv using 2:(series('together', 1, 1, column(9))) with lines ls 3 title 'together, stable', \
-  last = -1, csv using 2:(series('together', 1, 0, column(9))) with lines ls 4 title 'together, unstable', \
-  last = -1, csv using 2:(series('together', 2, 1, column(9))) with lines ls 3 notitle, \
-  last = -1, csv using 2:(series('together', 2, 0, column(9))) with lines ls 4 notitle, \
-  last = -1, csv using 2:(series('opposite', 1, 1, column(9))) with lines ls 5 title 'opposite, stable', \
-  last = -1, csv using 2:(series('opposite', 1, 0, column(9))) with lines ls 6 title 'opposite, unstable', \
-  last = -1, csv using 2:(series('opposite', 2, 1, column(9))) with lines ls 5 notitle, \
-  last = -1, csv using 2:(series('opposite', 2, 0, column(9))) with lines ls 6 notitle, \
+  last = -1, csv using (column(param)):(series('together', 1, 1, column("q_abs"))) with lines ls 3 title 'together, stable', \
+  last = -1, csv using (column(param)):(series('together', 1, 0, column("q_abs"))) with lines ls 4 title 'together, unstable', \
+  last = -1, csv using (column(param)):(series('together', 2, 1, column("q_abs"))) with lines ls 3 notitle, \
+  last = -1, csv using (column(param)):(series('together', 2, 0, column("q_abs"))) with lines ls 4 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 1, 1, column("q_abs"))) with lines ls 5 title 'opposite, stable', \
+  last = -1, csv using (column(param)):(series('opposite', 1, 0, column("q_abs"))) with lines ls 6 title 'opposite, unstable', \
+  last = -1, csv using (column(param)):(series('opposite', 2, 1, column("q_abs"))) with lines ls 5 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 2, 0, column("q_abs"))) with lines ls 6 notitle, \
   NaN with lines ls 1 title 'balanced: q = 0 (off this log axis)'
 
 unset logscale y
@@ -68,16 +69,16 @@ do for [e = -10:2:2] {
 }
 set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb '#555555' dt 3
 plot \
-  last = -1, csv using 2:(series('balanced', 1, 1, S(column(11)))) with lines ls 1 title 'balanced, stable', \
-  last = -1, csv using 2:(series('balanced', 1, 0, S(column(11)))) with lines ls 2 title 'balanced, unstable', \
-  last = -1, csv using 2:(series('balanced', 2, 1, S(column(11)))) with lines ls 1 notitle, \
-  last = -1, csv using 2:(series('balanced', 2, 0, S(column(11)))) with lines ls 2 notitle, \
-  last = -1, csv using 2:(series('together', 1, 1, S(column(11)))) with lines ls 3 title 'together, stable', \
-  last = -1, csv using 2:(series('together', 1, 0, S(column(11)))) with lines ls 4 title 'together, unstable', \
-  last = -1, csv using 2:(series('together', 2, 1, S(column(11)))) with lines ls 3 notitle, \
-  last = -1, csv using 2:(series('together', 2, 0, S(column(11)))) with lines ls 4 notitle, \
-  last = -1, csv using 2:(series('opposite', 1, 1, S(column(11)))) with lines ls 5 title 'opposite, stable', \
-  last = -1, csv using 2:(series('opposite', 1, 0, S(column(11)))) with lines ls 6 title 'opposite, unstable', \
-  last = -1, csv using 2:(series('opposite', 2, 1, S(column(11)))) with lines ls 5 notitle, \
-  last = -1, csv using 2:(series('opposite', 2, 0, S(column(11)))) with lines ls 6 notitle
+  last = -1, csv using (column(param)):(series('balanced', 1, 1, S(column("spectral_abscissa")))) with lines ls 1 title 'balanced, stable', \
+  last = -1, csv using (column(param)):(series('balanced', 1, 0, S(column("spectral_abscissa")))) with lines ls 2 title 'balanced, unstable', \
+  last = -1, csv using (column(param)):(series('balanced', 2, 1, S(column("spectral_abscissa")))) with lines ls 1 notitle, \
+  last = -1, csv using (column(param)):(series('balanced', 2, 0, S(column("spectral_abscissa")))) with lines ls 2 notitle, \
+  last = -1, csv using (column(param)):(series('together', 1, 1, S(column("spectral_abscissa")))) with lines ls 3 title 'together, stable', \
+  last = -1, csv using (column(param)):(series('together', 1, 0, S(column("spectral_abscissa")))) with lines ls 4 title 'together, unstable', \
+  last = -1, csv using (column(param)):(series('together', 2, 1, S(column("spectral_abscissa")))) with lines ls 3 notitle, \
+  last = -1, csv using (column(param)):(series('together', 2, 0, S(column("spectral_abscissa")))) with lines ls 4 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 1, 1, S(column("spectral_abscissa")))) with lines ls 5 title 'opposite, stable', \
+  last = -1, csv using (column(param)):(series('opposite', 1, 0, S(column("spectral_abscissa")))) with lines ls 6 title 'opposite, unstable', \
+  last = -1, csv using (column(param)):(series('opposite', 2, 1, S(column("spectral_abscissa")))) with lines ls 5 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 2, 0, S(column("spectral_abscissa")))) with lines ls 6 notitle
 unset multiplot

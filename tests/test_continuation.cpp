@@ -32,6 +32,7 @@
 #include "abu/model/model.hpp"
 #include "abu/core/params.hpp"
 #include "abu/linear/spectrum.hpp"
+#include "abu/scan/scan.hpp"
 
 // The observed margins (error against tolerance) go with each check's failure message;
 // build with -DABU_SHOW_MARGINS to print them on every run.

@@ -17,34 +17,52 @@ struct EquilibriaOptions {
   SceneOptions scene;
   std::string format = "table";
   std::string output;
+  BalancedSampling sampling;
 };
+
+// Two balls take the fixed-size path (closed forms of model.md §5), any other count the
+// general one (§13); both write the same formats.
+std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+  if (scene.balls.size() == 2) {
+    const Params p = params_of<2>(scene);
+    const Analysis a = analyze(p);
+    warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
+    if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p));
+    if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
+    return equilibria_table(a, p);
+  }
+  const ParamsN p = params_of<any_balls>(scene);
+  const AnalysisN a = analyze(p, o.sampling);
+  warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
+  if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p), p.n_balls());
+  if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
+  return equilibria_table(a, p);
+}
 }  // namespace
 
 Action add_equilibria_command(CLI::App& app) {
   auto options = std::make_shared<EquilibriaOptions>();
   CLI::App* sub = app.add_subcommand(
       "equilibria",
-      "All real equilibria of the two-ball balancer (model.md §5) with residuals, eigenvalues [1/s] sorted by "
-      "real part, condition numbers and stability.");
+      "All real equilibria (model.md §5, §13: balanced, and every aligned ball pattern; for n >= 3 balls the "
+      "balanced set by samples) with residuals, eigenvalues [1/s, rotating frame] sorted by real part, condition "
+      "numbers and stability.");
   add_scene_options(*sub, options->scene);
   sub->add_option("--format", options->format, "Output format")
       ->check(CLI::IsMember({"table", "csv", "json"}))
       ->capture_default_str();
   sub->add_option("-o,--output", options->output, "Write to FILE (atomically) instead of standard output")
       ->type_name("FILE");
+  sub->add_option("--set-samples", options->sampling.samples_per_sheet,
+                  "Samples per sheet of the balanced set (n >= 3): G = max(2, round(S^(1/(n-2)))) values per free "
+                  "angle")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   return [options]() -> int {
     const Scene scene = load(options->scene);
-    const Params p = params_of<2>(scene);
-    const Analysis a = analyze(p);
-    std::string text;
-    if (options->format == "csv") {
-      text = equilibria_csv(a, provenance_header(command_line(), scene.file, p));
-    } else if (options->format == "json") {
-      text = equilibria_json(a, command_line(), scene.file, p);
-    } else {
-      text = equilibria_table(a, p);
-    }
-    fmt::print(stderr, "{}", analysis_warnings(a, fmt::format("omega={}", p.omega)));
+    std::string warnings;
+    const std::string text = render(scene, *options, warnings);
+    fmt::print(stderr, "{}", warnings);
     if (options->output.empty()) {
       fmt::print("{}", text);
     } else {

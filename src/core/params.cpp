@@ -158,6 +158,10 @@ void set(ParamsT<T, N>& p, ParamRef ref, T value) {
 }
 
 template double get<double, 2>(const ParamsT<double, 2>&, ParamRef);
+template double get<double, any_balls>(const ParamsT<double, any_balls>&, ParamRef);
+template long double get<long double, any_balls>(const ParamsT<long double, any_balls>&, ParamRef);
+template void set<double, any_balls>(ParamsT<double, any_balls>&, ParamRef, double);
+template void set<long double, any_balls>(ParamsT<long double, any_balls>&, ParamRef, long double);
 template double get<double, 3>(const ParamsT<double, 3>&, ParamRef);
 template long double get<long double, 2>(const ParamsT<long double, 2>&, ParamRef);
 template void set<double, 2>(ParamsT<double, 2>&, ParamRef, double);

@@ -56,7 +56,8 @@ Equilibrium make(Family family, int member, const Coordinates<ld, 2>& s, bool is
   e.position = s;
   if (family == Family::balanced) e.position.head<2>().setZero();
   e.is_set = is_set;
-  e.singular = is_set;
+  e.structural_zeros = is_set ? 1 : 0;
+  if (family == Family::opposite) e.pattern = 0b10;  // ball 2 on the far side (model.md §13.2)
   return e;
 }
 
@@ -87,9 +88,9 @@ void add_balanced(const ClosedForm& f, EquilibriumSet& set) {
   const ld t1 = 2 * std::atan2(std::sqrt(s1 * su), std::sqrt(s * s2));
   const ld t2 = 2 * std::atan2(std::sqrt(s2 * su), std::sqrt(s * s1));
   Equilibrium first = make(Family::balanced, 1, with_rotor_response(f, kPi - t1, kPi + t2));
-  first.singular = merges_together || merges_opposite;  // a pitchfork: the mirror points have met
+  first.structural_zeros = merges_together || merges_opposite ? 1 : 0;  // a pitchfork: the mirror points have met
   set.add(first);
-  if (!first.singular) set.add(make(Family::balanced, 2, with_rotor_response(f, kPi + t1, kPi - t2)));
+  if (!first.singular()) set.add(make(Family::balanced, 2, with_rotor_response(f, kPi + t1, kPi - t2)));
 }
 
 // Roots of K U sin b + C U cos b + C a = 0, i.e. U R sin(b + phi) = -C a with
@@ -138,14 +139,14 @@ void add_collinear(const ClosedForm& f, Family family, EquilibriumSet& set) {
   // the same configuration and shares the zero eigenvalue.
   const Equilibrium* merged = nullptr;
   for (const auto& p : set.points())
-    if (p.family == Family::balanced && p.singular && !p.is_set) merged = &p;
+    if (p.family == Family::balanced && p.singular() && !p.is_set) merged = &p;
   const auto same_angle = [](ld u, ld v) { return std::abs(std::remainder(u - v, kTwoPi)) < 1e-6L; };
   for (int i = 0; i < n; ++i) {
     const ld b = roots[std::size_t(i)];
     Equilibrium e = make(family, i + 1, with_rotor_response(f, b, b + offset));
     const bool at_merge =
         merged && same_angle(b, merged->position(2)) && same_angle(b + offset, merged->position(3));
-    e.singular = double_root || at_merge;
+    e.structural_zeros = double_root || at_merge ? 1 : 0;
     set.add(e);
   }
 }
@@ -157,6 +158,7 @@ std::string_view to_string(Family family) {
     case Family::balanced: return "balanced";
     case Family::together: return "together";
     case Family::opposite: return "opposite";
+    case Family::aligned: return "aligned";
   }
   return "?";
 }
@@ -173,52 +175,60 @@ long double wrap_angle(long double beta) {
   return w;
 }
 
-double static_residual(const Params& p, const Coordinates<long double, 2>& s) {
-  const auto pl = p.cast<ld>();
-  const Coordinates<ld, 2> b = generalized_forces(pl, at_rest<ld, 2>(s));
-  const Coordinates<ld, 2> scale = static_force_scale(pl, s);
+template <int N>
+double static_residual(const ParamsT<double, N>& p, const Coordinates<long double, N>& s) {
+  const auto pl = p.template cast<ld>();
+  const Coordinates<ld, N> b = generalized_forces(pl, at_rest<ld, N>(s));
+  const Coordinates<ld, N> scale = static_force_scale(pl, s);
   return double((b.array().abs() / scale.array()).maxCoeff());
 }
 
-Equilibrium polish_equilibrium(const Params& p, const Equilibrium& guess) {
-  const auto pl = p.cast<ld>();
+template <int N>
+EquilibriumT<N> polish_equilibrium(const ParamsT<double, N>& p, const EquilibriumT<N>& guess) {
+  const auto pl = p.template cast<ld>();
   const ld length = displacement_scale(pl);
-  Equilibrium e = guess;
-  Coordinates<ld, 2> s = guess.position;
+  EquilibriumT<N> e = guess;
+  Coordinates<ld, N> s = guess.position;
+  const Eigen::Index d = s.size();
   // Newton on b(s, 0) = 0 with q in units of `length` and every equation divided by its
   // natural size, so the 4x4 system is O(1) in all entries. db/ds = -K at rest (the
   // (dA/ds) s'' part of K vanishes quadratically as s'' -> 0). A rank-revealing solve
   // gives the minimum-norm step where the equilibrium is not isolated (U = 0 circles,
   // merging points).
-  const Eigen::DiagonalMatrix<ld, 4> column_scale(length, length, 1, 1);
+  Coordinates<ld, N> column_scale = Coordinates<ld, N>::Ones(d);
+  column_scale(0) = column_scale(1) = length;
   constexpr int kMaxIterations = 30;
   ld residual = std::numeric_limits<ld>::infinity();
   int it = 0;
   for (;; ++it) {
-    const State<ld, 2> x = at_rest<ld, 2>(s);
-    const Coordinates<ld, 2> b = generalized_forces(pl, x);
-    const Coordinates<ld, 2> scale = static_force_scale(pl, s);
+    const State<ld, N> x = at_rest<ld, N>(s);
+    const Coordinates<ld, N> b = generalized_forces(pl, x);
+    const Coordinates<ld, N> scale = static_force_scale(pl, s);
     const ld previous = residual;
     residual = (b.array().abs() / scale.array()).maxCoeff();
     // Done at the rounding level of long double, or where the residual stops falling
     // (it has reached the rounding level of evaluating b, which varies with the terms).
     if (residual <= 4 * kLongEps || residual > previous / 2 || it == kMaxIterations) break;
-    const DofMatrix<ld, 2> db_ds = -linearize(pl, x).stiffness;
-    const DofMatrix<ld, 2> scaled = scale.cwiseInverse().asDiagonal() * db_ds * column_scale;
-    const Coordinates<ld, 2> step =
-        scaled.completeOrthogonalDecomposition().solve(Coordinates<ld, 2>(-(b.array() / scale.array())));
-    s += column_scale * step;
+    const DofMatrix<ld, N> db_ds = -linearize(pl, x).stiffness;
+    const DofMatrix<ld, N> scaled = scale.cwiseInverse().asDiagonal() * db_ds * column_scale.asDiagonal();
+    const Coordinates<ld, N> step =
+        scaled.completeOrthogonalDecomposition().solve(Coordinates<ld, N>(-(b.array() / scale.array())));
+    s += column_scale.asDiagonal() * step;
   }
-  s(2) = wrap_angle(s(2));
-  s(3) = wrap_angle(s(3));
+  for (Eigen::Index i = 2; i < d; ++i) s(i) = wrap_angle(s(i));
   e.position = s;
   e.newton_iterations = it;
   // Converged: as exact as long double allows, far below the double rounding of the
   // reported state (whose own residual is ~1e-16).
   e.converged = residual <= ld(1e-17);
-  e.residual = static_residual(p, s.cast<double>().cast<ld>());
+  e.residual = static_residual(p, Coordinates<ld, N>(s.template cast<double>().template cast<ld>()));
   return e;
 }
+
+template double static_residual<2>(const Params&, const Coordinates<ld, 2>&);
+template double static_residual<any_balls>(const ParamsN&, const Coordinates<ld, any_balls>&);
+template Equilibrium polish_equilibrium<2>(const Params&, const Equilibrium&);
+template EquilibriumN polish_equilibrium<any_balls>(const ParamsN&, const EquilibriumN&);
 
 EquilibriumSet closed_form_equilibria(const Params& p) {
   const ClosedForm f = closed_form(p.cast<ld>());
@@ -238,7 +248,7 @@ EquilibriumSet find_equilibria(const Params& p) {
   for (auto& e : set.points()) {
     if (e.is_set) {  // exact by symmetry; Newton has no isolated root to converge to
       e.converged = true;
-      e.residual = static_residual(p, e.position.cast<double>().cast<ld>());
+      e.residual = static_residual(p, Coordinates<ld, 2>(e.position.cast<double>().cast<ld>()));
     } else {
       e = polish_equilibrium(p, e);
     }
@@ -269,6 +279,22 @@ std::vector<std::string> describe_degeneracy(unsigned degeneracy) {
     lines.emplace_back("the two together points coincide (double root: a fold of that family)");
   if (degeneracy & opposite_double_root)
     lines.emplace_back("the two opposite points coincide (double root: a fold of that family)");
+  if (degeneracy & aligned_double_root)
+    lines.emplace_back(
+        "C^2 S^2 = U^2 (K^2 + C^2) for a ball pattern within input rounding: its two aligned points coincide "
+        "(double root: a fold)");
+  if (degeneracy & aligned_zero_resultant)
+    lines.emplace_back(
+        "S = sum sigma_i m_i l_i = 0 for a ball pattern: its balls cancel, and its two aligned points carry the "
+        "rotor's response without a balancer");
+  if (degeneracy & balanced_collinear)
+    lines.emplace_back(
+        "U = |sum sigma_i m_i l_i| for a ball pattern within input rounding: the balanced set has a collinear "
+        "point where an aligned branch meets it; the set is not smooth there");
+  if (degeneracy & balanced_absent)
+    lines.emplace_back(
+        "no balanced state: the unbalance and the balls' m_i l_i cannot close a polygon "
+        "(max(U, m_i l_i) > (U + sum m_j l_j) / 2; for equal balls, capacity sum m_i l_i < U)");
   return lines;
 }
 

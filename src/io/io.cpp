@@ -88,7 +88,8 @@ void run_gnuplot(const fs::path& script, const std::vector<std::pair<std::string
     throw std::runtime_error(fmt::format("gnuplot failed on {}", script.string()));
 }
 
-std::string describe_parameters(const Params& p) {
+template <int N>
+std::string describe_parameters(const ParamsT<double, N>& p) {
   std::string s = fmt::format("M_r={} k={} c={} U={} omega={} law={}", p.rotor.mass, p.rotor.stiffness,
                               p.rotor.damping, p.rotor.unbalance, p.omega, to_string(p.law));
   if (p.law == FrictionLaw::coulomb || p.law == FrictionLaw::stribeck) s += fmt::format(" kappa={}", p.kappa);
@@ -108,12 +109,18 @@ std::string describe_parameters(const Params& p) {
   return s;
 }
 
-std::string provenance_header(std::string_view command_line, std::string_view scene_file, const Params& p) {
+template <int N>
+std::string provenance_header(std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p) {
   const double M = p.total_mass();
   return fmt::format(
       "# stability-scan {} (abu-stability)\n# command: {}\n# scene: {}\n# parameters (SI): {}\n"
       "# derived: M={} kg, omega_n=sqrt(k/M)={} rad/s\n",
       ABU_VERSION, command_line, scene_file, describe_parameters(p), M, std::sqrt(p.rotor.stiffness / M));
 }
+
+template std::string describe_parameters<2>(const Params&);
+template std::string describe_parameters<any_balls>(const ParamsN&);
+template std::string provenance_header<2>(std::string_view, std::string_view, const Params&);
+template std::string provenance_header<any_balls>(std::string_view, std::string_view, const ParamsN&);
 
 }  // namespace abu

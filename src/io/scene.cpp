@@ -465,10 +465,15 @@ void apply_override(Scene& scene, std::string_view assignment) {
 
 template <int N>
 ParamsT<double, N> params_of(const Scene& scene) {
-  if (scene.balls.size() != std::size_t(N))
-    throw NotSupportedError(fmt::format("scene has {} balls; only {}-ball scenes are supported yet (model.md §5 closed forms)",
+  if constexpr (N == any_balls) {
+    if (scene.balls.size() > std::size_t(max_balls))  // the parser refuses such scenes already
+      throw NotSupportedError(fmt::format("scene has {} balls; at most {} are supported", scene.balls.size(), max_balls));
+  } else if (scene.balls.size() != std::size_t(N)) {
+    throw NotSupportedError(fmt::format("scene has {} balls: not supported yet by this command ({} balls only)",
                                         scene.balls.size(), N));
+  }
   ParamsT<double, N> p;
+  if constexpr (N == any_balls) p.balls.resize(scene.balls.size());
   p.rotor = scene.rotor;
   p.omega = scene.omega;
   p.law = scene.law;
@@ -479,5 +484,6 @@ ParamsT<double, N> params_of(const Scene& scene) {
 
 template ParamsT<double, 2> params_of<2>(const Scene&);
 template ParamsT<double, 3> params_of<3>(const Scene&);
+template ParamsT<double, any_balls> params_of<any_balls>(const Scene&);
 
 }  // namespace abu

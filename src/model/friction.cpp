@@ -145,6 +145,9 @@ ABU_INSTANTIATE_FRICTION(long double, 2)
 ABU_INSTANTIATE_FRICTION(std::complex<double>, 2)
 ABU_INSTANTIATE_FRICTION(double, 3)
 ABU_INSTANTIATE_FRICTION(std::complex<double>, 3)
+ABU_INSTANTIATE_FRICTION(double, any_balls)
+ABU_INSTANTIATE_FRICTION(long double, any_balls)
+ABU_INSTANTIATE_FRICTION(std::complex<double>, any_balls)
 #undef ABU_INSTANTIATE_FRICTION
 
 }  // namespace abu

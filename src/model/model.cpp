@@ -48,20 +48,22 @@ void sin_cos<long double>(const long double& angle, long double& s, long double&
 // Kinematic pieces shared by b, its derivatives and the mass matrix.
 template <class T, int N>
 struct Kinematics {
-  std::array<T, N> sin_b, cos_b, ml;  // sin beta_i, cos beta_i, m_i l_i
-  T w, w2;                            // omega, omega^2
+  std::array<T, ball_capacity<N>> sin_b, cos_b, ml;  // sin beta_i, cos beta_i, m_i l_i
+  int n;                                              // number of balls
+  T w, w2;                                            // omega, omega^2
   // P1, P2: q1'' - P1 and q2'' - P2 are the rotating-frame accelerations a1, a2 (§3).
   T p1, p2;
 
-  Kinematics(const ParamsT<T, N>& p, const State<T, N>& x) : w(p.omega), w2(p.omega * p.omega) {
-    for (int i = 0; i < N; ++i) {
+  Kinematics(const ParamsT<T, N>& p, const State<T, N>& x) : n(ball_count(p)), w(p.omega), w2(p.omega * p.omega) {
+    for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
       sin_cos(x(2 + i), sin_b[k], cos_b[k]);
       ml[k] = p.balls[k].mass * p.balls[k].race_radius;
     }
-    p1 = T(2) * w * x(N + 3) + w2 * x(0);
-    p2 = T(-2) * w * x(N + 2) + w2 * x(1);
+    p1 = T(2) * w * x(n + 3) + w2 * x(0);
+    p2 = T(-2) * w * x(n + 2) + w2 * x(1);
   }
+  int dofs() const { return n + 2; }
 };
 
 // Solves A(beta) z = r for one or more right-hand sides by block elimination: the ball
@@ -72,7 +74,8 @@ template <class T, int N, class Rhs>
 Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r) {
   const T M = p.total_mass();
   T s11 = M, s22 = M, s12 = T(0);
-  for (int i = 0; i < N; ++i) {
+  const int n = kin.n;
+  for (int i = 0; i < n; ++i) {
     const auto k = std::size_t(i);
     const T mj = p.balls[k].mass / p.balls[k].inertia_factor;
     s11 -= mj * kin.sin_b[k] * kin.sin_b[k];
@@ -83,7 +86,7 @@ Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r
   Rhs z(r.rows(), r.cols());
   for (Eigen::Index col = 0; col < r.cols(); ++col) {
     T y1 = r(0, col), y2 = r(1, col);
-    for (int i = 0; i < N; ++i) {
+    for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
       const T inv_jl = T(1) / (p.balls[k].inertia_factor * p.balls[k].race_radius);
       y1 += kin.sin_b[k] * r(2 + i, col) * inv_jl;
@@ -93,7 +96,7 @@ Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r
     const T z2 = (s11 * y2 - s12 * y1) / det;
     z(0, col) = z1;
     z(1, col) = z2;
-    for (int i = 0; i < N; ++i) {
+    for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
       const auto& b = p.balls[k];
       z(2 + i, col) = (r(2 + i, col) + kin.ml[k] * (kin.sin_b[k] * z1 - kin.cos_b[k] * z2)) /
@@ -108,30 +111,31 @@ Coordinates<T, N> forces(const ParamsT<T, N>& p, const State<T, N>& x, const Kin
   const T M = p.total_mass();
   const T c = p.rotor.damping;
   const T k = p.rotor.stiffness;
-  Coordinates<T, N> b;
+  const int n = kin.n;
+  Coordinates<T, N> b(kin.dofs());
   // Rotor (model.md §3, first two equations, everything but A s'' moved right).
-  b(0) = M * kin.p1 - c * (x(N + 2) - kin.w * x(1)) - k * x(0) + kin.w2 * p.rotor.unbalance;
-  b(1) = M * kin.p2 - c * (x(N + 3) + kin.w * x(0)) - k * x(1);
-  for (int i = 0; i < N; ++i) {
+  b(0) = M * kin.p1 - c * (x(n + 2) - kin.w * x(1)) - k * x(0) + kin.w2 * p.rotor.unbalance;
+  b(1) = M * kin.p2 - c * (x(n + 3) + kin.w * x(0)) - k * x(1);
+  for (int i = 0; i < n; ++i) {
     const auto j = std::size_t(i);
-    const T spin = x(N + 4 + i) + kin.w;  // absolute angular speed of ball i
+    const T spin = x(n + 4 + i) + kin.w;  // absolute angular speed of ball i
     const T centrifugal = kin.ml[j] * spin * spin;
     b(0) += centrifugal * kin.cos_b[j];
     b(1) += centrifugal * kin.sin_b[j];
     // Ball i times l_i: j m l^2 beta'' - m l (q1'' sin - q2'' cos) = l F + m l (-P1 sin + P2 cos).
-    b(2 + i) = p.balls[j].race_radius * friction_force(p, i, x(N + 4 + i)) +
+    b(2 + i) = p.balls[j].race_radius * friction_force(p, i, x(n + 4 + i)) +
                kin.ml[j] * (-kin.p1 * kin.sin_b[j] + kin.p2 * kin.cos_b[j]);
   }
   return b;
 }
 
-// (dA/dbeta_i) z for i = 0..N-1 stacked as columns 2+i of an (N+2)x(N+2) matrix
+// (dA/dbeta_i) z for i = 0..n-1 stacked as columns 2+i of an (n+2)x(n+2) matrix
 // (columns 0, 1 zero): A depends on beta_i through -m l sin beta_i (row/col 0) and
 // m l cos beta_i (row/col 1).
 template <class T, int N>
 DofMatrix<T, N> mass_derivative_times(const Kinematics<T, N>& kin, const Coordinates<T, N>& z) {
-  DofMatrix<T, N> D = DofMatrix<T, N>::Zero();
-  for (int i = 0; i < N; ++i) {
+  DofMatrix<T, N> D = DofMatrix<T, N>::Zero(kin.dofs(), kin.dofs());
+  for (int i = 0; i < kin.n; ++i) {
     const auto j = std::size_t(i);
     D(0, 2 + i) = -kin.ml[j] * kin.cos_b[j] * z(2 + i);
     D(1, 2 + i) = -kin.ml[j] * kin.sin_b[j] * z(2 + i);
@@ -145,9 +149,9 @@ DofMatrix<T, N> mass_derivative_times(const Kinematics<T, N>& kin, const Coordin
 template <class T, int N>
 DofMatrix<T, N> mass_matrix(const ParamsT<T, N>& p, const Coordinates<T, N>& s) {
   const Kinematics<T, N> kin(p, at_rest<T, N>(s));
-  DofMatrix<T, N> A = DofMatrix<T, N>::Zero();
+  DofMatrix<T, N> A = DofMatrix<T, N>::Zero(kin.dofs(), kin.dofs());
   A(0, 0) = A(1, 1) = p.total_mass();
-  for (int i = 0; i < N; ++i) {
+  for (int i = 0; i < kin.n; ++i) {
     const auto j = std::size_t(i);
     A(0, 2 + i) = A(2 + i, 0) = -kin.ml[j] * kin.sin_b[j];
     A(1, 2 + i) = A(2 + i, 1) = kin.ml[j] * kin.cos_b[j];
@@ -164,9 +168,10 @@ Coordinates<T, N> generalized_forces(const ParamsT<T, N>& p, const State<T, N>& 
 template <class T, int N>
 State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x) {
   const Kinematics<T, N> kin(p, x);
-  State<T, N> f;
-  f.template head<N + 2>() = x.template tail<N + 2>();
-  f.template tail<N + 2>() = solve_mass(p, kin, forces(p, x, kin));
+  const int d = kin.dofs();
+  State<T, N> f(2 * d);
+  f.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
+  f.template segment<dof_size<N>>(d, d) = solve_mass(p, kin, forces(p, x, kin));
   return f;
 }
 
@@ -177,12 +182,13 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
   const T c = p.rotor.damping;
   const T k = p.rotor.stiffness;
   const T w = kin.w;
+  const int n = kin.n, d = kin.dofs();
   Linearization<T, N> lin;
-  lin.mass = mass_matrix<T, N>(p, x.template head<N + 2>());
+  lin.mass = mass_matrix<T, N>(p, Coordinates<T, N>(x.template head<dof_size<N>>(d)));
   auto& C = lin.damping;
   auto& K = lin.stiffness;
-  C.setZero();
-  K.setZero();
+  C.setZero(d, d);
+  K.setZero(d, d);
   // Rotor: support damping, Coriolis (skew), support stiffness against centrifugal
   // softening, and the circulatory part of the rotating damper.
   C(0, 0) = C(1, 1) = c;
@@ -191,10 +197,10 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
   K(0, 0) = K(1, 1) = k - M * kin.w2;
   K(0, 1) = -c * w;
   K(1, 0) = c * w;
-  for (int i = 0; i < N; ++i) {
+  for (int i = 0; i < n; ++i) {
     const auto j = std::size_t(i);
     const T ml = kin.ml[j];
-    const T spin = x(N + 4 + i) + w;
+    const T spin = x(n + 4 + i) + w;
     const T s = kin.sin_b[j], co = kin.cos_b[j];
     // Centrifugal force of ball i on the rotor and its dependence on beta_i, beta_i'.
     C(0, 2 + i) = -T(2) * ml * spin * co;
@@ -208,7 +214,7 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
     K(2 + i, 1) = -ml * kin.w2 * co;
     K(2 + i, 2 + i) = ml * (kin.p1 * co + kin.p2 * s);
     // Friction: the only dissipation on the balls (model.md §4).
-    C(2 + i, 2 + i) = -p.balls[j].race_radius * friction_slope(p, i, x(N + 4 + i));
+    C(2 + i, 2 + i) = -p.balls[j].race_radius * friction_slope(p, i, x(n + 4 + i));
   }
   // Off equilibrium A depends on beta while s'' != 0: K += (dA/ds) s'' (model.md §6).
   const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
@@ -216,28 +222,35 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
   return lin;
 }
 
+// [-K, -C]: the lower block row of J before the solve with A.
+template <class T, int N>
+using LowerRows = Eigen::Matrix<T, dof_size<N>, N == any_balls ? Eigen::Dynamic : 2 * (N + 2), Eigen::ColMajor,
+                                dof_capacity<N>, 2 * dof_capacity<N>>;
+
 template <class T, int N>
 StateMatrix<T, N> jacobian(const Linearization<T, N>& lin) {
-  constexpr int n = N + 2;
-  StateMatrix<T, N> J = StateMatrix<T, N>::Zero();
-  J.template block<n, n>(0, n).setIdentity();
-  Eigen::Matrix<T, n, 2 * n> rhs;
+  constexpr int n_ = dof_size<N>;
+  const int d = int(lin.mass.rows());
+  StateMatrix<T, N> J = StateMatrix<T, N>::Zero(2 * d, 2 * d);
+  J.template block<n_, n_>(0, d, d, d).setIdentity();
+  LowerRows<T, N> rhs(d, 2 * d);
   rhs << -lin.stiffness, -lin.damping;
   // A is SPD for real T; PartialPivLU keeps complex (symmetric) A correct as well.
-  J.template block<n, 2 * n>(n, 0) = lin.mass.partialPivLu().solve(rhs);
+  J.template block<n_, LowerRows<T, N>::ColsAtCompileTime>(d, 0, d, 2 * d) = lin.mass.partialPivLu().solve(rhs);
   return J;
 }
 
 template <class T, int N>
 StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x) {
-  constexpr int n = N + 2;
+  constexpr int n_ = dof_size<N>;
   const Kinematics<T, N> kin(p, x);
+  const int d = kin.dofs();
   const Linearization<T, N> lin = linearize(p, x);
-  StateMatrix<T, N> J = StateMatrix<T, N>::Zero();
-  J.template block<n, n>(0, n).setIdentity();
-  Eigen::Matrix<T, n, 2 * n> rhs;
+  StateMatrix<T, N> J = StateMatrix<T, N>::Zero(2 * d, 2 * d);
+  J.template block<n_, n_>(0, d, d, d).setIdentity();
+  LowerRows<T, N> rhs(d, 2 * d);
   rhs << -lin.stiffness, -lin.damping;
-  J.template block<n, 2 * n>(n, 0) = solve_mass(p, kin, rhs);
+  J.template block<n_, LowerRows<T, N>::ColsAtCompileTime>(d, 0, d, 2 * d) = solve_mass(p, kin, rhs);
   return J;
 }
 
@@ -245,18 +258,20 @@ namespace {
 // db/dp and (dA/dp) s'' for one parameter: the two pieces of df/dp.
 template <class T, int N>
 struct ParameterPartials {
-  Coordinates<T, N> db = Coordinates<T, N>::Zero();
-  Coordinates<T, N> dA_accel = Coordinates<T, N>::Zero();
+  explicit ParameterPartials(int dofs) : db(Coordinates<T, N>::Zero(dofs)), dA_accel(Coordinates<T, N>::Zero(dofs)) {}
+  Coordinates<T, N> db;
+  Coordinates<T, N> dA_accel;
 };
 
 template <class T, int N>
 ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref,
                                            const Kinematics<T, N>& kin, const Coordinates<T, N>& accel) {
-  ParameterPartials<T, N> out;
+  ParameterPartials<T, N> out(kin.dofs());
   auto& db = out.db;
   auto& dA_accel = out.dA_accel;
   const T w = kin.w;
-  const T qd1 = x(N + 2), qd2 = x(N + 3);
+  const int n = kin.n;
+  const T qd1 = x(n + 2), qd2 = x(n + 3);
   // A change of M (rotor or ball mass) acts on the rotor rows of A and b alike.
   const auto add_translating_mass = [&] {
     db(0) += kin.p1;
@@ -268,8 +283,8 @@ ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T
     const auto j = std::size_t(i);
     const auto& b = p.balls[j];
     const T s = kin.sin_b[j], co = kin.cos_b[j];
-    const T spin = x(N + 4 + i) + w;
-    const T beta_dot = x(N + 4 + i);
+    const T spin = x(n + 4 + i) + w;
+    const T beta_dot = x(n + 4 + i);
     const T dF = friction_partial(p, i, beta_dot, ref.quantity);
     switch (ref.quantity) {
       case Quantity::ball_mass:
@@ -304,12 +319,12 @@ ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T
       const T dp2 = T(-2) * qd1 + T(2) * w * x(1);
       db(0) = M * dp1 + p.rotor.damping * x(1) + T(2) * w * p.rotor.unbalance;
       db(1) = M * dp2 - p.rotor.damping * x(0);
-      for (int i = 0; i < N; ++i) {
+      for (int i = 0; i < n; ++i) {
         const auto j = std::size_t(i);
-        const T spin = x(N + 4 + i) + w;
+        const T spin = x(n + 4 + i) + w;
         db(0) += T(2) * kin.ml[j] * spin * kin.cos_b[j];
         db(1) += T(2) * kin.ml[j] * spin * kin.sin_b[j];
-        db(2 + i) = p.balls[j].race_radius * friction_partial(p, i, x(N + 4 + i), Quantity::omega) +
+        db(2 + i) = p.balls[j].race_radius * friction_partial(p, i, x(n + 4 + i), Quantity::omega) +
                     kin.ml[j] * (-dp1 * kin.sin_b[j] + dp2 * kin.cos_b[j]);
       }
       break;
@@ -325,13 +340,13 @@ ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T
       break;
     case Quantity::rotor_mass: add_translating_mass(); break;
     case Quantity::kappa:
-      for (int i = 0; i < N; ++i) per_ball(i);
+      for (int i = 0; i < n; ++i) per_ball(i);
       break;
     default:
       if (ref.ball >= 0) {
         per_ball(ref.ball);
       } else {
-        for (int i = 0; i < N; ++i) per_ball(i);
+        for (int i = 0; i < n; ++i) per_ball(i);
       }
   }
   return out;
@@ -343,8 +358,8 @@ State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, P
   const Kinematics<T, N> kin(p, x);
   const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
   const ParameterPartials<T, N> d = parameter_partials(p, x, ref, kin, accel);
-  State<T, N> df = State<T, N>::Zero();
-  df.template tail<N + 2>() = solve_mass(p, kin, Coordinates<T, N>(d.db - d.dA_accel));
+  State<T, N> df = State<T, N>::Zero(2 * kin.dofs());
+  df.template segment<dof_size<N>>(kin.dofs(), kin.dofs()) = solve_mass(p, kin, Coordinates<T, N>(d.db - d.dA_accel));
   return df;
 }
 
@@ -352,7 +367,7 @@ template <class T, int N>
 Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
   const Kinematics<T, N> kin(p, x);
   // db/dp does not involve s''; the accelerations only feed the (dA/dp) s'' part.
-  return parameter_partials(p, x, ref, kin, Coordinates<T, N>(Coordinates<T, N>::Zero())).db;
+  return parameter_partials(p, x, ref, kin, Coordinates<T, N>(Coordinates<T, N>::Zero(kin.dofs()))).db;
 }
 
 template <class T, int N>
@@ -373,10 +388,11 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
   const T q = hypot(s(0), s(1));
   // Rotor: (K + iC) q = omega^2 (U + sum m l e^{i beta}); each side's largest terms.
   const T rotor = w2 * capacity + (p.rotor.stiffness + M * w2 + p.rotor.damping * p.omega) * q;
-  Coordinates<T, N> scale;
+  const int n = ball_count(p);
+  Coordinates<T, N> scale(n + 2);
   scale(0) = scale(1) = rotor;
   // Ball i: m l omega^2 (q1 sin - q2 cos); measured against the natural displacement.
-  for (int i = 0; i < N; ++i) {
+  for (int i = 0; i < n; ++i) {
     const auto& b = p.balls[std::size_t(i)];
     scale(2 + i) = b.mass * b.race_radius * w2 * (q + displacement_scale(p));
   }
@@ -398,9 +414,16 @@ ABU_INSTANTIATE_MODEL(long double, 2)
 ABU_INSTANTIATE_MODEL(std::complex<double>, 2)
 ABU_INSTANTIATE_MODEL(double, 3)
 ABU_INSTANTIATE_MODEL(std::complex<double>, 3)
+ABU_INSTANTIATE_MODEL(double, any_balls)
+ABU_INSTANTIATE_MODEL(long double, any_balls)
+ABU_INSTANTIATE_MODEL(std::complex<double>, any_balls)
 #undef ABU_INSTANTIATE_MODEL
 template Coordinates<double, 2> static_force_scale<double, 2>(const ParamsT<double, 2>&, const Coordinates<double, 2>&);
 template Coordinates<long double, 2> static_force_scale<long double, 2>(const ParamsT<long double, 2>&,
                                                                         const Coordinates<long double, 2>&);
+template Coordinates<double, any_balls> static_force_scale<double, any_balls>(const ParamsT<double, any_balls>&,
+                                                                              const Coordinates<double, any_balls>&);
+template Coordinates<long double, any_balls> static_force_scale<long double, any_balls>(
+    const ParamsT<long double, any_balls>&, const Coordinates<long double, any_balls>&);
 
 }  // namespace abu

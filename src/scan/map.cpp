@@ -116,7 +116,7 @@ void CellAnalyzer::start_column(int ix) {
 
 void CellAnalyzer::decide(Tracked& t, const Polynomial& p, const Linearization<long double, 2>& lin,
                           MapEquilibrium& m, MapCell& cell) {
-  if (method_ == CellMethod::fast && !t.equilibrium.singular && t.have_roots) {
+  if (method_ == CellMethod::fast && !t.equilibrium.singular() && t.have_roots) {
     std::complex<double> rightmost = t.rightmost;
     if (certified_abscissa(p, rightmost)) {
       // A certified abscissa below zero is stability itself; above, the Routh count gives
@@ -134,7 +134,7 @@ void CellAnalyzer::decide(Tracked& t, const Polynomial& p, const Linearization<l
   }
   // The full eigenvalues: at the first cell of a column, for singular equilibria, and
   // wherever the fast decision is not certain (close to the stability boundary).
-  const Spectrum sp = compute_spectrum(lin, SpectrumMethod::refined, t.equilibrium.singular ? 1 : 0);
+  const Spectrum sp = compute_spectrum(lin, SpectrumMethod::refined, t.equilibrium.structural_zeros);
   ++cell.fallbacks;
   t.rightmost = sp.eigenvalues[0];  // sorted: the largest real part first
   t.have_roots = true;

@@ -4,6 +4,25 @@
 
 namespace abu {
 
+Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method) {
+  return compute_spectrum(linearize(p.cast<long double>(), e.state()), method, e.structural_zeros);
+}
+
+SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, SpectrumMethod method) {
+  const auto lin = linearize(p.cast<long double>(), e.state());
+  if (!e.on_balanced_set) return compute_spectrum(lin, method, e.structural_zeros);
+  return compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position), method);
+}
+
+AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMethod method) {
+  AnalysisN a;
+  a.equilibria = find_equilibria(p, sampling);
+  const auto points = a.equilibria.points();
+  a.spectra.reserve(points.size());
+  for (const auto& e : points) a.spectra.push_back(equilibrium_spectrum(p, e, method));
+  return a;
+}
+
 Analysis analyze(const Params& p, SpectrumMethod method) {
   Analysis a;
   a.equilibria = find_equilibria(p);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "abu/scan/scan.hpp"
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/io/scene.hpp"
 #include "abu/linear/spectrum.hpp"

@@ -14,15 +14,15 @@ trap 'rm -rf "$work"' EXIT
 "$bin" equilibria "$scene" --format csv >"$work/eq.csv" 2>"$work/eq.err"
 check "equilibria csv exits 0" "[ $? -eq 0 ]"
 header=$(grep -v '^#' "$work/eq.csv" | head -1)
-expected="family,q1,q2,beta1,beta2,residual,spectral_abscissa,stable"
+expected="family,pattern,member,q1,q2,beta1,beta2,residual,spectral_abscissa,stable,n_structural_zero"
 for k in 1 2 3 4 5 6 7 8; do expected="$expected,re$k,im$k"; done
 check "csv header is the documented one" "[ \"$header\" = \"$expected\" ]"
 check "default scene has 6 equilibria" "[ $(grep -v '^#' "$work/eq.csv" | tail -n +2 | wc -l) -eq 6 ]"
-check "every row has 24 fields" "[ -z \"\$(grep -v '^#' "$work/eq.csv" | awk -F, 'NF != 24')\" ]"
+check "every row has 27 fields" "[ -z \"\$(grep -v '^#' "$work/eq.csv" | awk -F, 'NF != 27')\" ]"
 check "no nan or inf in the csv" "! grep -v '^#' '$work/eq.csv' | grep -qiE 'nan|inf'"
 check "families in order balanced, together, opposite" \
   "[ \"\$(grep -v '^#' '$work/eq.csv' | tail -n +2 | cut -d, -f1 | uniq | tr '\n' ' ')\" = 'balanced together opposite ' ]"
-check "angles in [0, 2pi)" "grep -v '^#' '$work/eq.csv' | tail -n +2 | awk -F, '\$4 < 0 || \$4 >= 6.283185307179586 || \$5 < 0 || \$5 >= 6.283185307179586 {exit 1}'"
+check "angles in [0, 2pi)" "grep -v '^#' '$work/eq.csv' | tail -n +2 | awk -F, '\$6 < 0 || \$6 >= 6.283185307179586 || \$7 < 0 || \$7 >= 6.283185307179586 {exit 1}'"
 
 # --- other formats, -o -----------------------------------------------------------------
 "$bin" equilibria "$scene" --format json >"$work/eq.json"
@@ -128,7 +128,17 @@ law = "none"
 [speed]
 omega = 900.0
 TOML
-bad "three balls: not supported yet" equilibria "$work/three.toml" -o out.csv
+"$bin" equilibria "$work/three.toml" --format csv -o "$work/three.csv"
+check "three balls: equilibria exits 0" "[ $? -eq 0 ]"
+expected="family,pattern,member,q1,q2,beta1,beta2,beta3,residual,spectral_abscissa,stable,n_structural_zero"
+for k in $(seq 10); do expected="$expected,re$k,im$k"; done
+check "three balls: the header names every ball and all 10 eigenvalues" \
+  "[ \"\$(grep -v '^#' '$work/three.csv' | head -1)\" = \"$expected\" ]"
+# Friction none, c > 0: 8 aligned patterns x 2 roots? Only where C|S| < U|K + iC|; the balanced
+# samples carry 2 (n - 2) = 2 structural zeros each.
+check "three balls: balanced samples have 2 structural zeros (friction none)" \
+  "grep -v '^#' '$work/three.csv' | awk -F, '\$1 == \"balanced\" && \$12 != 2 {exit 1} \$1 == \"balanced\" {n++} END {exit n == 0}'"
+bad "three balls: continue not supported yet" continue "$work/three.toml" --param omega --to 1000 -o out
 grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
 
 finish

@@ -687,7 +687,7 @@ def _compare_row(p, e, n, r, rtol, out):
     notes = []
     Qs = p.displacement_scale()
     try:
-        vals = {key: float(r[key]) for key in r if key not in ("family", None) and r[key] not in (None, "")}
+        vals = {key: float(r[key]) for key in r if key not in ("family", "pattern", None) and r[key] not in (None, "")}
     except ValueError as ex:
         print(f"FAIL row {n} ({e.family}): unreadable number: {ex}", file=out)
         return False

@@ -3,16 +3,22 @@
 //
 // The parameter structs are templated on the scalar so that the model can be evaluated
 // in double (fast path), long double (refinement), and std::complex<double>
-// (complex-step derivative checks) from one set of equations.
+// (complex-step derivative checks) from one set of equations, and on the ball count N:
+// a compile-time count (N = 2, the analyzer's fixed-size hot path) or `any_balls`, a
+// count known at run time, at most `max_balls`, kept in bounded storage (no heap).
 //
 //   abu::Params p = abu::params_of<2>(scene);
 //   abu::set(p, *abu::parse_param("omega", 2), 1200.0);
+//   abu::ParamsN pn = abu::params_of<abu::any_balls>(scene);   // any 2 <= n <= 12
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <stdexcept>
 #include <string_view>
+#include <type_traits>
 
 namespace abu {
 
@@ -42,6 +48,43 @@ struct BallT {
   }
 };
 
+/// The analyzer's bound on the number of balls (real balancers carry 3 to 12).
+inline constexpr int max_balls = 12;
+/// N for a ball count known only at run time. Equal to Eigen::Dynamic, so that the
+/// model's matrix types become bounded-dynamic: fixed storage for max_balls, no heap.
+inline constexpr int any_balls = -1;
+/// Storage for N balls: N itself, or max_balls for a run-time count.
+template <int N>
+inline constexpr int ball_capacity = N == any_balls ? max_balls : N;
+
+/// Up to max_balls balls in fixed storage: the ball list of a run-time ball count.
+/// Invariant: 0 <= size() <= max_balls.
+template <class B>
+class BoundedBalls {
+ public:
+  std::size_t size() const { return count_; }
+  /// Sets the count; the new balls are value-initialized. Throws std::length_error
+  /// beyond max_balls (scenes are checked before, so this is a programming error).
+  void resize(std::size_t n);
+  B& operator[](std::size_t i) { return items_[i]; }
+  const B& operator[](std::size_t i) const { return items_[i]; }
+  B* begin() { return items_.data(); }
+  B* end() { return items_.data() + count_; }
+  const B* begin() const { return items_.data(); }
+  const B* end() const { return items_.data() + count_; }
+
+ private:
+  std::array<B, max_balls> items_{};
+  std::size_t count_ = 0;
+};
+
+template <class B>
+void BoundedBalls<B>::resize(std::size_t n) {
+  if (n > std::size_t(max_balls)) throw std::length_error("BoundedBalls: more than max_balls balls");
+  for (std::size_t i = count_; i < n; ++i) items_[i] = B{};
+  count_ = n;
+}
+
 /// Jeffcott rotor on an isotropic elastic support (model.md §1).
 template <class T>
 struct RotorT {
@@ -56,15 +99,17 @@ struct RotorT {
   }
 };
 
-/// Everything the vector field of model.md §3 depends on, for N balls.
+/// Everything the vector field of model.md §3 depends on, for N balls (N = any_balls:
+/// as many as `balls` holds).
 template <class T, int N>
 struct ParamsT {
-  static constexpr int balls_count = N;
   RotorT<T> rotor{};
   T omega{};  ///< spin speed [rad/s]
   FrictionLaw law = FrictionLaw::none;
   T kappa{};  ///< arctan sharpness of coulomb/stribeck [s/rad]
-  std::array<BallT<T>, N> balls{};
+  std::conditional_t<N == any_balls, BoundedBalls<BallT<T>>, std::array<BallT<T>, std::size_t(N < 0 ? 0 : N)>> balls{};
+
+  int n_balls() const { return int(balls.size()); }
 
   /// M = M_r + sum m_i, the translating mass.
   T total_mass() const {
@@ -80,13 +125,27 @@ struct ParamsT {
     p.omega = U(omega);
     p.law = law;
     p.kappa = U(kappa);
-    for (int i = 0; i < N; ++i) p.balls[std::size_t(i)] = balls[std::size_t(i)].template cast<U>();
+    if constexpr (N == any_balls) p.balls.resize(balls.size());
+    for (std::size_t i = 0; i < balls.size(); ++i) p.balls[i] = balls[i].template cast<U>();
     return p;
   }
 };
 
+/// The number of balls: the constant N, or the run-time count for N = any_balls (so
+/// that loops over the balls of a fixed-size model keep a compile-time bound).
+template <class T, int N>
+constexpr int ball_count(const ParamsT<T, N>& p) {
+  if constexpr (N == any_balls) {
+    return p.n_balls();
+  } else {
+    return N;
+  }
+}
+
 /// The two-ball model: the analyzer's fixed-size hot path.
 using Params = ParamsT<double, 2>;
+/// Any number of balls, 2 <= n <= max_balls, in bounded storage.
+using ParamsN = ParamsT<double, any_balls>;
 
 /// What a parameter symbol refers to.
 enum class Quantity {

@@ -53,11 +53,13 @@ std::filesystem::path plots_dir();
 void run_gnuplot(const std::filesystem::path& script,
                  const std::vector<std::pair<std::string, std::string>>& variables);
 
-/// "key=value" list of every parameter of a two-ball model in model.md symbols.
-std::string describe_parameters(const Params& p);
+/// "key=value" list of every parameter in model.md symbols (N = 2 or any_balls).
+template <int N>
+std::string describe_parameters(const ParamsT<double, N>& p);
 
 /// The comment block on top of every output file: program and version, the command
 /// line, the scene and every parameter value used. Lines start with "# ".
-std::string provenance_header(std::string_view command_line, std::string_view scene_file, const Params& p);
+template <int N>
+std::string provenance_header(std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p);
 
 }  // namespace abu

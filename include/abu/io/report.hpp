@@ -16,15 +16,23 @@ namespace abu {
 /// Column documentation shared by the CSV files.
 std::string_view equilibrium_columns_doc();
 
-/// `family,q1,q2,beta1,beta2,residual,spectral_abscissa,stable,re1,im1,...,re8,im8`.
+/// `family,pattern,member,q1,q2,beta1..beta<n>,residual,spectral_abscissa,stable,n_structural_zero,
+/// re1,im1,...,re<2n+4>,im<2n+4>` (readers go by the header's names).
 std::string equilibria_csv(const Analysis& a, std::string_view header);
+std::string equilibria_csv(const AnalysisN& a, std::string_view header, int n_balls);
+/// JSON; for n >= 3 balls with a `balanced_set` object (dimension, grid, samples,
+/// fraction normally stable, extreme normal abscissae).
 std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
                             const Params& p);
+std::string equilibria_json(const AnalysisN& a, std::string_view command_line, std::string_view scene_file,
+                            const ParamsN& p);
 std::string equilibria_table(const Analysis& a, const Params& p);
+std::string equilibria_table(const AnalysisN& a, const ParamsN& p);
 
 /// Long format, one row per equilibrium per value, ordered by family, member, value so
 /// that each member of a family is one contiguous series:
-/// `step,<param>,family,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,re1,...,im8`.
+/// `step,<param>,family,pattern,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,
+/// n_structural_zero,re1,...,im8`.
 std::string sweep_csv(const SweepResult& s, std::string_view header);
 
 /// Continuation: one row per branch point,
@@ -44,5 +52,6 @@ std::string continuation_warnings(const ContinuationRun& run);
 /// Warnings for the user (stderr): equilibria whose polish or spectrum did not
 /// converge, ill-conditioned spectra; `where` says at which parameter value.
 std::string analysis_warnings(const Analysis& a, std::string_view where);
+std::string analysis_warnings(const AnalysisN& a, std::string_view where);
 
 }  // namespace abu

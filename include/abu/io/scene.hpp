@@ -61,8 +61,8 @@ void apply_override(Scene& scene, std::string_view assignment);
 /// Throws InputError(origin, 0, symbol, rule) and leaves the scene unchanged then.
 void set_checked(Scene& scene, ParamRef ref, double value, const std::string& origin);
 
-/// The fixed-size parameter set for N balls; throws NotSupportedError if the scene
-/// has another number of balls. Instantiated for N = 2 and N = 3.
+/// The parameter set for N balls; throws NotSupportedError if the scene has another
+/// number of balls. Instantiated for N = 2, N = 3 and N = any_balls (any count).
 template <int N>
 ParamsT<double, N> params_of(const Scene& scene);
 

@@ -11,7 +11,9 @@
 // det(lambda^2 A + lambda C + K) = 0 (see spectrum.hpp); `jacobian` assembles the
 // first-order J = [[0, I], [-A^-1 K, -A^-1 C]] from it. Everything is templated on the
 // scalar: double, long double (refinement) and std::complex<double> (complex-step
-// checks), instantiated for N = 2 and N = 3 balls.
+// checks), and on the ball count: N = 2 (fixed-size types, the hot path), N = 3 (tests)
+// and N = any_balls (bounded-dynamic types: the size is 2 n + 4 at run time, the
+// storage that of max_balls, so no evaluation allocates).
 //
 //   abu::State<double, 2> x = ...;
 //   auto f = abu::vector_field(p, x);
@@ -25,14 +27,31 @@
 
 namespace abu {
 
+static_assert(any_balls == Eigen::Dynamic, "a run-time ball count maps to Eigen's Dynamic sizes");
+/// Compile-time sizes (Eigen::Dynamic for a run-time count) and storage bounds.
+template <int N>
+inline constexpr int dof_size = N == any_balls ? Eigen::Dynamic : N + 2;
+template <int N>
+inline constexpr int dof_capacity = ball_capacity<N> + 2;
+template <int N>
+inline constexpr int state_size = N == any_balls ? Eigen::Dynamic : 2 * N + 4;
+template <int N>
+inline constexpr int state_capacity = 2 * ball_capacity<N> + 4;
+
 template <class T, int N>
-using Coordinates = Eigen::Matrix<T, N + 2, 1>;  ///< s = (q1, q2, beta_1..beta_N)
+using Coordinates = Eigen::Matrix<T, dof_size<N>, 1, Eigen::ColMajor, dof_capacity<N>, 1>;  ///< s = (q1, q2, beta_1..beta_n)
 template <class T, int N>
-using State = Eigen::Matrix<T, 2 * N + 4, 1>;  ///< x = (s, s')
+using State = Eigen::Matrix<T, state_size<N>, 1, Eigen::ColMajor, state_capacity<N>, 1>;  ///< x = (s, s')
 template <class T, int N>
-using DofMatrix = Eigen::Matrix<T, N + 2, N + 2>;
+using DofMatrix = Eigen::Matrix<T, dof_size<N>, dof_size<N>, Eigen::ColMajor, dof_capacity<N>, dof_capacity<N>>;
 template <class T, int N>
-using StateMatrix = Eigen::Matrix<T, 2 * N + 4, 2 * N + 4>;
+using StateMatrix =
+    Eigen::Matrix<T, state_size<N>, state_size<N>, Eigen::ColMajor, state_capacity<N>, state_capacity<N>>;
+
+/// An orthonormal basis of directions along a set of equilibria (the balanced set of
+/// n >= 3 balls), in configuration space: n + 2 rows, one column per direction.
+using TangentBasis =
+    Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, max_balls + 2, max_balls>;
 
 /// Second-order linearization A ds'' + C ds' + K ds = 0 about a state (model.md §6).
 /// C holds the support damping, the friction slopes and the gyroscopic (skew) coupling;
@@ -93,8 +112,8 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
 /// The state (s, 0) of a configuration at rest.
 template <class T, int N>
 State<T, N> at_rest(const Coordinates<T, N>& s) {
-  State<T, N> x = State<T, N>::Zero();
-  x.template head<N + 2>() = s;
+  State<T, N> x = State<T, N>::Zero(2 * s.size());
+  x.template head<dof_size<N>>(s.size()) = s;
   return x;
 }
 

@@ -2,7 +2,8 @@
 // spectra) and one-parameter sweeps on a plain grid. Continuation (continuation.hpp)
 // follows branches instead; maps cover two parameters.
 //
-//   abu::Analysis a = abu::analyze(p);                  // one parameter point
+//   abu::Analysis a = abu::analyze(p);                  // one parameter point (two balls)
+//   abu::AnalysisN an = abu::analyze(pn);               // any number of balls
 //   auto values = abu::grid_values(100, 2000, 190, false);
 //   abu::SweepResult s = abu::sweep(p, *abu::parse_param("omega", 2), values);
 #pragma once
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "abu/equilibria/equilibria.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/spectrum.hpp"
 
 namespace abu {
@@ -23,6 +25,20 @@ struct Analysis {
 };
 
 Analysis analyze(const Params& p, SpectrumMethod method = SpectrumMethod::refined);
+
+/// The same for any number of balls (spectra[i] belongs to equilibria.points()[i]).
+struct AnalysisN {
+  EquilibriumSetN equilibria;
+  std::vector<SpectrumN> spectra;
+};
+AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling = {},
+                  SpectrumMethod method = SpectrumMethod::refined);
+
+/// Spectrum at an equilibrium (linearized in long double at its exact position); on the
+/// balanced set of n >= 3 balls the tangent directions are deflated (structural zeros,
+/// normal stability: spectrum.hpp, compute_normal_spectrum).
+Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method = SpectrumMethod::refined);
+SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, SpectrumMethod method = SpectrumMethod::refined);
 
 /// steps + 1 values from `from` to `to` (both included exactly), evenly spaced, or
 /// evenly spaced in log if `logarithmic`.
