@@ -523,8 +523,9 @@ TEST_CASE("scene ring: ring errors name their line and key", "[scene][ring]") {
   const std::string ball_table = "[[ball]]\nmass = 3.3e-5\nrace_radius = 0.018\nradius = 1.0e-3\n";
   const Case cases[] = {
       {"[[ball]] after [balls]", ring_plus(ball_table), 18, "ball", "exclude each other"},
-      {"[balls] after [[ball]]", std::string(kBase) + "[balls]\ncount = 3\nmass = 3.3e-5\nrace_radius = 0.018\nradius = 1.0e-3\n", 21,
-       "balls", "exclude each other"},
+      {"[balls] after [[ball]]",
+       std::string(kBase) + "[balls]\ncount = 3\nmass = 3.3e-5\nrace_radius = 0.018\nradius = 1.0e-3\n", 21, "balls",
+       "exclude each other"},
       {"missing count", ring_with(8, ""), 7, "balls.count", "missing required key"},
       {"count 1", ring_with(8, "count = 1"), 8, "balls.count", "at least 2 balls are required, got 1"},
       {"count 0", ring_with(8, "count = 0"), 8, "balls.count", "at least 2 balls are required, got 0"},
@@ -573,7 +574,8 @@ TEST_CASE("scene ring: ring errors name their line and key", "[scene][ring]") {
       {"mu on one ball only", ring_with(14, "", ovr + "mu = 0.004\n"), 12, "friction.mu",
        "per-ball values replace it only if every ball has one, and ball 1 of the [balls] ring has none"},
       {"no balls at all",
-       "[rotor]\nmass = 0.12\nstiffness = 7500.0\ndamping = 2.0\nunbalance = 6.0e-7\n[friction]\nlaw = \"none\"\n[speed]\nomega = 900.0\n",
+       "[rotor]\nmass = 0.12\nstiffness = 7500.0\ndamping = 2.0\nunbalance = 6.0e-7\n"
+       "[friction]\nlaw = \"none\"\n[speed]\nomega = 900.0\n",
        9, "ball", "at least 2 balls are required ([[ball]] tables or a [balls] ring), got 0"},
   };
   for (const auto& c : cases) {
@@ -697,7 +699,8 @@ TEST_CASE("scene ring: set_ball_count refuses and leaves the scene unchanged", "
   }
   SECTION("a coefficient that only overrides gave") {
     // No mu in [friction] or [balls]: both balls have their own, a third would have none.
-    const std::string text = ring_with(14, "", "[[balls.override]]\nball = 1\nmu = 0.003\n[[balls.override]]\nball = 2\nmu = 0.004\n");
+    const std::string text =
+        ring_with(14, "", "[[balls.override]]\nball = 1\nmu = 0.003\n[[balls.override]]\nball = 2\nmu = 0.004\n");
     abu::Scene s = abu::parse_scene(edit(text, "count = 3", "count = 2"), "ring.toml");
     CHECK(s.balls[0].mu == 0.003);
     CHECK(s.balls[1].mu == 0.004);

@@ -186,8 +186,8 @@ std::optional<std::int64_t> read_integer(Problems& p, const std::string& key, co
   std::string got = describe(node);
   if (const auto* f = node.as_floating_point()) {
     const double x = f->get();
-    got = std::isfinite(x) && x == std::floor(x) && std::abs(x) < 1e15 ? fmt::format("the floating-point number {:.1f}", x)
-                                                                        : fmt::format("the floating-point number {}", x);
+    const bool whole = std::isfinite(x) && x == std::floor(x) && std::abs(x) < 1e15;  // show 11.0 as "11.0"
+    got = whole ? fmt::format("the floating-point number {:.1f}", x) : fmt::format("the floating-point number {}", x);
   }
   p.add(pos, key, fmt::format("must be an integer ({}), got {}", what, got));
   return std::nullopt;
@@ -325,7 +325,8 @@ RingInput read_ring(Problems& p, const toml::table& table) {
       override_array = node.as_array();
       if (!all_tables(override_array)) {
         const std::string got = node.is_table() ? std::string("a single table [balls.override]") : describe(node);
-        p.add(pos, key, fmt::format("must be an array of tables ([[balls.override]], one per ball that differs), got {}", got));
+        p.add(pos, key,
+              fmt::format("must be an array of tables ([[balls.override]], one per ball that differs), got {}", got));
         override_array = nullptr;
       }
     } else {
@@ -397,8 +398,8 @@ RingInput read_ring(Problems& p, const toml::table& table) {
                            : fmt::format("must be >= 1 (a ball of the ring, 1-based), got {}", *o.ball));
         else if (same != ring.overrides.end())
           p.add(o.ball_pos, key,
-                fmt::format("ball {} is already overridden at line {}: at most one [[balls.override]] per ball", *o.ball,
-                            same->ball_pos.line));
+                fmt::format("ball {} is already overridden at line {}: at most one [[balls.override]] per ball",
+                            *o.ball, same->ball_pos.line));
         else
           o.valid_ball = true;
       }
@@ -449,8 +450,8 @@ void check_fit(Problems& p, const BallInput& b) {
   const Slot* r = find(b.slots, "radius");
   const Slot* l = find(b.slots, "race_radius");
   if (!r->value || !l->value || *r->value < *l->value) return;
-  const std::string which =
-      b.ring_index && (r->from_override || l->from_override) ? fmt::format(" for ball {} of the ring", b.ring_index) : "";
+  const bool overridden = b.ring_index && (r->from_override || l->from_override);
+  const std::string which = overridden ? fmt::format(" for ball {} of the ring", b.ring_index) : "";
   if (l->from_override && !r->from_override)
     p.add(l->pos, l->key,
           fmt::format("must be > radius, as radius < race_radius (got race_radius {} <= radius {}){}", *l->value,
@@ -849,8 +850,7 @@ void set_checked(Scene& scene, ParamRef ref, double value, const std::string& or
   auto& overrides = ring.overrides;
   if (ref.ball < 0) {
     field(ring.ball, f) = value;
-    overrides.erase(std::remove_if(overrides.begin(), overrides.end(), [&](const RingOverride& o) { return o.field == f; }),
-                    overrides.end());
+    std::erase_if(overrides, [&](const RingOverride& o) { return o.field == f; });
     if (f == BallField::mass) {
       ring.total_mass_held = false;
       ring.total_mass = 0.0;
