@@ -55,7 +55,9 @@
 // - set_ball_count(scene, n, origin) rebuilds `balls` with n balls: the template (mass
 //   held: every ball keeps m; total mass held: m = total_mass / n) and the overrides of
 //   balls 1..n; overrides of balls beyond n stay in the ring, inactive, and apply again
-//   when the count grows back. Every rule is re-checked on the new balls.
+//   when the count grows back. Every rule is re-checked on the new balls (set_checked
+//   checks only the balls there are: an inactive override that no longer fits, say a
+//   race radius below a radius set since, is reported by set_ball_count, key `n`).
 //
 //   abu::Scene scene = abu::load_scene("data/scenes/default.toml");
 //   abu::apply_override(scene, "omega=1200");
