@@ -2,31 +2,72 @@
 //
 //   rolling = true       # optional, default true: j = 7/5 (rolling sphere); false: j = 1
 //   [rotor]    mass = 0.12  stiffness = 7500.0  damping = 2.0  unbalance = 6.0e-7
-//   [[ball]]   mass = 3.3e-5  race_radius = 0.018  radius = 1.0e-3   # one table per ball, >= 2
+//   [[ball]]   mass = 3.3e-5  race_radius = 0.018  radius = 1.0e-3   # one table per ball, 2..12
 //              optional per ball: rolling, and the coefficients mu d mu_c mu_s v_s
 //   [friction] law = "coulomb"  mu = 0.002  kappa = 1.0e3
 //              none: -   viscous: d   coulomb: mu kappa   stribeck: mu_c mu_s v_s kappa
 //   [speed]    omega = 900.0
 //
+// Instead of the [[ball]] tables (never both), a ring of `count` equal balls:
+//
+//   [balls]    count = 11          # an integer 2..12 (11.0 is not an integer)
+//              mass = 3.3e-5       # per ball, OR total_mass = 3.63e-4 (m = total_mass / count)
+//              race_radius = 0.018  radius = 1.0e-3
+//              optional: rolling (overrides the top-level one), mu d mu_c mu_s v_s
+//   [[balls.override]]             # optional, any number: one ball that differs
+//              ball = 3            # 1-based, 1..count, each ball at most once
+//              any key of a [[ball]] table: mass race_radius radius rolling mu d mu_c mu_s v_s
+//
+// The ring is expanded into Scene::balls (ball i = the template, then its override), so
+// code that reads `balls` does not know the difference; Scene::ring keeps the ring itself,
+// so that the ball count can be changed later (set_ball_count). On a total_mass ring an
+// override's mass replaces only that ball's mass (the balls then no longer sum to
+// total_mass). A friction coefficient of [balls] overrides [friction]'s for the ring.
+//
 // Rules: every key above is required unless marked optional; unknown keys and tables,
 // wrong types (booleans and strings are not numbers; integers are reals), non-finite
 // numbers and values outside range_violation() are errors, as is radius >= race_radius.
-// A coefficient the law does not use is an error, in [friction] or per ball; a per-ball
-// coefficient stands in for a missing [friction] one only if every ball has it, and
-// otherwise overrides it for that ball.
+// A scene has 2..12 balls (kSceneMinBalls..kSceneMaxBalls, the analyzer's bound,
+// model.md §13): a 13th [[ball]] table is an error at its header line. A coefficient the
+// law does not use is an error, in [friction] or per ball; a per-ball coefficient (of a
+// [[ball]] table, of [balls], or of an override) stands in for a missing [friction] one
+// only if every ball has it, and otherwise overrides it for that ball. For a ring every
+// rule is checked on the expanded balls and reported at the key that set the value: a
+// radius >= race_radius at the radius, unless only race_radius came from an override.
 //
 // Loading validates everything up front and reports the violation that comes first in
 // the file as one InputError (file as given, 1-based line, dotted key such as
-// `rotor.mass`, `ball[2].radius` (1-based), `friction.law`, and the rule). A missing key
-// is reported at its table's header line; a missing table (or no [[ball]] at all) at
-// the last line of the file; a TOML syntax error at toml++'s line with an empty key; an
-// unreadable file at line 0 with an empty key. Nothing downstream re-checks the file.
+// `rotor.mass`, `ball[2].radius` (1-based), `balls.count`, `balls.override[1].mass` (the
+// first [[balls.override]] table), `friction.law`, and the rule). A missing key is
+// reported at its table's header line (`balls.mass` if neither mass nor total_mass is
+// given); both mass and total_mass, or both [balls] and [[ball]], at the later of the
+// two; a missing table (or no balls at all) at the last line of the file; a TOML syntax
+// error at toml++'s line with an empty key; an unreadable file at line 0 with an empty
+// key. Nothing downstream re-checks the file.
+//
+// Changing a ring scene keeps the ring consistent with `balls`:
+// - set_checked / apply_override of an every-ball symbol (m l r mu d mu_c mu_s v_s) sets
+//   the ring's template and drops the ring's overrides of that field (also inactive
+//   ones): every ball has the value. `m` on a total_mass ring switches the ring to mass
+//   held (total_mass_held = false): the count no longer divides the mass.
+// - a one-ball symbol (m3, l2, ...) is recorded as a RingOverride of the ring (replacing
+//   an earlier one of the same ball and field), with the caller's origin and line 0.
+// - set_ball_count(scene, n, origin) rebuilds `balls` with n balls: the template (mass
+//   held: every ball keeps m; total mass held: m = total_mass / n) and the overrides of
+//   balls 1..n; overrides of balls beyond n stay in the ring, inactive, and apply again
+//   when the count grows back. Every rule is re-checked on the new balls (set_checked
+//   checks only the balls there are: an inactive override that no longer fits, say a
+//   race radius below a radius set since, is reported by set_ball_count, key `n`).
 //
 //   abu::Scene scene = abu::load_scene("data/scenes/default.toml");
 //   abu::apply_override(scene, "omega=1200");
 //   abu::Params p = abu::params_of<2>(scene);
+//
+//   abu::Scene ring = abu::load_scene("data/scenes/ring11.toml");
+//   abu::set_ball_count(ring, 6, "--n");   // ring.balls.size() == 6
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -35,7 +76,37 @@
 
 namespace abu {
 
-/// A validated scene, for any number of balls (>= 2).
+/// The number of balls a scene may have.
+inline constexpr int kSceneMinBalls = 2;
+inline constexpr int kSceneMaxBalls = max_balls;  ///< the analyzer's bound (model.md §13)
+
+/// A field of BallT that a ring override sets. `inertia_factor` is the file's `rolling`
+/// (value 7/5 rolling, 1 sliding).
+enum class BallField { mass, race_radius, radius, inertia_factor, mu, d, mu_c, mu_s, v_s };
+
+/// One ball of a ring that differs from the template in one field.
+struct RingOverride {
+  int ball = 0;  ///< 0-based index in the ring (the file's `ball = 3` is 2); may be >= count (inactive)
+  BallField field = BallField::mass;
+  double value = 0.0;
+  std::string origin;  ///< the scene file, or set_checked's origin ("--set", ...)
+  int line = 0;        ///< 1-based line of the key in `origin`; 0 if not from a file
+  std::string key;     ///< what set it: "balls.override[2].mass", or a symbol such as "m3"
+};
+
+/// The [balls] shorthand of a scene: `count` copies of one ball, some overridden.
+struct BallRing {
+  int count = 0;
+  /// Every ball not overridden, friction coefficients resolved ([balls]' own, else
+  /// [friction]'s; 0 for a coefficient the law does not use; NaN for one the law uses that
+  /// only overrides give). mass is the per-ball mass (total_mass / count if that is held).
+  BallT<double> ball{};
+  bool total_mass_held = false;  ///< the file gave total_mass (m follows the count)
+  double total_mass = 0.0;       ///< the sum of the template masses, if total_mass_held
+  std::vector<RingOverride> overrides;  ///< in file order, then in order of setting
+};
+
+/// A validated scene, for any number of balls (2..12).
 struct Scene {
   std::string file;  ///< the path as given, for messages
   RotorT<double> rotor{};
@@ -43,12 +114,17 @@ struct Scene {
   FrictionLaw law = FrictionLaw::none;
   double kappa = 0.0;                ///< only meaningful for coulomb / stribeck
   std::vector<BallT<double>> balls;  ///< friction coefficients already resolved per ball
+  std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion
 };
 
 /// Reads and validates a scene file. Throws InputError (also for an unreadable file).
 Scene load_scene(const std::string& path);
 /// Parses scene text; `file` is used in messages only.
 Scene parse_scene(std::string_view text, const std::string& file);
+
+/// The balls of a ring: ring.count copies of ring.ball (mass total_mass / count if that
+/// is held), then the overrides of balls < count applied in order. Checks nothing.
+std::vector<BallT<double>> ring_balls(const BallRing& ring);
 
 /// Applies one `NAME=VALUE` command-line override (NAME a model.md symbol, see
 /// param_symbols_help(); VALUE a finite real, the whole string) and re-validates.
@@ -58,8 +134,15 @@ void apply_override(Scene& scene, std::string_view assignment);
 
 /// Sets a parameter of the scene by reference, checking its physical range, that the
 /// scene's friction law uses it, the ball index, and radius < race_radius for `r`/`l`.
+/// On a ring scene the ring follows (see the top of this file).
 /// Throws InputError(origin, 0, symbol, rule) and leaves the scene unchanged then.
 void set_checked(Scene& scene, ParamRef ref, double value, const std::string& origin);
+
+/// Rebuilds the balls of a [balls] ring scene with `count` balls (see the top of this
+/// file) and re-checks them. Throws InputError(origin, 0, "n", rule) if the scene has no
+/// ring, count is outside 2..12, or a ball of the new ring breaks a rule; the scene is
+/// unchanged then.
+void set_ball_count(Scene& scene, int count, const std::string& origin);
 
 /// The parameter set for N balls; throws NotSupportedError if the scene has another
 /// number of balls. Instantiated for N = 2, N = 3 and N = any_balls (any count).
