@@ -113,12 +113,23 @@ class Params:
         """(U + sum m_i l_i) / M, the rotor displacement the ball set and unbalance make."""
         return self.capacity() / self.M()
 
-    def structural_zero_count(self, rank_dW=2):
-        """Zero eigenvalues by construction at a balanced point where dW has this rank
-        (2 generically, 1 where all balls are collinear): dim ker dW, twice that for the
-        Jordan pairs of friction none (model-extensions §13.4)."""
-        z = self.n - rank_dW
-        return 2 * z if self.law == "none" else z
+    def structural_zero_count(self, betas=None):
+        """Zero eigenvalues by construction at the balanced point betas (model-extensions §13.4):
+        dim ker dW (n - 2 generically, n - 1 where all balls are collinear), plus one Jordan
+        partner (0, delta) -> (delta, 0) for every tangent delta that moves only balls whose
+        friction slope at rest is 0: dim ker of dW restricted to those balls. So n - 2 for
+        viscous / coulomb / stribeck with nonzero coefficients and 2(n - 2) for friction none.
+        betas None: a generic (non-collinear) point."""
+        idx_all = list(range(self.n))
+        free = [i for i in idx_all if friction_slope0(self, i) == 0]
+
+        def kernel_dim(idx):
+            if not idx:
+                return 0
+            if betas is None:
+                return len(idx) - min(2, len(idx))
+            return len(idx) - dW_rank(self, betas, idx)
+        return kernel_dim(idx_all) + kernel_dim(free)
 
     def check(self):
         def need(name, v, positive):
@@ -159,11 +170,14 @@ class Params:
                 t += f" {key}={getattr(b, key)!r}"
             return t
         texts = [ball_text(b) for b in self.balls]
-        if len(set(texts)) == 1:
-            s += f"\n#   balls 1..{self.n}: {texts[0]}"
-        else:
-            for i, t in enumerate(texts, 1):
-                s += f"\n#   ball {i}: {t}"
+        for t in dict.fromkeys(texts):          # one line per distinct ball, in first-seen order
+            idx = [i for i, u in enumerate(texts, 1) if u == t]
+            runs, start = [], idx[0]
+            for a_, b_ in zip(idx, idx[1:] + [None]):
+                if b_ != a_ + 1:
+                    runs.append(f"{start}" if start == a_ else f"{start}-{a_}")
+                    start = b_
+            s += f"\n#   ball{'s' if len(idx) > 1 else ''} {','.join(runs)}: {t}"
         return s
 
 
@@ -494,12 +508,37 @@ def sort_eigenvalues(ev, rel=None):
     return out + sorted(group, key=lambda v: -v.imag)
 
 
-def eigenvalues(J):
+def eigenvalues(J, scales=None):
     """All eigenvalues (mp.eig at the current precision), sorted. J is real, so an imaginary
-    part below rounding level (10^(10 - dps) |lambda|) is set to exactly 0."""
+    part below rounding level (10^(10 - dps) |lambda|) is set to exactly 0.
+
+    scales: optional per-coordinate scales d; mp.eig then runs on the similar matrix
+    D^-1 J D (same eigenvalues; better graded). mp's Hessenberg QR deflates only when a
+    subdiagonal falls below eps/(100 n) of its diagonal neighbours, which the rounding of a
+    stiff matrix (entries ~1e6 next to eigenvalues ~1e-4) occasionally never reaches
+    (seen once in 15 rows of the n = 11 scene at 80 digits): then it is retried at 7 and 13
+    more digits (the rounding pattern changes; the values are as exact as before)."""
+    D = J.rows
+    if scales is not None:
+        Js = mp.zeros(D, D)
+        for i in range(D):
+            for j in range(D):
+                Js[i, j] = J[i, j] * scales[j] / scales[i]
+    else:
+        Js = J
+    raw = None
+    for extra in (0, 7, 13):
+        try:
+            with mp.extradps(extra):
+                raw = [mpc(z) for z in mp.eig(Js, left=False, right=False)]
+            break
+        except RuntimeError:
+            continue
+    if raw is None:
+        raise RuntimeError("mp.eig: QR failed to converge at three precisions")
     ev = []
-    for z in mp.eig(J, left=False, right=False):
-        z = mpc(z)
+    for z in raw:
+        z = mpc(+z.real, +z.imag)        # round back to the working precision
         if abs(z.imag) <= mpf(10) ** (-(mp.dps - 10)) * abs(z):
             z = mpc(z.real, 0)
         ev.append(z)
@@ -826,13 +865,17 @@ def polish_onto_B(p, betas, extra_dps=20, maxit=60):
     return [wrap(+v) for v in be], ok
 
 
-def dW_rank(p, betas):
-    """Rank of the 2 x n matrix dW = [m_j l_j (-sin, cos) beta_j]: 1 iff all balls are
-    collinear (|sin(beta_i - beta_j)| < 10^(-dps/2) for every pair), else 2."""
+def dW_rank(p, betas, idx=None):
+    """Rank of the 2 x |idx| matrix [m_j l_j (-sin beta_j, cos beta_j)], j in idx (all balls by
+    default): 0 for no balls, 1 iff the balls are collinear (|sin(beta_i - beta_j)| <
+    10^(-dps/2) for every pair), else 2."""
+    idx = list(range(p.n)) if idx is None else list(idx)
+    if not idx:
+        return 0
     tol = mpf(10) ** (-(mp.dps // 2))
-    for i in range(p.n):
-        for k in range(i + 1, p.n):
-            if abs(mp.sin(betas[i] - betas[k])) > tol:
+    for a_ in range(len(idx)):
+        for b_ in range(a_ + 1, len(idx)):
+            if abs(mp.sin(betas[idx[a_]] - betas[idx[b_]])) > tol:
                 return 2
     return 1
 
@@ -1013,7 +1056,7 @@ def analyse(p, kind, state, dps=WORK_DPS, deflate=False, check_jacobian=False):
             s = [mpf(0), mpf(0)] + betas
         r = Result(kind, s)
         J = jacobian(p, s)
-        r.eig = eigenvalues(J)
+        r.eig = eigenvalues(J, state_scales(p, s))
         tr = trace(J)
         r.trace_err = abs(mp.fsum(r.eig) - tr) / max(mp.fsum(abs(z) for z in r.eig), mpf(10) ** -300)
         r.residual = residual_norm(p, s)
@@ -1166,10 +1209,12 @@ BETA_TOL = 1e-9
 W_TOL = 1e-12
 RESIDUAL_WARN = 1e-10
 
-# mp.eig time per row at WORK_DPS on this 2-core machine (measured on the reference_n scenes,
-# other builds running; see README.md). The default --max-rows spends ~20 s on eigenvalues.
-EIG_SECONDS = {2: 0.2, 3: 0.3, 4: 0.4, 5: 0.55, 6: 0.8, 7: 1.0, 8: 1.3, 9: 1.7, 10: 2.1,
-               11: 2.7, 12: 3.3}
+# Seconds per row for analyse() (Jacobian + mp.eig at WORK_DPS) on the 2-core development
+# machine with other builds running: measured 0.1 (n = 3, 4), 0.15 (5), 0.5-0.85 (11),
+# 0.6-1.0 (12) on the reference_n scenes; the table adds ~1.5x for load. The default --max-rows
+# spends ~EIG_BUDGET_SECONDS on eigenvalues, so a compare stays below ~30 s.
+EIG_SECONDS = {2: 0.12, 3: 0.15, 4: 0.17, 5: 0.25, 6: 0.35, 7: 0.45, 8: 0.55, 9: 0.7, 10: 0.9,
+               11: 1.1, 12: 1.3}
 EIG_BUDGET_SECONDS = 20.0
 
 
@@ -1464,7 +1509,7 @@ class Compare:
                 used_iso.add(j)
             with mp.workdps(WORK_DPS):
                 pol, _ok = polish_onto_B(p, betas)
-                expect = p.structural_zero_count(dW_rank(p, pol))
+                expect = p.structural_zero_count(pol)
             if v["n_structural_zero"] != expect:
                 bad.append(f"n_structural_zero {v['n_structural_zero']}, expected {expect}")
             if bad:
@@ -1487,6 +1532,11 @@ class Compare:
         printed_zeros = [z for z in got_all if z.real == 0 and z.imag == 0]
         nz = v["n_structural_zero"]
         if kind == "balanced":
+            with mp.workdps(WORK_DPS):
+                formula = p.structural_zero_count(res.state[2:])
+            if formula != len(res.zeros):
+                self.say(f"WARN REFERENCE {label}: {len(res.zeros)} zeros in the spectrum, "
+                         f"{formula} by the tangent-space count")
             if len(res.zeros) != nz:
                 ok = False
                 notes.append(f"n_structural_zero {nz}, the reference spectrum has {len(res.zeros)} "
