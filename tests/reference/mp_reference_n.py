@@ -510,7 +510,7 @@ def sort_eigenvalues(ev, rel=None):
 
 def eigenvalues(J, scales=None):
     """All eigenvalues (mp.eig at the current precision), sorted. J is real, so an imaginary
-    part below rounding level (10^(10 - dps) |lambda|) is set to exactly 0.
+    part below rounding level (10^(10 - dps) max|lambda|) is set to exactly 0.
 
     scales: optional per-coordinate scales d; mp.eig then runs on the similar matrix
     D^-1 J D (same eigenvalues; better graded). mp's Hessenberg QR deflates only when a
@@ -536,12 +536,11 @@ def eigenvalues(J, scales=None):
             continue
     if raw is None:
         raise RuntimeError("mp.eig: QR failed to converge at three precisions")
-    ev = []
-    for z in raw:
-        z = mpc(+z.real, +z.imag)        # round back to the working precision
-        if abs(z.imag) <= mpf(10) ** (-(mp.dps - 10)) * abs(z):
-            z = mpc(z.real, 0)
-        ev.append(z)
+    raw = [mpc(+z.real, +z.imag) for z in raw]      # round back to the working precision
+    # an imaginary part at rounding level of the whole spectrum is 0 (J is real): a real
+    # eigenvalue of multiplicity 2 (equal balls) comes out as a pair with Im ~ eps max|lambda|
+    tiny = mpf(10) ** (-(mp.dps - 10)) * max(abs(z) for z in raw)
+    ev = [mpc(z.real, 0) if abs(z.imag) <= tiny else z for z in raw]
     return sort_eigenvalues(ev)
 
 
@@ -845,29 +844,70 @@ def best_pair(p, betas):
 
 def polish_onto_B(p, betas, extra_dps=20, maxit=60):
     """Newton on W(beta) = 0 (2 real equations) in the two angles of best_pair(), the others
-    held. Returns (betas wrapped to [0, 2 pi), converged)."""
-    betas = [mpf(v) for v in betas]
-    a_, b_ = best_pair(p, betas)
+    held. If that does not converge, or moves an angle by more than POLISH_MAX_SHIFT (near a
+    collinear point of B, where the 2 x 2 chart Jacobian is singular), a minimum-norm
+    Gauss-Newton on all n angles (pseudo-inverse of dW, rank 1 allowed) is used instead.
+    Returns (betas wrapped to [0, 2 pi), converged)."""
+    start = [mpf(v) for v in betas]
     target = mpf(10) ** (-(mp.dps + 5))
-    ok = False
     with mp.extradps(extra_dps):
-        be = [mpf(v) for v in betas]
-        for _ in range(maxit):
-            Wc = W_of(p, be)
-            # dW/dbeta_j = i m_j l_j e^{i beta_j}
-            da = 1j * p.ml(a_) * mp.expj(be[a_])
-            db = 1j * p.ml(b_) * mp.expj(be[b_])
-            det = da.real * db.imag - db.real * da.imag
-            if det == 0:
-                break
-            x = (-Wc.real * db.imag + db.real * Wc.imag) / det
-            y = (-da.real * Wc.imag + da.imag * Wc.real) / det
-            be[a_] += x
-            be[b_] += y
-            if max(abs(x), abs(y)) < target:
-                ok = True
-                break
+        be, ok = _polish_pair(p, start, target, maxit)
+        if not ok or max(abs(x - y) for x, y in zip(be, start)) > POLISH_MAX_SHIFT:
+            be, ok = _polish_min_norm(p, start, target, maxit)
     return [wrap(+v) for v in be], ok
+
+
+POLISH_MAX_SHIFT = mpf(10) ** -6
+
+
+def _polish_pair(p, betas, target, maxit):
+    be = [mpf(v) for v in betas]
+    a_, b_ = best_pair(p, be)
+    for _ in range(maxit):
+        Wc = W_of(p, be)
+        # dW/dbeta_j = i m_j l_j e^{i beta_j}
+        da = 1j * p.ml(a_) * mp.expj(be[a_])
+        db = 1j * p.ml(b_) * mp.expj(be[b_])
+        det = da.real * db.imag - db.real * da.imag
+        if det == 0:
+            return be, False
+        x = (-Wc.real * db.imag + db.real * Wc.imag) / det
+        y = (-da.real * Wc.imag + da.imag * Wc.real) / det
+        be[a_] += x
+        be[b_] += y
+        if max(abs(x), abs(y)) < target:
+            return be, True
+    return be, False
+
+
+def _polish_min_norm(p, betas, target, maxit):
+    be = [mpf(v) for v in betas]
+    n = p.n
+    for _ in range(maxit):
+        Wc = W_of(p, be)
+        rows = [[-p.ml(j) * mp.sin(be[j]) for j in range(n)], [p.ml(j) * mp.cos(be[j]) for j in range(n)]]
+        g11 = mp.fsum(x * x for x in rows[0])
+        g22 = mp.fsum(x * x for x in rows[1])
+        g12 = mp.fsum(x * y for x, y in zip(*rows))
+        det = g11 * g22 - g12 * g12
+        w = [Wc.real, Wc.imag]
+        if det > mpf(10) ** (-(mp.dps // 2)) * (g11 + g22) ** 2:
+            y = [(g22 * w[0] - g12 * w[1]) / det, (g11 * w[1] - g12 * w[0]) / det]
+        else:                               # rank 1: G+ = v v^T / lam, (lam, v) its top eigenpair
+            lam = (g11 + g22) / 2 + mp.sqrt(((g11 - g22) / 2) ** 2 + g12 ** 2)
+            if g12 != 0:
+                v = [g12, lam - g11]
+            else:
+                v = [mpf(1), mpf(0)] if g11 >= g22 else [mpf(0), mpf(1)]
+            nv = mp.hypot(v[0], v[1])
+            v = [v[0] / nv, v[1] / nv]
+            c = (v[0] * w[0] + v[1] * w[1]) / lam
+            y = [c * v[0], c * v[1]]
+        step = [-(rows[0][j] * y[0] + rows[1][j] * y[1]) for j in range(n)]
+        be = [x + d for x, d in zip(be, step)]
+        if max(abs(d) for d in step) < target:
+            return be, True
+    return be, False
 
 
 def dW_rank(p, betas, idx=None):
@@ -1048,6 +1088,7 @@ class Result:
         self.deflated = None
         self.jacobian_err = None
         self.digits = None
+        self.polish = None            # balanced: (converged, largest angle change)
 
 
 def analyse(p, kind, state, dps=WORK_DPS, deflate=False, check_jacobian=False):
@@ -1056,10 +1097,13 @@ def analyse(p, kind, state, dps=WORK_DPS, deflate=False, check_jacobian=False):
     t0 = time.time()
     with mp.workdps(dps):
         s = [mpf(v) for v in state]
+        polish = None
         if kind == "balanced":
-            betas, _ok = polish_onto_B(p, s[2:])
+            betas, ok = polish_onto_B(p, s[2:])
+            polish = (ok, max((angdist(x, y) for x, y in zip(betas, s[2:])), default=mpf(0)))
             s = [mpf(0), mpf(0)] + betas
         r = Result(kind, s)
+        r.polish = polish
         J = jacobian(p, s)
         r.eig = eigenvalues(J, state_scales(p, s))
         tr = trace(J)
@@ -1543,6 +1587,9 @@ class Compare:
         printed_zeros = [z for z in got_all if z.real == 0 and z.imag == 0]
         nz = v["n_structural_zero"]
         if kind == "balanced":
+            if not res.polish[0] or res.polish[1] > BETA_TOL:
+                self.say(f"WARN REFERENCE {label}: polishing onto B {'did not converge' if not res.polish[0] else ''}"
+                         f" moved the angles by {mp.nstr(res.polish[1], 2)} rad")
             with mp.workdps(WORK_DPS):
                 formula = p.structural_zero_count(res.state[2:])
             if formula != len(res.zeros):
