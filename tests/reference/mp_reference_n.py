@@ -1585,6 +1585,11 @@ class Compare:
         ok = True
         got_all = [mpc(v[f"re{j}"], v[f"im{j}"]) for j in range(1, 2 * n + 5)]
         printed_zeros = [z for z in got_all if z.real == 0 and z.imag == 0]
+        # the contract's order (real part descending): a warning only, pairing does not rely on it
+        nonzero = [z for z in got_all if z != 0]
+        big = max((abs(z) for z in nonzero), default=mpf(0))
+        if any(a.real < b.real - mpf(10) ** -12 * big for a, b in zip(nonzero, nonzero[1:])):
+            self.say(f"WARN {label}: eigenvalues not sorted by real part descending")
         nz = v["n_structural_zero"]
         if kind == "balanced":
             if not res.polish[0] or res.polish[1] > BETA_TOL:
