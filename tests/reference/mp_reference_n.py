@@ -52,8 +52,8 @@ GLOBAL_SYMBOLS = {"omega": "omega", "U": "U", "k": "k", "c": "c", "M_r": "Mr", "
 BALL_SYMBOL_RE = re.compile(r"^(m|l|r|mu|d|mu_c|mu_s|v_s)(\d*)$")
 # structural zeros: |lambda| below this times max|lambda| at WORK_DPS. Rounding at 80 digits
 # leaves exact zeros at ~1e-78 (semisimple) or ~1e-40 (the friction-none Jordan pairs, which
-# split like sqrt(eps)); the smallest physical eigenvalues of our scenes are ~1e-18 of the
-# largest. 1e-30 sits between both with >= 10 orders of margin.
+# split like sqrt(eps)); the smallest physical eigenvalues of our scenes are >= 7.6e-17 of the
+# largest (n4_equal_coulomb_k1e6). 1e-30 sits between both with >= 10 orders of margin.
 ZERO_REL = mpf(10) ** -30
 
 
@@ -114,7 +114,7 @@ class Params:
         return self.capacity() / self.M()
 
     def structural_zero_count(self, betas=None):
-        """Zero eigenvalues by construction at the balanced point betas (model-extensions §13.4):
+        """Zero eigenvalues by construction at the balanced point betas (docs/model.md §13.4):
         dim ker dW (n - 2 generically, n - 1 where all balls are collinear), plus one Jordan
         partner (0, delta) -> (delta, 0) for every tangent delta that moves only balls whose
         friction slope at rest is 0: dim ker of dW restricted to those balls. So n - 2 for
@@ -571,7 +571,7 @@ def angdist(a, b):
 
 
 def W_of(p, betas):
-    """W(beta) = U + sum m_i l_i e^{i beta_i} (complex), model-extensions §13."""
+    """W(beta) = U + sum m_i l_i e^{i beta_i} (complex), docs/model.md §13."""
     return mpf(p.U) + sum(p.ml(i) * mp.expj(be) for i, be in enumerate(betas))
 
 
@@ -623,7 +623,7 @@ def newton_static(p, s, extra_dps=20, maxit=40):
 
 
 # ----------------------------------------------------------------------------------
-# isolated equilibria, q != 0 (model-extensions §13.2)
+# isolated equilibria, q != 0 (docs/model.md §13.2)
 # ----------------------------------------------------------------------------------
 class Aligned:
     """An isolated equilibrium: all balls on the line of q, e^{i beta_i} = sigma_i e^{i phi}."""
@@ -711,7 +711,7 @@ def pattern_root_count(p):
 # ----------------------------------------------------------------------------------
 # Grid: beta_i = 2 pi k_i / G + 0.1 i (i = 1..n, k_i = 0..G-1; the offsets keep the starts off
 # the symmetric configurations), G = 64 for n = 2 (4096 starts), 16 for n = 3 (4096), 9 for
-# n = 4 (6561; the grid sizes of model-extensions §13.2). The equations solved are the static
+# n = 4 (6561; the grid sizes of docs/model.md §13.2). The equations solved are the static
 # equations b(s, 0) = 0 with the two linear rotor rows solved exactly for q = w^2 W/(K + iC),
 # and each ball row m_i l_i w^2 Im(e^{-i beta_i} q) = 0 divided by m_i l_i w^2 |q|:
 #     g_i(beta) = Im(e^{-i beta_i} q(beta)) / |q(beta)|,   i = 1..n.
@@ -822,7 +822,7 @@ def multistart(p, grid=None):
 
 
 # ----------------------------------------------------------------------------------
-# the balanced set B (model-extensions §13.4)
+# the balanced set B (docs/model.md §13.4)
 # ----------------------------------------------------------------------------------
 def B_exists(p):
     """B is nonempty iff the lengths U, m_1 l_1, .., m_n l_n close a polygon:
@@ -927,7 +927,7 @@ def dW_rank(p, betas, idx=None):
 
 def tangent_basis(p, betas):
     """Orthonormal basis V_T (columns in state space R^(2n+4)) of T_beta B, from the explicit
-    vectors of model-extensions §13.4 on the pair of best_pair(), then Gram-Schmidt."""
+    vectors of docs/model.md §13.4 on the pair of best_pair(), then Gram-Schmidt."""
     n = p.n
     a_, b_ = best_pair(p, betas)
     others = [j for j in range(n) if j not in (a_, b_)]
@@ -989,7 +989,7 @@ def split_structural(ev):
 
 
 def sample_B(p, count, max_tries=20000):
-    """Up to `count` deterministic points of B (model-extensions §13.4 sampling chart: free
+    """Up to `count` deterministic points of B (docs/model.md §13.4 sampling chart: free
     angles from a Kronecker sequence, balls a, b = the two largest m l; both sheets), each
     polished with polish_onto_B. For n = 2: the two mirror points (one if they coincide),
     or for U = 0 a few points of the circle beta_2 = beta_1 + pi."""
