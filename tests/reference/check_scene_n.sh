@@ -1,0 +1,47 @@
+#!/bin/sh
+# Runs the C++ analyzer on an n-ball scene and checks its equilibria CSV against the n-ball
+# mpmath reference (mp_reference_n.py --compare). Exit status: that of the comparison
+# (0 pass, 1 mismatch, 2 bad input); 1 also if the analyzer itself fails.
+#
+#   check_scene_n.sh BINARY SCENE [--set NAME=VALUE ...] [--rtol 1e-8] [--max-rows K]
+#
+# --set options go to both the analyzer and the reference; --rtol and --max-rows only to the
+# reference (--max-rows: rows whose eigenvalues are checked; counts and states: all rows).
+# PYTHON overrides the interpreter (default /usr/bin/python3; needs only mpmath).
+set -u
+if [ $# -lt 2 ]; then
+  echo "usage: $0 BINARY SCENE [--set NAME=VALUE ...] [--rtol R] [--max-rows K]" >&2
+  exit 2
+fi
+bin=$1
+scene=$2
+shift 2
+here=$(cd "$(dirname "$0")" && pwd)
+python=${PYTHON:-/usr/bin/python3}
+
+sets=""
+opts=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --set) [ $# -ge 2 ] || { echo "$0: --set needs NAME=VALUE" >&2; exit 2; }
+           sets="$sets --set $2"; shift 2 ;;
+    --set=*) sets="$sets --set ${1#--set=}"; shift ;;
+    --rtol|--max-rows) [ $# -ge 2 ] || { echo "$0: $1 needs a value" >&2; exit 2; }
+            opts="$opts $1 $2"; shift 2 ;;
+    --rtol=*|--max-rows=*) opts="$opts $1"; shift ;;
+    *) echo "$0: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/abu_check_n.XXXXXX") || exit 2
+trap 'rm -rf "$tmp"' EXIT INT TERM
+csv="$tmp/equilibria.csv"
+
+# $sets and $opts are split on purpose (NAME=VALUE and the numbers never contain spaces).
+# shellcheck disable=SC2086
+if ! "$bin" equilibria "$scene" --format csv -o "$csv" $sets; then
+  echo "check_scene_n: '$bin equilibria $scene' failed" >&2
+  exit 1
+fi
+# shellcheck disable=SC2086
+"$python" "$here/mp_reference_n.py" --compare "$csv" "$scene" $sets $opts
