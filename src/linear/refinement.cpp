@@ -163,6 +163,17 @@ RefinedEigenpair<N> refine_eigenpair(const Linearization<ld, N>& lin, std::compl
   Vec x(d);
   for (Eigen::Index i = 0; i < d; ++i) x(i) = from_complex<S>(start_vector(i)) / S(W(cols(i)));
   x /= S(x.norm());
+  if (multiplicity > 1) {
+    // The start vector lies in the k-dimensional null space of T but, in general, not in
+    // the kernel of Z^T: inverse iteration on the updated matrix picks the one direction
+    // that is a null vector of both (from the given vector, so the choice is stable).
+    const Eigen::PartialPivLU<Mat> lu(T_updated(lambda));
+    for (int step = 0; step < 2; ++step) {
+      const Vec next = lu.solve(x);
+      if (!next.allFinite() || next.isZero(0)) break;
+      x = next / S(next.norm());
+    }
+  }
   const Eigen::Matrix<D, dof_size<N>, 1, Eigen::ColMajor, dof_capacity<N>, 1> c = x.template cast<D>();
   // Bordered system B = [T, T' x; c^H, 0], its first d rows weighted by the
   // componentwise magnitude so that pivoting sees comparable rows. Near a simple

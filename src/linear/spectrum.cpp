@@ -105,21 +105,8 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
     return;
   }
   std::array<bool, SpectrumT<N>::capacity> filled{};
+  std::array<bool, SpectrumT<N>::capacity> converged_at{};
   std::array<cld, SpectrumT<N>::capacity> refined{};
-  // Clusters: starts equal to 1e-8 of their modulus are one semisimple eigenvalue of that
-  // multiplicity (identical balls at one place), refined once (refinement.hpp) and
-  // shared. Closer than the 1e-8 the spectrum is reported to, nothing is lost by it.
-  std::array<int, SpectrumT<N>::capacity> cluster{};  // index of the cluster's first member
-  std::array<int, SpectrumT<N>::capacity> multiplicity{};
-  for (std::size_t i = 0; i < m; ++i) {
-    cluster[i] = int(i);
-    for (std::size_t j = 0; j < i; ++j)
-      if (cluster[j] == int(j) && std::abs(start[j].value - start[i].value) <= 1e-8 * std::abs(start[i].value)) {
-        cluster[i] = int(j);
-        break;
-      }
-    ++multiplicity[std::size_t(cluster[i])];
-  }
   const auto fill = [&](std::size_t k, cld v, const RefinedEigenpair<N>& r) {
     const ld modulus = std::abs(v);
     refined[k] = v;
@@ -130,52 +117,143 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
         modulus > 0 ? double(r.abs_condition / modulus) : std::numeric_limits<double>::infinity();
     // Eight first-order error bounds, with every entry of A, C, K rounded to double.
     band[first + k] = 8 * r.abs_condition * (r.backward_error + ld(kEps));
-    sp.converged = sp.converged && r.converged;
-    sp.ill_conditioned = sp.ill_conditioned || !(sp.condition[first + k] * kEps <= 1e-8);
+    converged_at[k] = r.converged;
     filled[k] = true;
-  };
-  const auto fill_cluster = [&](std::size_t head, cld v, const RefinedEigenpair<N>& r) {
-    for (std::size_t j = 0; j < m; ++j)
-      if (std::size_t(cluster[j]) == head && !filled[j]) fill(j, v, r);
   };
   for (std::size_t i = 0; i < m; ++i) {
     const auto z = start[i].value;
-    if (filled[i] || z.imag() < 0 || cluster[i] != int(i)) continue;  // lower half-plane: the conjugate partner
-    const int k = multiplicity[i];
+    if (filled[i] || z.imag() < 0) continue;  // lower half-plane: the conjugate partner
     if (z.imag() == 0) {
-      const auto r = refine_eigenpair<ld, N>(qep, z, vector_of(start[i], false), k);
-      fill_cluster(i, r.value, r);
+      const auto r = refine_eigenpair<ld, N>(qep, z, vector_of(start[i], false));
+      fill(i, r.value, r);
       continue;
     }
-    const auto r = refine_eigenpair<cld, N>(qep, z, vector_of(start[i], true), k);
-    fill_cluster(i, r.value, r);
+    const auto r = refine_eigenpair<cld, N>(qep, z, vector_of(start[i], true));
+    fill(i, r.value, r);
     for (std::size_t j = 0; j < m; ++j) {
-      if (!filled[j] && cluster[j] == int(j) && start[j].value == std::conj(z)) {
-        fill_cluster(j, std::conj(r.value), r);
+      if (!filled[j] && start[j].value == std::conj(z)) {
+        fill(j, std::conj(r.value), r);
         break;
       }
     }
   }
   for (std::size_t i = 0; i < m; ++i) {  // a lower-half value whose partner was not found
     if (filled[i]) continue;
-    const auto head = std::size_t(cluster[i]);
-    const auto r = refine_eigenpair<cld, N>(qep, start[head].value, vector_of(start[head], true), multiplicity[head]);
-    fill_cluster(head, r.value, r);
+    const auto r = refine_eigenpair<cld, N>(qep, start[i].value, vector_of(start[i], true));
+    fill(i, r.value, r);
   }
   // Newton must stay in the basin of its starting value: a refined eigenvalue that moved
   // by more than half the distance to the nearest other starting value (which is also
-  // how two starts would end on one eigenvalue) keeps its QR value, and the refinement
-  // is reported as failed.
+  // how two starts would end on one eigenvalue) is not accepted.
   const auto as_ld = [](std::complex<double> z) { return cld(z.real(), z.imag()); };
-  for (std::size_t i = 0; i < m; ++i) {
+  // Copies of one multiple eigenvalue (identical balls at one place: their relative
+  // modes) converge to the same value from starts that the QR scattered; they do not
+  // bound each other's basin.
+  // Two starts on one simple eigenvalue converge to the same value with the same
+  // eigenvector; copies of a semisimple multiple one keep independent vectors.
+  const auto copies = [&](std::size_t i, std::size_t j) {
+    return converged_at[i] && converged_at[j] && std::abs(refined[i] - refined[j]) <= 1e-12L * std::abs(refined[i]) &&
+           std::abs(sp.vectors[first + i].dot(sp.vectors[first + j])) < 1 - 1e-6;
+  };
+  const auto basin_radius = [&](std::size_t i, const std::array<bool, SpectrumT<N>::capacity>& group) {
     ld radius = std::numeric_limits<ld>::infinity();
     for (std::size_t j = 0; j < m; ++j)
-      if (start[j].value != start[i].value && cluster[j] != cluster[i])
+      if (start[j].value != start[i].value && !copies(i, j) && !group[j])
         radius = std::min(radius, std::abs(as_ld(start[j].value - start[i].value)) / 2);
-    const ld moved = std::abs(refined[i] - as_ld(start[i].value));
-    if (moved > radius) {
+    return radius;
+  };
+  std::array<bool, SpectrumT<N>::capacity> failed{};
+  std::array<bool, SpectrumT<N>::capacity> none{};
+  for (std::size_t i = 0; i < m; ++i)
+    failed[i] = !converged_at[i] || std::abs(refined[i] - as_ld(start[i].value)) > basin_radius(i, none);
+  // Second chance for a multiple eigenvalue where the plain Newton stalled (its bordered
+  // matrix is singular there): a failed start and every start within 1e-3 of it that
+  // failed too or converged to the same value (a semisimple cluster of a non-normal J
+  // scatters by up to ~1e-5 in double)
+  // form a group of multiplicity k, refined once from their mean (refinement.hpp, the
+  // rank-(k-1) update) and shared if that converges inside the group's basin.
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!failed[i] || start[i].value.imag() < 0) continue;
+    std::array<bool, SpectrumT<N>::capacity> group{};
+    group[i] = true;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t j = 0; j < m; ++j)
+        for (std::size_t g = 0; g < m && !group[j]; ++g)
+          if (group[g] && start[j].value.imag() >= 0 &&
+              std::abs(start[j].value - start[g].value) <= 1e-3 * std::abs(start[g].value) &&
+              (failed[j] || std::abs(refined[j] - refined[i]) <= 1e-8L * std::abs(refined[i])))
+            group[j] = grew = true;
+    }
+    int k = 0;
+    std::complex<double> mean = 0;
+    for (std::size_t j = 0; j < m; ++j)
+      if (group[j]) ++k, mean += start[j].value;
+    if (k < 2) continue;
+    mean /= double(k);
+    if (start[i].value.imag() == 0) mean.imag(0);
+    Estimate<N> from = start[i];
+    from.value = mean;
+    const bool complex = mean.imag() != 0;
+    const auto r = complex ? refine_eigenpair<cld, N>(qep, mean, vector_of(from, true), k)
+                           : refine_eigenpair<ld, N>(qep, mean, vector_of(from, false), k);
+    RefinedEigenpair<N> shared = r;
+    if (!r.converged || std::abs(r.value - as_ld(mean)) > basin_radius(i, group)) {
+      // Newton cannot certify this multiple eigenvalue: its QR copies, if they agree to
+      // 1e-10 of their modulus within their own a-priori bounds (eps times the norm of the
+      // matrix each came from, scaled back through the shift), give it, with their
+      // spread plus that bound as the error estimate.
+      double bound = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        if (!group[j]) continue;
+        const auto& e = start[j];
+        const double qr = e.source == &starts.direct ? kEps * e.source->norm
+                                                     : kEps * e.source->norm * std::norm(e.value - starts.shift);
+        bound = std::max(bound, std::abs(e.value - mean) + qr);
+      }
+      // 1e-10: copies of one eigenvalue agree to ~1e-15 here; two distinct eigenvalues
+      // closer than that are indistinguishable at the 1e-8 the spectrum is reported to.
+      if (!(bound <= 1e-10 * std::abs(mean))) continue;
+      shared.value = as_ld(mean);
+      shared.abs_condition = ld(std::abs(mean));
+      shared.backward_error = ld(bound / std::abs(mean));
+      shared.converged = true;
+      shared.vector = vector_of(from, complex);
+    }
+    for (std::size_t j = 0; j < m; ++j) {
+      if (!group[j]) continue;
+      fill(j, shared.value, shared);
+      failed[j] = false;
+      if (!complex) continue;
+      for (std::size_t c = 0; c < m; ++c)  // the conjugate copies
+        if (start[c].value.imag() < 0 && std::abs(start[c].value - std::conj(start[j].value)) <=
+                                             1e-12 * std::abs(start[j].value)) {
+          fill(c, std::conj(shared.value), shared);
+          failed[c] = false;
+          break;
+        }
+    }
+  }
+  // Copies of one multiple eigenvalue share its error: the best-conditioned copy's bound
+  // (a copy's y^H T' x can nearly vanish inside the eigenspace, which made a 1e16
+  // "condition" and a band that swallowed the axis), the copies agreeing to 1e-12.
+  for (std::size_t i = 0; i < m; ++i) {
+    if (failed[i]) continue;
+    for (std::size_t j = 0; j < m; ++j) {
+      if (j == i || failed[j] || !copies(i, j) || !(band[first + j] < band[first + i])) continue;
+      band[first + i] = band[first + j];
+      sp.error[first + i] = sp.error[first + j];
+      sp.condition[first + i] = sp.condition[first + j];
+    }
+  }
+  for (std::size_t i = 0; i < m; ++i) sp.ill_conditioned = sp.ill_conditioned || !(sp.condition[first + i] * kEps <= 1e-8);
+  sp.converged = true;
+  for (std::size_t i = 0; i < m; ++i) {
+    if (failed[i]) {  // keeps its QR value, and the refinement is reported as failed
       sp.eigenvalues[first + i] = start[i].value;
-      sp.error[first + i] = double(moved);
+      sp.error[first + i] = double(std::abs(refined[i] - as_ld(start[i].value)));
+      sp.converged = false;
+    } else if (!converged_at[i]) {
       sp.converged = false;
     }
   }

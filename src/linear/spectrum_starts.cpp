@@ -80,6 +80,7 @@ template <int N>
 void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out) {
   const std::size_t m = eigen_count<N>(count);
   out.count = count;
+  out.shift = shift;
   std::array<Estimate<N>, state_capacity<N>> direct{};
   for (std::size_t i = 0; i < m; ++i) direct[i] = {out.direct.values[i], out.direct.values[i], &out.direct};
   out.estimates = direct;

@@ -60,7 +60,8 @@ template <int N>
 struct Starts {
   BalancedQr<N> direct, inverse;
   std::array<Estimate<N>, state_capacity<N>> estimates{};
-  int count = 0;  ///< eigenvalues, the size of `direct`
+  int count = 0;      ///< eigenvalues, the size of `direct`
+  double shift = 0;   ///< sigma of the inverse
 };
 
 /// Every eigenvalue from the QR whose error bound relative to it is smaller: eps ||J||
