@@ -428,16 +428,6 @@ std::string_view to_string(StopReason r) {
   return "?";
 }
 
-std::optional<std::string> options_violation(const ContinuationOptions& o) {
-  if (!(o.ds_min > 0)) return fmt::format("--ds-min must be > 0 (got {})", o.ds_min);
-  if (!(o.ds >= o.ds_min)) return fmt::format("--ds must be >= --ds-min (got {} < {})", o.ds, o.ds_min);
-  if (!(o.ds_max >= o.ds)) return fmt::format("--ds-max must be >= --ds (got {} < {})", o.ds_max, o.ds);
-  if (!(o.ds_max <= 0.5)) return fmt::format("--ds-max must be <= 0.5 of the interval (got {})", o.ds_max);
-  if (o.max_steps < 1 || o.max_steps > 1000000)
-    return fmt::format("--max-steps must be in [1, 1000000] (got {})", o.max_steps);
-  return std::nullopt;
-}
-
 Family classify(const Params& p, const Coordinates<long double, 2>& s) {
   const ld length = displacement_scale(p.cast<ld>());
   if (std::hypot(s(0), s(1)) <= 1e-7L * length) return Family::balanced;

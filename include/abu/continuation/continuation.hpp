@@ -29,6 +29,7 @@
 #include <string_view>
 #include <vector>
 
+#include "abu/continuation/arclength.hpp"  // ContinuationOptions
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/linear/spectrum.hpp"
 
@@ -38,17 +39,6 @@ namespace abu {
 /// BT Bogdanov-Takens, ZH zero-Hopf, CP cusp, GH generalized Hopf (l1 = 0).
 enum class Label { none, EP, LP, BP, HB, MX, BT, ZH, CP, GH };
 std::string_view to_string(Label label);
-
-/// Step-length control, in the scaled arclength (q / displacement scale, angles in rad,
-/// parameter / interval length): the whole parameter interval is 1 unit long.
-struct ContinuationOptions {
-  double ds = 0.01;      ///< first step
-  double ds_min = 1e-9;  ///< below this a failing step ends the branch (MX)
-  double ds_max = 0.2;   ///< upper bound (the step also adapts to the branch's curvature)
-  int max_steps = 5000;  ///< per branch and direction
-};
-/// Checks the options up front; returns the rule broken, if any.
-std::optional<std::string> options_violation(const ContinuationOptions& o);
 
 /// One converged point of a branch.
 struct BranchPoint {
