@@ -1,4 +1,4 @@
-// Pseudo-arclength continuation of equilibrium branches in one parameter, with the
+// Pseudo-arclength continuation (arclength.hpp) of equilibrium branches in one parameter, with the
 // eigenvalues tracked along each branch and the special points where stability can
 // change detected and located (AUTO-07p's labels: EP end point, LP fold, BP branch
 // point, HB Hopf, MX no convergence).
@@ -14,8 +14,9 @@
 // Test functions between consecutive points (sign changes):
 //   LP  the parameter component of the tangent, t_p;
 //   BP  det [F_u; t^T] (it keeps its sign through a fold, changes it at a branch point);
-//   HB  Re lambda of a tracked complex pair whose |Im lambda| stays clear of its error
-//       band (so a real pair lambda, -lambda, a neutral saddle, is never taken for one).
+//   HB  the sign of prod_{i<j} (lambda_i + lambda_j) (bifurcation.hpp): it changes where a
+//       complex pair crosses the axis, and at a neutral saddle (a real pair lambda,
+//       -lambda), which the location tells apart and does not report.
 // Each is then located by solving an augmented system (bifurcation.hpp), not on the grid.
 //
 //   abu::ContinuationRun run = abu::continue_branches(p, *abu::parse_param("omega", 2), 2000.0);
