@@ -1,6 +1,5 @@
 // The special points of an equilibrium branch flagged by its test functions
 // (branch_tracer.hpp), located by augmented systems (bifurcation.hpp), not on the grid.
-#include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 

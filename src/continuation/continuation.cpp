@@ -18,7 +18,6 @@ namespace {
 
 using ld = long double;
 using Vec5 = StaticEquations::Vec5;
-using Mat45 = StaticEquations::Mat45;
 
 std::vector<Equilibrium> start_points(const Params& p, const StartSelection& start, std::vector<std::string>& notes) {
   std::vector<Equilibrium> out;
