@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/LU>
 #include <cmath>
-#include <limits>
-#include <optional>
+#include <vector>
 
+#include "abu/continuation/arclength.hpp"
 #include "abu/continuation/bifurcation.hpp"
 #include "abu/model/static_equations.hpp"
+#include "curve_system.hpp"
 
 namespace abu {
 
@@ -16,86 +16,7 @@ namespace {
 
 using ld = long double;
 using Vec5 = StaticEquations::Vec5;
-
-// The fold (N = 6: y = (z, p2)) or Hopf (N = 7: y = (z, p2, w / w0)) curve system, the
-// second parameter scaled like the first: 0 at its start value, 1 at its end value.
-template <int N>
-class CurveSystem {
- public:
-  using Vec = Eigen::Matrix<ld, N, 1>;
-  using Res = Eigen::Matrix<ld, N - 1, 1>;
-  static constexpr bool hopf = N == 7;
-
-  CurveSystem(const Params& base, const ContinuationRun& run, ParamRef param2, double from2, double to2, ld omega0)
-      : base_(base), run_(run), param2_(param2), from2_(from2), span2_(ld(to2) - ld(from2)), omega0_(omega0) {}
-
-  StaticEquations at(const Vec& y) const {
-    Params p = base_;
-    set(p, param2_, double(parameter2(y)));
-    return StaticEquations(p, run_.param, run_.from, ld(run_.to) - ld(run_.from));
-  }
-  ld parameter2(const Vec& y) const { return from2_ + span2_ * y(5); }
-  ld omega(const Vec& y) const { return hopf ? omega0_ * y(6) : 0; }
-  static Vec5 z(const Vec& y) { return y.template head<5>(); }
-
-  // Hopf curves: keeps the scaled frequency y(6) = w / w0 at most 2 by raising w0 (never
-  // lowering it: towards a Bogdanov-Takens point w must be free to reach 0). Otherwise a
-  // curve along which w grows 1000-fold (coulomb, mu from 0.1 to 1e-4) is almost all
-  // arclength in w and takes 10^4 steps.
-  void rescale_frequency(Vec& y, Vec& t) {
-    if (!hopf || y(N - 1) <= 2) return;
-    const ld r = y(N - 1);
-    omega0_ *= r;
-    y(N - 1) = 1;
-    t(N - 1) /= r;
-    t.normalize();
-  }
-
-  // Rebuilds the fold / Hopf condition's borders at y (the null vectors move along the curve).
-  void refresh(const Vec& y) {
-    const StaticEquations eq = at(y);
-    if constexpr (hopf) {
-      hopf_.emplace(eq, z(y), omega(y));
-    } else {
-      fold_.emplace(eq, z(y));
-    }
-  }
-
-  Res residual(const Vec& y) const {
-    const StaticEquations eq = at(y);
-    Res r;
-    r.template head<4>() = eq.residual(z(y));
-    if constexpr (hopf) {
-      const std::complex<ld> g = (*hopf_)(eq, z(y), omega(y));
-      r(4) = g.real();
-      r(5) = g.imag();
-    } else {
-      r(4) = (*fold_)(eq, z(y));
-    }
-    return r;
-  }
-
-  // Central differences in the scaled unknowns (all O(1)); see bifurcation.cpp for h.
-  Eigen::Matrix<ld, N - 1, N> jacobian(const Vec& y) const {
-    constexpr ld h = 1e-7L;
-    Eigen::Matrix<ld, N - 1, N> D;
-    for (int k = 0; k < N; ++k) {
-      Vec yp = y, ym = y;
-      yp(k) += h;
-      ym(k) -= h;
-      D.col(k) = (residual(yp) - residual(ym)) / (2 * h);
-    }
-    return D;
-  }
-
- private:
-  Params base_;
-  const ContinuationRun& run_;
-  ParamRef param2_;
-  ld from2_, span2_, omega0_;
-  std::optional<FoldCondition> fold_;
-  std::optional<HopfCondition> hopf_;
-};
+using arclength::Stage;
 
 // Codimension-two test functions at one curve point; a sign change between consecutive
 // points flags the label.
@@ -105,75 +26,59 @@ struct Tests {
   ld static_det = 0, lyapunov = 0;   // Hopf curves (zero-Hopf, generalized Hopf)
 };
 
+// One direction of a fold or Hopf curve as a Problem of the pseudo-arclength engine
+// (arclength.hpp): its points, with the codimension-two points flagged between them.
 template <int N>
-class CurveTracer {
+class CurveTracer : public CurveSystem<N> {
  public:
   using Vec = typename CurveSystem<N>::Vec;
-  CurveTracer(CurveSystem<N>& system, const ContinuationOptions& options, const Params& base)
-      : sys_(system), options_(options), base_(base) {}
+  using Jacobian = typename CurveSystem<N>::Jacobian;
+  using Sys = CurveSystem<N>;
+  // Fold curves: CP, BT, ZH; Hopf curves: ZH, GH (the bits of `changed`, in this order).
+  static constexpr std::size_t test_count = Sys::hopf ? 2 : 3;
 
-  void run(const Vec& y0, const Vec& t0, BoundaryCurve& out, int end);
+  explicit CurveTracer(const Sys& system) : Sys(system) {}
+
+  arclength::Crossing crossing(const Vec& /*from*/, const Vec& to) const {
+    // The frequency reaching zero ends a Hopf curve on a fold curve (Bogdanov-Takens).
+    if (Sys::hopf && this->omega(to) <= 0)
+      return arclength::Crossing::leaving("the Hopf frequency reached 0 (Bogdanov-Takens point)");
+    return arclength::box_crossing(to, {4, 5});
+  }
+  arclength::Evaluation<ld, test_count> evaluate(const Vec& y, const Vec& /*t*/, const Jacobian& /*DF*/, Stage stage) {
+    pending_ = tests(y, stage == Stage::start ? nullptr : &previous_);
+    arclength::Evaluation<ld, test_count> e;
+    if constexpr (Sys::hopf) {
+      e.tests = {pending_.static_det, pending_.lyapunov};
+    } else {
+      e.tests = {pending_.fold.cusp, pending_.fold.bogdanov_takens, ld(pending_.hopf_sign)};
+    }
+    return e;
+  }
+  void locate(unsigned changed, const arclength::Segment<Vec>& between);
+  void commit(Vec& y, Vec& t, Stage stage) {
+    previous_ = pending_;
+    if (stage == Stage::step) this->rescale_frequency(y, t);
+    if (stage != Stage::edge) this->refresh(y);
+    points.push_back(point(y, stage == Stage::edge ? Label::EP : Label::none));
+  }
+
+  BoundaryPoint point(const Vec& y, Label label) const;
+  std::vector<BoundaryPoint> points;
 
  private:
-  struct Corrected {
-    Vec y;
-    bool converged = false;
-  };
-  Corrected correct(const Vec& y_pred, const Vec& d) const;
-  Vec tangent(const Vec& y, const Vec& previous) const;
   Tests tests(const Vec& y, const Tests* previous) const;
-  BoundaryPoint point(const Vec& y, Label label) const;
-  void detect(const Vec& ya, const Tests& a, const Vec& yb, const Tests& b, std::vector<BoundaryPoint>& out) const;
-
-  CurveSystem<N>& sys_;
-  const ContinuationOptions& options_;
-  const Params& base_;
+  Tests previous_, pending_;
 };
 
 template <int N>
-typename CurveTracer<N>::Corrected CurveTracer<N>::correct(const Vec& y_pred, const Vec& d) const {
-  Corrected c{y_pred};
-  ld last = std::numeric_limits<ld>::infinity();
-  for (int it = 0; it < 12; ++it) {
-    Eigen::Matrix<ld, N, N> M;
-    M.template topRows<N - 1>() = sys_.jacobian(c.y);
-    M.row(N - 1) = d.transpose();
-    Vec r;
-    r << sys_.residual(c.y), d.dot(c.y - y_pred);
-    const Vec step = M.partialPivLu().solve(-r);
-    if (!step.allFinite()) return c;
-    c.y += step;
-    const ld size = step.cwiseAbs().maxCoeff();
-    if (size <= 1e-14L || (it >= 2 && size > last / 2)) {
-      c.converged = size <= 1e-12L && sys_.residual(c.y).template head<4>().cwiseAbs().maxCoeff() <= 1e-14L;
-      return c;
-    }
-    if (size > 1) return c;
-    last = size;
-  }
-  return c;
-}
-
-template <int N>
-typename CurveTracer<N>::Vec CurveTracer<N>::tangent(const Vec& y, const Vec& previous) const {
-  Eigen::Matrix<ld, N, N> M;
-  M.template topRows<N - 1>() = sys_.jacobian(y);
-  M.row(N - 1) = previous.transpose();
-  Vec e = Vec::Zero();
-  e(N - 1) = 1;
-  Vec t = M.partialPivLu().solve(e);
-  t.normalize();
-  return t.dot(previous) < 0 ? Vec(-t) : t;
-}
-
-template <int N>
 Tests CurveTracer<N>::tests(const Vec& y, const Tests* previous) const {
-  const StaticEquations eq = sys_.at(y);
-  const Vec5 z = CurveSystem<N>::z(y);
+  const StaticEquations eq = this->at(y);
+  const Vec5 z = Sys::z(y);
   Tests t;
-  if constexpr (N == 7) {
+  if constexpr (Sys::hopf) {
     t.static_det = eq.jacobian(z).template leftCols<4>().partialPivLu().determinant();
-    t.lyapunov = first_lyapunov_coefficient(eq.params(z), eq.position(z), sys_.omega(y));
+    t.lyapunov = first_lyapunov_coefficient(eq.params(z), eq.position(z), this->omega(y));
   } else {
     t.fold = fold_coefficients(eq, z, previous ? &previous->fold : nullptr);
     const Spectrum sp = compute_spectrum(eq.linearization(z), SpectrumMethod::refined, 1);
@@ -185,162 +90,100 @@ Tests CurveTracer<N>::tests(const Vec& y, const Tests* previous) const {
 
 template <int N>
 BoundaryPoint CurveTracer<N>::point(const Vec& y, Label label) const {
-  const StaticEquations eq = sys_.at(y);
-  const Vec5 z = CurveSystem<N>::z(y);
+  const StaticEquations eq = this->at(y);
+  const Vec5 z = Sys::z(y);
   BoundaryPoint p;
   p.parameter = eq.parameter(z);
-  p.parameter2 = sys_.parameter2(y);
+  p.parameter2 = this->parameter2(y);
   p.position = eq.position(z);
-  p.frequency = sys_.omega(y);
-  p.family = classify(base_, p.position);
+  p.frequency = this->omega(y);
+  p.family = classify(this->base(), p.position);
   p.label = label;
   return p;
 }
 
 template <int N>
-void CurveTracer<N>::detect(const Vec& ya, const Tests& a, const Vec& yb, const Tests& b,
-                            std::vector<BoundaryPoint>& out) const {
+void CurveTracer<N>::locate(unsigned changed, const arclength::Segment<Vec>& between) {
   // Codimension-two points are flagged on the curve where their test function changes
   // sign, at the zero of its linear interpolation between the two points.
-  const auto flag = [&](Label label, ld fa, ld fb) {
-    if ((fa > 0) == (fb > 0) || fa == fb) return;
+  const Vec &ya = between.from, &yb = between.to;
+  const auto flag = [&](unsigned bit, Label label, ld fa, ld fb) {
+    if (!(changed & bit)) return;
     const ld theta = fa / (fa - fb);
-    out.push_back(point(ya + theta * (yb - ya), label));
+    points.push_back(point(ya + theta * (yb - ya), label));
   };
-  if constexpr (N == 7) {
-    flag(Label::ZH, a.static_det, b.static_det);
-    flag(Label::GH, a.lyapunov, b.lyapunov);
+  if constexpr (Sys::hopf) {
+    flag(1u << 0, Label::ZH, previous_.static_det, pending_.static_det);
+    flag(1u << 1, Label::GH, previous_.lyapunov, pending_.lyapunov);
   } else {
-    flag(Label::CP, a.fold.cusp, b.fold.cusp);
-    flag(Label::BT, a.fold.bogdanov_takens, b.fold.bogdanov_takens);
-    if (a.hopf_sign != b.hopf_sign && std::abs(a.n_unstable - b.n_unstable) == 2)
-      out.push_back(point((ya + yb) / 2, Label::ZH));
+    flag(1u << 0, Label::CP, previous_.fold.cusp, pending_.fold.cusp);
+    flag(1u << 1, Label::BT, previous_.fold.bogdanov_takens, pending_.fold.bogdanov_takens);
+    // A sign change from a neutral saddle (a real pair lambda, -lambda) leaves the number
+    // of unstable eigenvalues alone; a pair crossing the axis changes it by two.
+    if ((changed & (1u << 2)) && std::abs(previous_.n_unstable - pending_.n_unstable) == 2)
+      points.push_back(point((ya + yb) / 2, Label::ZH));
   }
 }
 
+// How one direction of a curve ended; the points of a curve that ended on a
+// Bogdanov-Takens point get that point, interpolated to w = 0.
 template <int N>
-void CurveTracer<N>::run(const Vec& y0, const Vec& t0, BoundaryCurve& out, int end) {
-  std::vector<BoundaryPoint> pts;
-  Vec y = y0, t = t0;
-  sys_.refresh(y);
-  Tests tests_y = tests(y, nullptr);
-  pts.push_back(point(y, Label::none));
-  ld ds = options_.ds;
-  StopReason stop = StopReason::max_steps;
-  std::string detail = fmt::format("stopped after {} steps", options_.max_steps);
-  const auto outside = [](const Vec& v, int& k, ld& bound) {
-    for (int i : {4, 5}) {
-      if (v(i) < 0 || v(i) > 1) {
-        k = i;
-        bound = v(i) > 1 ? 1 : 0;
-        return true;
-      }
+std::pair<StopReason, std::string> finish(CurveTracer<N>& tracer, const arclength::Result<CurveTracer<N>>& r,
+                                          const ContinuationOptions& options) {
+  switch (r.end) {
+    case arclength::End::end_of_interval:
+    case arclength::End::edge_not_reached: return {StopReason::end_of_range, {}};
+    case arclength::End::left_domain: {
+      const ld wa = tracer.omega(r.last), wb = tracer.omega(r.beyond);
+      tracer.points.push_back(tracer.point(r.last + (wa / (wa - wb)) * (r.beyond - r.last), Label::BT));
+      return {StopReason::end_of_range, r.reason};
     }
-    return false;
-  };
-  for (int step = 0; step < options_.max_steps; ++step) {
-    const Vec y_pred = y + ds * t;
-    const Corrected c = correct(y_pred, t);
-    bool ok = c.converged && (c.y - y_pred).norm() <= ds;
-    Vec t_new = t;
-    if (ok) {
-      t_new = tangent(c.y, t);
-      ok = t_new.dot(t) > std::cos(0.5L);
+    case arclength::End::closed_loop: return {StopReason::closed_loop, {}};
+    case arclength::End::max_steps: return {StopReason::max_steps, fmt::format("stopped after {} steps", options.max_steps)};
+    case arclength::End::step_underflow: {
+      const BoundaryPoint p = tracer.point(r.last, Label::none);
+      return {StopReason::step_underflow,
+              fmt::format("{} at ({:.17g}, {:.17g})", r.reason, double(p.parameter), double(p.parameter2))};
     }
-    if (ok && N == 7 && sys_.omega(c.y) <= 0) {
-      // The frequency reached zero: the Hopf curve ends on a fold curve (Bogdanov-Takens).
-      const ld theta = sys_.omega(y) / (sys_.omega(y) - sys_.omega(c.y));
-      pts.push_back(point(y + theta * (c.y - y), Label::BT));
-      stop = StopReason::end_of_range;
-      detail = "the Hopf frequency reached 0 (Bogdanov-Takens point)";
-      break;
-    }
-    if (!ok) {
-      ds /= 2;
-      if (ds < options_.ds_min) {
-        stop = StopReason::step_underflow;
-        const BoundaryPoint p = point(y, Label::none);
-        detail = fmt::format("the corrector did not converge at ({:.17g}, {:.17g})", double(p.parameter),
-                             double(p.parameter2));
-        break;
-      }
-      continue;
-    }
-    int k = 0;
-    ld bound = 0;
-    if (outside(c.y, k, bound)) {
-      // The end of the parameter box: the curve point on its edge exactly.
-      const ld theta = (bound - y(k)) / (c.y(k) - y(k));
-      Vec guess = y + theta * (c.y - y);
-      guess(k) = bound;
-      Vec e = Vec::Zero();
-      e(k) = 1;
-      const Corrected last = correct(guess, e);
-      if (last.converged) {
-        const Tests tl = tests(last.y, &tests_y);
-        detect(y, tests_y, last.y, tl, pts);
-        pts.push_back(point(last.y, Label::EP));
-      }
-      stop = StopReason::end_of_range;
-      detail.clear();
-      break;
-    }
-    const Tests tn = tests(c.y, &tests_y);
-    detect(y, tests_y, c.y, tn, pts);
-    y = c.y;
-    t = t_new;
-    tests_y = tn;
-    sys_.rescale_frequency(y, t);
-    sys_.refresh(y);
-    pts.push_back(point(y, Label::none));
-    const ld relative_error = (c.y - y_pred).norm() / ds;
-    ds = std::clamp<ld>(ds * std::clamp(std::sqrt(0.05L / std::max(relative_error, 1e-12L)), 0.5L, 2.0L),
-                        options_.ds_min, options_.ds_max);
   }
-  out.stop[std::size_t(end)] = stop;
-  out.stop_detail[std::size_t(end)] = detail;
-  if (end == 0) {  // traced against the curve's orientation: reverse and prepend
-    out.points.insert(out.points.begin(), pts.rbegin(), pts.rend() - 1);
-  } else {
-    out.points.insert(out.points.end(), pts.begin(), pts.end());
-  }
+  return {StopReason::step_underflow, r.reason};
 }
 
 template <int N>
 BoundaryCurve trace_curve(const Params& p, const ContinuationRun& run, const SpecialPoint& sp, ParamRef param2,
                           double to2, const ContinuationOptions& options) {
+  using Vec = typename CurveSystem<N>::Vec;
   const double from2 = get(p, param2);
   const ld omega0 = N == 7 ? ld(sp.frequency) : 1;
-  CurveSystem<N> sys(p, run, param2, from2, to2, omega0);
   const StaticEquations eq(p, run.param, run.from, ld(run.to) - ld(run.from));
-  typename CurveSystem<N>::Vec y0 = CurveSystem<N>::Vec::Zero();
+  Vec y0 = Vec::Zero();
   y0.template head<5>() = eq.scaled(sp.position, sp.parameter);
   y0(5) = 0;
   if constexpr (N == 7) y0(6) = 1;
-  sys.refresh(y0);
-  // Head into the box: towards increasing second parameter.
-  typename CurveSystem<N>::Vec inward = CurveSystem<N>::Vec::Zero();
+  CurveTracer<N> forward(CurveSystem<N>(p, run, param2, from2, to2, omega0));
+  forward.refresh(y0);
+  // Each way with its own copy of the system: the frequency scale w0 and the borders
+  // adapt along a curve, and the way back starts from the start's.
+  CurveTracer<N> backward(forward);
+  // Head into the box: towards increasing second parameter. The start is the box's lower
+  // edge in p2: if the curve crosses it, the other way leaves the box at once.
+  Vec inward = Vec::Zero();
   inward(5) = 1;
-  CurveTracer<N> tracer(sys, options, p);
+  const arclength::StepRules rules{.predictor_error = 0.05L};
+  const auto start = arclength::start(forward, y0, inward, true, rules);
+  const auto both = arclength::trace_both_ways(forward, backward, start, options, rules);
   BoundaryCurve curve;
   curve.kind = N == 7 ? Label::HB : Label::LP;
-  auto t0 = inward;
-  {
-    Eigen::Matrix<ld, N, N> M;
-    M.template topRows<N - 1>() = sys.jacobian(y0);
-    M.row(N - 1) = inward.transpose();
-    typename CurveSystem<N>::Vec e = CurveSystem<N>::Vec::Zero();
-    e(N - 1) = 1;
-    t0 = M.partialPivLu().solve(e).normalized();
-    if (t0(5) < 0) t0 = -t0;
-  }
-  tracer.run(y0, t0, curve, 1);
-  if (t0(5) > 1e-6L) {  // the start is the box's lower edge in p2: the other way leaves it at once
+  std::tie(curve.stop[1], curve.stop_detail[1]) = finish(forward, both.forward, options);
+  curve.points = std::move(forward.points);
+  if (both.backward_traced) {
+    std::tie(curve.stop[0], curve.stop_detail[0]) = finish(backward, both.backward, options);
+    // Traced against the curve's orientation: reversed, its start (shared) left out.
+    curve.points.insert(curve.points.begin(), backward.points.rbegin(), backward.points.rend() - 1);
+  } else {
     curve.stop[0] = StopReason::end_of_range;
     curve.stop_detail[0] = "the start value of the second parameter is an end of its interval";
     curve.points.front().label = Label::EP;
-  } else {
-    tracer.run(y0, -t0, curve, 0);
   }
   return curve;
 }

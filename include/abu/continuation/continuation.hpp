@@ -1,4 +1,4 @@
-// Pseudo-arclength continuation of equilibrium branches in one parameter, with the
+// Pseudo-arclength continuation (arclength.hpp) of equilibrium branches in one parameter, with the
 // eigenvalues tracked along each branch and the special points where stability can
 // change detected and located (AUTO-07p's labels: EP end point, LP fold, BP branch
 // point, HB Hopf, MX no convergence).
@@ -14,8 +14,9 @@
 // Test functions between consecutive points (sign changes):
 //   LP  the parameter component of the tangent, t_p;
 //   BP  det [F_u; t^T] (it keeps its sign through a fold, changes it at a branch point);
-//   HB  Re lambda of a tracked complex pair whose |Im lambda| stays clear of its error
-//       band (so a real pair lambda, -lambda, a neutral saddle, is never taken for one).
+//   HB  the sign of prod_{i<j} (lambda_i + lambda_j) (bifurcation.hpp): it changes where a
+//       complex pair crosses the axis, and at a neutral saddle (a real pair lambda,
+//       -lambda), which the location tells apart and does not report.
 // Each is then located by solving an augmented system (bifurcation.hpp), not on the grid.
 //
 //   abu::ContinuationRun run = abu::continue_branches(p, *abu::parse_param("omega", 2), 2000.0);
@@ -29,6 +30,7 @@
 #include <string_view>
 #include <vector>
 
+#include "abu/continuation/arclength.hpp"  // ContinuationOptions
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/linear/spectrum.hpp"
 
@@ -38,17 +40,6 @@ namespace abu {
 /// BT Bogdanov-Takens, ZH zero-Hopf, CP cusp, GH generalized Hopf (l1 = 0).
 enum class Label { none, EP, LP, BP, HB, MX, BT, ZH, CP, GH };
 std::string_view to_string(Label label);
-
-/// Step-length control, in the scaled arclength (q / displacement scale, angles in rad,
-/// parameter / interval length): the whole parameter interval is 1 unit long.
-struct ContinuationOptions {
-  double ds = 0.01;      ///< first step
-  double ds_min = 1e-9;  ///< below this a failing step ends the branch (MX)
-  double ds_max = 0.2;   ///< upper bound (the step also adapts to the branch's curvature)
-  int max_steps = 5000;  ///< per branch and direction
-};
-/// Checks the options up front; returns the rule broken, if any.
-std::optional<std::string> options_violation(const ContinuationOptions& o);
 
 /// One converged point of a branch.
 struct BranchPoint {

@@ -1,0 +1,41 @@
+#include "abu/continuation/arclength.hpp"
+
+#include <fmt/format.h>
+
+namespace abu {
+
+std::optional<std::string> options_violation(const ContinuationOptions& o) {
+  if (!(o.ds_min > 0)) return fmt::format("--ds-min must be > 0 (got {})", o.ds_min);
+  if (!(o.ds >= o.ds_min)) return fmt::format("--ds must be >= --ds-min (got {} < {})", o.ds, o.ds_min);
+  if (!(o.ds_max >= o.ds)) return fmt::format("--ds-max must be >= --ds (got {} < {})", o.ds_max, o.ds);
+  if (!(o.ds_max <= 0.5)) return fmt::format("--ds-max must be <= 0.5 of the interval (got {})", o.ds_max);
+  if (o.max_steps < 1 || o.max_steps > 1000000)
+    return fmt::format("--max-steps must be in [1, 1000000] (got {})", o.max_steps);
+  return std::nullopt;
+}
+
+namespace arclength {
+
+std::string_view to_string(Status s) {
+  switch (s) {
+    case Status::converged: return "converged";
+    case Status::not_converged: return "not converged";
+    case Status::numerical_issue: return "numerical issue";
+  }
+  return "?";
+}
+
+std::string_view to_string(End e) {
+  switch (e) {
+    case End::end_of_interval: return "reached the end of the interval";
+    case End::edge_not_reached: return "no solution found on the end of the interval";
+    case End::left_domain: return "left the domain";
+    case End::closed_loop: return "closed loop";
+    case End::max_steps: return "maximum number of steps";
+    case End::step_underflow: return "step below its minimum";
+  }
+  return "?";
+}
+
+}  // namespace arclength
+}  // namespace abu

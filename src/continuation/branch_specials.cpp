@@ -1,0 +1,181 @@
+// The special points of an equilibrium branch flagged by its test functions
+// (branch_tracer.hpp), located by augmented systems (bifurcation.hpp), not on the grid.
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+
+#include "abu/continuation/bifurcation.hpp"
+#include "branch_tracer.hpp"
+
+namespace abu {
+
+namespace {
+
+using ld = long double;
+using Vec5 = StaticEquations::Vec5;
+using Mat45 = StaticEquations::Mat45;
+
+// The eigenvalue of `sp` nearest to `target`.
+std::complex<double> nearest(const Spectrum& sp, std::complex<double> target) {
+  std::complex<double> best = sp.eigenvalues[0];
+  for (const auto& l : sp.eigenvalues)
+    if (std::abs(l - target) < std::abs(best - target)) best = l;
+  return best;
+}
+
+// A located point must lie on the piece of branch it was bracketed on (within a
+// margin of the chord), else the augmented Newton wandered off.
+bool inside(const Vec5& za, const Vec5& zb, const Vec5& z) {
+  const ld chord = distance(za, zb);
+  return distance(z, za) <= 2 * chord && distance(z, zb) <= 2 * chord;
+}
+
+}  // namespace
+
+void BranchTracer::locate(unsigned changed, const arclength::Segment<Vec5>& between) {
+  const Bracket br{points.back(), pending_, between.from, between.to, between.from_tangent};
+  // Both mark a point where F_s is singular; along the fork of a pitchfork both change
+  // sign at once (the fork turns there): one singular point, classified when located.
+  if (changed & (lp_test | bp_test)) locate_singular_between(br, (changed & lp_test) != 0);
+  if (changed & hb_test) locate_hopf_between(br);
+}
+
+SpecialPoint BranchTracer::special_at(Label label, const Vec5& z, const Bracket& br) const {
+  SpecialPoint sp;
+  sp.label = label;
+  sp.parameter = eq.parameter(z);
+  sp.position = eq.position(z);
+  sp.family = classify(eq.base(), sp.position);
+  sp.n_unstable_before = br.a.spectrum.n_unstable;
+  sp.n_unstable_after = br.b.spectrum.n_unstable;
+  sp.bracket_from = br.a.parameter;
+  sp.bracket_to = br.b.parameter;
+  return sp;
+}
+
+void BranchTracer::locate_singular_between(const Bracket& br, bool fold_test) {
+  // The singular point solves the fold's augmented system (F = 0, F_s singular); where
+  // that fails (fold and branch point coinciding, F_s of rank 2) the test function's root
+  // on the branch is found by Brent's method instead. Then: a fold if F_p is outside the
+  // range of F_s (w^T F_p != 0, w its left null vector), a branch point if inside.
+  const ld fa = fold_test ? ld(br.a.tangent_parameter) : ld(br.a.branch_test);
+  const ld fb = fold_test ? ld(br.b.tangent_parameter) : ld(br.b.branch_test);
+  const Vec5 guess = br.za + (fa / (fa - fb)) * (br.zb - br.za);
+  const Located f = locate_fold(eq, guess);
+  std::optional<Vec5> z;
+  if (f.converged && inside(br.za, br.zb, f.z)) z = f.z;
+  if (!z) z = root_on_branch(br, fold_test);
+  if (!z) {
+    SpecialPoint sp = special_at(fold_test ? Label::LP : Label::BP, guess, br);
+    sp.eigenvalue = nearest(compute_spectrum(eq.linearization(guess)), 0.0);
+    sp.note = "a singular point was detected here but could not be located (neither its augmented system nor the "
+              "test function's root on the branch converged)";
+    specials.push_back(sp);
+    return;
+  }
+  const Mat45 DF = eq.jacobian(*z);
+  const Eigen::JacobiSVD<Eigen::Matrix<ld, 4, 4>> svd(DF.leftCols<4>(), Eigen::ComputeFullU);
+  const ld in_range = std::abs(svd.matrixU().col(3).dot(DF.col(4))) / DF.col(4).norm();
+  // w^T F_p / |F_p|: 0 at a branch point, of order 1 at a fold. Measured: 1e-22 where a
+  // branch crosses a branch point, 2e-7 on the fork of a pitchfork (whose location is
+  // exact in the parameter, uncertain by ~1e-8 along the null direction), 0.999 at the
+  // folds of the together family. 1e-5 separates them by orders of magnitude.
+  SpecialPoint sp = special_at(in_range <= 1e-5L ? Label::BP : Label::LP, *z, br);
+  sp.converged = true;
+  sp.eigenvalue = nearest(compute_spectrum(eq.linearization(*z)), 0.0);
+  specials.push_back(sp);
+}
+
+std::optional<Vec5> BranchTracer::root_on_branch(const Bracket& br, bool fold_test) const {
+  // The test function (t_p, or det [F_u; t^T]) along the chord from z_a to z_b, each value
+  // on the branch (the corrector with the chord as constraint direction); Brent (GSL).
+  const Vec5 za = br.za;
+  const ld length = (br.zb - za).norm();
+  const Vec5 d = (br.zb - za) / length;
+  struct Context {
+    const StaticEquations* eq;
+    Vec5 za, d, t;
+    bool fold_test;
+    bool failed = false;
+  } ctx{&eq, za, d, br.ta, fold_test};
+  gsl_function fn;
+  fn.params = &ctx;
+  fn.function = [](double sigma, void* raw) -> double {
+    auto* c = static_cast<Context*>(raw);
+    const Corrected on = correct(*c->eq, c->za + ld(sigma) * c->d, c->d);
+    if (!on.converged()) c->failed = true;
+    const Vec5 t = arclength::tangent(on.jacobian, c->t);
+    return c->fold_test ? double(t(4)) : double(arclength::bordered_determinant(on.jacobian, t));
+  };
+  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  double lo = 0, hi = double(length), root = 0.5 * hi;
+  bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
+  for (int it = 0; ok && it < 200; ++it) {
+    if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
+      ok = false;
+      break;
+    }
+    root = gsl_root_fsolver_root(solver);
+    lo = gsl_root_fsolver_x_lower(solver);
+    hi = gsl_root_fsolver_x_upper(solver);
+    if (gsl_root_test_interval(lo, hi, 0, 1e-15) == GSL_SUCCESS) break;
+  }
+  gsl_root_fsolver_free(solver);
+  const Corrected on = correct(eq, za + ld(root) * d, d);
+  if (!(ok && on.converged() && !ctx.failed && inside(br.za, br.zb, on.u))) return std::nullopt;
+  return on.u;
+}
+
+void BranchTracer::locate_hopf_between(const Bracket& br) {
+  // Narrow the bracket on the branch (bisection on the test function's sign, each point
+  // corrected onto the branch) until the crossing pair is complex at both ends: a Hopf
+  // pair can be complex only in a sliver of the step (near omega_n with coulomb
+  // friction its frequency is 1e-5 omega_n). Then solve the Hopf system from there.
+  Vec5 za = br.za, zb = br.zb;
+  Spectrum sa = br.a.spectrum, sb = br.b.spectrum;
+  // A neutral saddle (a real pair lambda, -lambda: one eigenvalue on each side of the
+  // axis) changes the test function's sign but not the number of unstable eigenvalues;
+  // a Hopf crossing changes it by two. Only the latter is worth locating.
+  if (std::abs(sa.n_unstable - sb.n_unstable) != 2) return;
+  const int sign_a = hopf_test_sign(sa);
+  std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
+  for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it) {
+    if (distance(za, zb) < 1e-15L) break;
+    const Vec5 d = (zb - za).normalized();
+    const Corrected mid = correct(eq, (za + zb) / 2, d);
+    if (!mid.converged()) break;
+    const Spectrum sm = compute_spectrum(eq.linearization(mid.u));
+    if (hopf_test_sign(sm) == sign_a) {
+      za = mid.u, sa = sm;
+    } else {
+      zb = mid.u, sb = sm;
+    }
+  }
+  if (!pair) {
+    // The sign change came from a real pair lambda, -lambda: a neutral saddle, not a
+    // Hopf point (or a crossing too close to a coalescence to resolve): not reported.
+    return;
+  }
+  const auto [la, lb] = *pair;
+  const double theta = la.real() / (la.real() - lb.real());
+  const Vec5 guess = za + ld(theta) * (zb - za);
+  const ld omega_guess = la.imag() + theta * (lb.imag() - la.imag());
+  const Located h = locate_hopf(eq, guess, omega_guess);
+  const bool ok = h.converged && inside(br.za, br.zb, h.z);
+  SpecialPoint sp = special_at(Label::HB, ok ? h.z : guess, br);
+  sp.converged = ok;
+  sp.frequency = double(ok ? h.frequency : omega_guess);
+  const Spectrum s = compute_spectrum(eq.linearization(ok ? h.z : guess));
+  sp.eigenvalue = nearest(s, std::complex<double>(0, sp.frequency));
+  if (ok) {
+    sp.lyapunov = first_lyapunov_coefficient(eq.params(h.z), eq.position(h.z), h.frequency);
+    if (sp.lyapunov == 0) sp.note = "degenerate Hopf point (l1 = 0 within its accuracy)";
+  } else {
+    sp.note = "Hopf crossing detected but its augmented system did not converge";
+  }
+  specials.push_back(sp);
+}
+
+}  // namespace abu
