@@ -98,7 +98,7 @@ class BorderedSolver {
 template <int N>
 void equilibrate(const DofMatrix<ld, N>& magnitude, Coordinates<ld, N>& rows, Coordinates<ld, N>& cols) {
   // In double: only the orders of magnitude matter, and double's frexp/ldexp are cheap.
-  const Eigen::Index d = magnitude.rows();
+  const Eigen::Index d = dofs_of<N>(magnitude.rows());
   const DofMatrix<double, N> m = magnitude.template cast<double>();
   Coordinates<double, N> r = Coordinates<double, N>::Ones(d), c = Coordinates<double, N>::Ones(d);
   const auto inverse_pow2 = [](double v) {  // the power of two nearest 1 / v
@@ -125,7 +125,7 @@ RefinedEigenpair<N> refine_eigenpair(const Linearization<ld, N>& lin, std::compl
   using VecW = Coordinates<W, N>;
   using MatW = DofMatrix<W, N>;
   constexpr W eps = std::numeric_limits<W>::epsilon() / 2;
-  const Eigen::Index d = lin.mass.rows();
+  const Eigen::Index d = dofs_of<N>(lin.mass.rows());
   S lambda = from_complex<S>(start);
   Coordinates<ld, N> rows, cols;
   {

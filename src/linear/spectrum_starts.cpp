@@ -23,7 +23,7 @@ using FirstOrderLong = StateMatrix<ld, N>;
 // First-order form J = [[0, I], [-A^-1 K, -A^-1 C]].
 template <int N>
 FirstOrderMatrix<N> companion(const Linearization<ld, N>& lin) {
-  const Eigen::Index d = lin.mass.rows();
+  const Eigen::Index d = dofs_of<N>(lin.mass.rows());
   FirstOrderLong<N> J = FirstOrderLong<N>::Zero(2 * d, 2 * d);
   J.block(0, d, d, d).setIdentity();
   const Eigen::LLT<DofMatrix<ld, N>> a(lin.mass);
@@ -39,7 +39,7 @@ FirstOrderMatrix<N> companion(const Linearization<ld, N>& lin) {
 // structured inverse of model.md §8. False if T(sigma) is numerically singular.
 template <int N>
 bool shifted_inverse(const Linearization<ld, N>& lin, ld sigma, FirstOrderMatrix<N>& out) {
-  const Eigen::Index d = lin.mass.rows();
+  const Eigen::Index d = dofs_of<N>(lin.mass.rows());
   const DofMatrix<ld, N> t = sigma * sigma * lin.mass + sigma * lin.damping + lin.stiffness;
   // Judge and factor T(sigma) equilibrated, T = R^-1 Te D^-1: unscaled, its rotor rows
   // can be 1e10 larger than the ball rows and rcond would call it singular when it is not.
@@ -134,7 +134,7 @@ template <class S, int N>
 QepVector<N> position_vector(const Estimate<N>& e) {
   using MatS = Eigen::Matrix<S, state_size<N>, state_size<N>, Eigen::ColMajor, state_capacity<N>, state_capacity<N>>;
   using VecS = Eigen::Matrix<S, state_size<N>, 1, Eigen::ColMajor, state_capacity<N>, 1>;
-  const Eigen::Index m = e.source->balanced.rows(), d = m / 2;
+  const Eigen::Index d = dofs_of<N>(e.source->balanced.rows() / 2), m = 2 * d;
   S theta;
   if constexpr (std::is_same_v<S, double>) {
     theta = e.theta.real();

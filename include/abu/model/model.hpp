@@ -38,6 +38,17 @@ inline constexpr int state_size = N == any_balls ? Eigen::Dynamic : 2 * N + 4;
 template <int N>
 inline constexpr int state_capacity = 2 * ball_capacity<N> + 4;
 
+/// The number of configuration coordinates n + 2 of a matrix or vector of the model:
+/// the constant for a fixed ball count (so that loops over it unroll), else its size.
+template <int N>
+constexpr Eigen::Index dofs_of(Eigen::Index runtime) {
+  if constexpr (N == any_balls) {
+    return runtime;
+  } else {
+    return N + 2;
+  }
+}
+
 template <class T, int N>
 using Coordinates = Eigen::Matrix<T, dof_size<N>, 1, Eigen::ColMajor, dof_capacity<N>, 1>;  ///< s = (q1, q2, beta_1..beta_n)
 template <class T, int N>
