@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <vector>
 
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
@@ -22,10 +23,75 @@ struct SweepOptions {
   bool logarithmic = false;
   bool chart = true;
   std::string output_dir = "out";
+  BalancedSampling sampling;
 };
 // The grid must stay inside the parameter's physical range; it is an interval, so the
 // two ends decide. Checked before any work, with the scene's own rules.
 constexpr int kMaxSteps = 1000000;
+
+// Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
+// ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
+// summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
+// stable |q|) and its chart.
+int sweep_any_balls(Scene scene, const SweepOptions& o) {
+  SweepResultN result;
+  result.name = o.param;
+  std::vector<Scene> scenes;  // one per value
+  if (o.param == "n") {
+    if (!scene.ring)
+      throw InputError("--param", 0, "n", "the ball count is a study parameter only for a [balls] ring scene");
+    if (o.from != std::floor(o.from) || o.to != std::floor(o.to) || o.to < o.from)
+      throw InputError("--from", 0, "n", fmt::format("an increasing range of integers (got {} .. {})", o.from, o.to));
+    result.unit = "-";
+    for (double n = o.from; n <= o.to; n += 1) {
+      Scene s = scene;
+      set_ball_count(s, int(n), "--param n");
+      scenes.push_back(s);
+      result.values.push_back(n);
+    }
+  } else {
+    const auto ref = parse_param(o.param, int(scene.balls.size()));
+    if (!ref) throw InputError("--param", 0, o.param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (o.steps < 1 || o.steps > kMaxSteps)
+      throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o.steps));
+    if (o.logarithmic && !(o.from > 0 && o.to > 0))
+      throw InputError("--log", 0, o.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", o.from, o.to));
+    result.name = to_string(*ref);
+    result.unit = std::string(unit(ref->quantity));
+    for (double v : grid_values(o.from, o.to, o.steps, o.logarithmic)) {
+      Scene s = scene;
+      set_checked(s, *ref, v, "--from/--to");
+      scenes.push_back(s);
+      result.values.push_back(v);
+    }
+  }
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    result.points.push_back(analyze(params_of<any_balls>(scenes[i]), o.sampling));
+    fmt::print(stderr, "{}", analysis_warnings(result.points.back(), fmt::format("{}={}", result.name, result.values[i])));
+  }
+  const ParamsN first = params_of<any_balls>(scenes.front());
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const std::filesystem::path dir(o.output_dir);
+  const auto csv_path = dir / fmt::format("sweep_{}.csv", result.name);
+  const auto summary_path = dir / fmt::format("summary_{}.csv", result.name);
+  const auto png_path = dir / fmt::format("summary_{}.png", result.name);
+  OutputTransaction out;
+  out.stage(csv_path, sweep_csv(result, header));
+  const auto staged_summary = out.stage(summary_path, sweep_summary_csv(result, header));
+  if (o.chart) {
+    run_gnuplot(plots_dir() / "sweep_summary.gp",
+                {{"csv", staged_summary.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", result.name},
+                 {"unit", result.unit},
+                 {"logx", o.logarithmic ? "1" : "0"},
+                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)}});
+  }
+  out.commit();
+  fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
+             o.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
 }  // namespace
 
 Action add_sweep_command(CLI::App& app) {
@@ -35,17 +101,24 @@ Action add_sweep_command(CLI::App& app) {
       "Equilibria and spectra on a plain grid of one parameter: CSV (one row per equilibrium per value) and a PNG "
       "chart of |q| and the spectral abscissa (stable solid, unstable dashed).");
   add_scene_options(*sub, o->scene);
-  sub->add_option("--param", o->param, fmt::format("Parameter to sweep: {}", param_symbols_help()))->required();
+  sub->add_option("--param", o->param,
+                  fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene)", param_symbols_help()))
+      ->required();
   sub->add_option("--from", o->from, "First value (SI)")->required();
   sub->add_option("--to", o->to, "Last value (SI)")->required();
-  sub->add_option("--steps", o->steps, "Number of intervals: N+1 values including both ends")->required();
+  sub->add_option("--steps", o->steps, "Number of intervals: N+1 values including both ends (not for --param n)");
   sub->add_flag("--log", o->logarithmic, "Space the values evenly in log");
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
   sub->add_option("-o,--output-dir", o->output_dir, "Directory for sweep_NAME.csv and sweep_NAME.png")
       ->capture_default_str();
+  sub->add_option("--set-samples", o->sampling.samples_per_sheet,
+                  "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
     const int n_balls = int(scene.balls.size());
+    if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
     if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
     if (o->steps < 1 || o->steps > kMaxSteps)

@@ -150,10 +150,13 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
   // modes) converge to the same value from starts that the QR scattered; they do not
   // bound each other's basin.
   // Two starts on one simple eigenvalue converge to the same value with the same
-  // eigenvector; copies of a semisimple multiple one keep independent vectors.
+  // eigenvector; copies of a semisimple multiple one keep independent vectors, or
+  // already started together (the QR resolved no difference: closer than 1e-12, two
+  // eigenvalues are one at the 1e-8 reported).
   const auto copies = [&](std::size_t i, std::size_t j) {
     return converged_at[i] && converged_at[j] && std::abs(refined[i] - refined[j]) <= 1e-12L * std::abs(refined[i]) &&
-           std::abs(sp.vectors[first + i].dot(sp.vectors[first + j])) < 1 - 1e-6;
+           (std::abs(sp.vectors[first + i].dot(sp.vectors[first + j])) < 1 - 1e-6 ||
+            std::abs(start[i].value - start[j].value) <= 1e-12 * std::abs(start[i].value));
   };
   const auto basin_radius = [&](std::size_t i, const std::array<bool, SpectrumT<N>::capacity>& group) {
     ld radius = std::numeric_limits<ld>::infinity();
@@ -167,9 +170,9 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
   for (std::size_t i = 0; i < m; ++i)
     failed[i] = !converged_at[i] || std::abs(refined[i] - as_ld(start[i].value)) > basin_radius(i, none);
   // Second chance for a multiple eigenvalue where the plain Newton stalled (its bordered
-  // matrix is singular there): a failed start and every start within 1e-3 of it that
-  // failed too or converged to the same value (a semisimple cluster of a non-normal J
-  // scatters by up to ~1e-5 in double)
+  // matrix is singular there, or it jumps to a neighbour): a failed start and every
+  // start within 1e-3 of it that failed too (a semisimple cluster of a non-normal J
+  // scatters by up to ~1e-5 in double) or that the QR did not tell apart from it (1e-12)
   // form a group of multiplicity k, refined once from their mean (refinement.hpp, the
   // rank-(k-1) update) and shared if that converges inside the group's basin.
   for (std::size_t i = 0; i < m; ++i) {
@@ -182,7 +185,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
         for (std::size_t g = 0; g < m && !group[j]; ++g)
           if (group[g] && start[j].value.imag() >= 0 &&
               std::abs(start[j].value - start[g].value) <= 1e-3 * std::abs(start[g].value) &&
-              (failed[j] || std::abs(refined[j] - refined[i]) <= 1e-8L * std::abs(refined[i])))
+              (failed[j] || std::abs(start[j].value - start[g].value) <= 1e-12 * std::abs(start[g].value)))
             group[j] = grew = true;
     }
     int k = 0;

@@ -17,6 +17,8 @@ SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, Spectrum
 AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMethod method) {
   AnalysisN a;
   a.equilibria = find_equilibria(p, sampling);
+  a.unbalance = p.rotor.unbalance;
+  for (const auto& b : p.balls) a.capacity += b.mass * b.race_radius;
   const auto points = a.equilibria.points();
   a.spectra.reserve(points.size());
   for (const auto& e : points) a.spectra.push_back(equilibrium_spectrum(p, e, method));

@@ -138,6 +138,16 @@ check "three balls: the header names every ball and all 10 eigenvalues" \
 # samples carry 2 (n - 2) = 2 structural zeros each.
 check "three balls: balanced samples have 2 structural zeros (friction none)" \
   "grep -v '^#' '$work/three.csv' | awk -F, '\$1 == \"balanced\" && \$12 != 2 {exit 1} \$1 == \"balanced\" {n++} END {exit n == 0}'"
+"$bin" sweep "$src/data/scenes/ring11.toml" --param n --from 2 --to 5 -o "$work/swn" 2>/dev/null
+check "sweep --param n on a ring: exits 0" "[ $? -eq 0 ]"
+check "sweep --param n: summary, long CSV and chart" "[ \"\$(ls '$work/swn' | tr '\n' ' ')\" = 'summary_n.csv summary_n.png sweep_n.csv ' ]"
+check "sweep --param n: one summary row per ball count 2..5" \
+  "[ \"\$(grep -v '^#' '$work/swn/summary_n.csv' | tail -n +2 | cut -d, -f3 | tr '\n' ' ')\" = '2 3 4 5 ' ]"
+check "sweep --param n: 2^n aligned equilibria of the equal-ball ring" \
+  "[ \"\$(grep -v '^#' '$work/swn/summary_n.csv' | tail -n +2 | cut -d, -f10 | tr '\n' ' ')\" = '4 8 16 32 ' ]"
+bad "sweep --param n without a ring" sweep "$scene" --param n --from 2 --to 4 -o swn2
+grep -q "ring" "$work/err" && pass "its message names the [balls] ring" || fail "sweep --param n message"
+bad "sweep --param n to 13" sweep "$src/data/scenes/ring11.toml" --param n --from 2 --to 13 -o swn3
 bad "three balls: continue not supported yet" continue "$work/three.toml" --param omega --to 1000 -o out
 grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
 

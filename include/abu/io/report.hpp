@@ -35,6 +35,23 @@ std::string equilibria_table(const AnalysisN& a, const ParamsN& p);
 /// n_structural_zero,re1,...,im8`.
 std::string sweep_csv(const SweepResult& s, std::string_view header);
 
+/// A sweep of any ball count (also over the ball count itself, `n`): the analysis at each
+/// value. `values[i]` is the swept value, `points[i]` its analysis.
+struct SweepResultN {
+  std::string name;  ///< the parameter's symbol, or "n"
+  std::string unit;
+  std::vector<double> values;
+  std::vector<AnalysisN> points;
+};
+/// Long format as sweep_csv, the columns for the largest ball count of the sweep (beta_i
+/// and eigenvalue columns a row's equilibrium does not have are empty).
+std::string sweep_csv(const SweepResultN& s, std::string_view header);
+/// One row per value, what a designer reads off (model.md §13):
+/// `step,<param>,n,capacity,U,balanced_exists,balanced_samples,fraction_stable,normal_abscissa_max,
+///  aligned,aligned_stable,best_family,best_pattern,best_q_abs` (best: the stable state of least
+/// |q|, empty when nothing is stable).
+std::string sweep_summary_csv(const SweepResultN& s, std::string_view header);
+
 /// Continuation: one row per branch point,
 /// `branch,point,label,<param>,q1,q2,beta1,beta2,q_abs,family,stable,n_unstable,re1,im1,...,re8,im8`
 /// with the eigenvalues in tracked order (eigenvalue k is the same mode along a branch).

@@ -30,6 +30,8 @@ Analysis analyze(const Params& p, SpectrumMethod method = SpectrumMethod::refine
 struct AnalysisN {
   EquilibriumSetN equilibria;
   std::vector<SpectrumN> spectra;
+  double capacity = 0;   ///< sum m_i l_i [kg m], what the balls can cancel
+  double unbalance = 0;  ///< U [kg m]
 };
 AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling = {},
                   SpectrumMethod method = SpectrumMethod::refined);

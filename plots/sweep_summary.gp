@@ -1,0 +1,52 @@
+# Sweep summary chart (any number of balls, also over the ball count n): per value, the
+# fraction of the balanced set that is normally stable and the number of stable aligned
+# equilibria (top), and the residual vibration |q| of the best stable state (bottom; a
+# stable balanced state has |q| = 0 and is drawn on the bottom edge as "balanced").
+# Reads summary_NAME.csv written by `stability-scan sweep`, columns by header name; re-run by hand with
+#   gnuplot -e "csv='out/summary_n.csv'; png='summary.png'; param='n'; unit='-'; logx='0'; title='x'" plots/sweep_summary.gp
+if (!exists("csv")) csv = 'out/summary_n.csv'
+if (!exists("png")) png = 'summary.png'
+if (!exists("param")) param = 'n'
+if (!exists("unit")) unit = '-'
+if (!exists("logx")) logx = '0'
+if (!exists("title")) title = 'sweep summary'
+
+set terminal pngcairo size 1000,800 enhanced font 'DejaVu Sans,10'
+set output png
+set datafile separator ','
+set datafile commentschars '#'
+set datafile columnheaders
+set datafile missing ''
+
+if (logx eq '1') set logscale x
+set xlabel (unit eq '-' ? param : sprintf('%s [%s]', param, unit)) noenhanced
+set grid
+set key outside right top
+set lmargin at screen 0.1
+set rmargin at screen 0.72
+set multiplot layout 2,1 title title noenhanced
+
+set ylabel 'fraction of the balanced set normally stable'
+set yrange [-0.05:1.05]
+set y2label 'stable aligned equilibria'
+set y2tics
+stats csv using (column("aligned_stable")) nooutput
+set y2range [-0.5:STATS_max + 0.5]
+set ytics nomirror
+plot csv using (column(param)):(column("fraction_stable")) with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'balanced set: fraction stable', \
+     csv using (column(param)):(column("aligned_stable")) axes x1y2 with linespoints lw 1.5 pt 5 dt (6,4) lc rgb '#d62728' title 'aligned: number stable'
+
+unset y2tics
+stats csv using (column("aligned_stable")) nooutput
+set y2range [-0.5:STATS_max + 0.5]
+unset y2label
+set ytics mirror
+set logscale y
+set yrange [1e-12:1e-3]
+set format y '10^{%T}'
+set ylabel '|q| of the best stable state [m]'
+# A stable balanced state has |q| = 0: drawn on the floor of the axis (1e-12 m).
+positive(q) = (q > 0 ? q : NaN)
+plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title 'best stable: aligned', \
+     csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title 'best stable: balanced (|q| = 0)'
+unset multiplot
