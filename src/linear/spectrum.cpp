@@ -153,16 +153,23 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
   // eigenvector; copies of a semisimple multiple one keep independent vectors, or
   // already started together (the QR resolved no difference: closer than 1e-12, two
   // eigenvalues are one at the 1e-8 reported).
-  const auto copies = [&](std::size_t i, std::size_t j) {
-    return converged_at[i] && converged_at[j] && std::abs(refined[i] - refined[j]) <= 1e-12L * std::abs(refined[i]) &&
-           (std::abs(sp.vectors[first + i].dot(sp.vectors[first + j])) < 1 - 1e-6 ||
-            std::abs(start[i].value - start[j].value) <= 1e-12 * std::abs(start[i].value));
-  };
+  // (Squared moduli, std::norm: hypotl made this pairwise test a fifth of the spectrum's
+  // cost; decided once per pair.)
+  std::array<std::array<bool, SpectrumT<N>::capacity>, SpectrumT<N>::capacity> copy{};
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < m; ++j)
+      copy[i][j] = j != i && converged_at[i] && converged_at[j] &&
+                   std::norm(refined[i] - refined[j]) <= 1e-24L * std::norm(refined[i]) &&
+                   (std::norm(sp.vectors[first + i].dot(sp.vectors[first + j])) < (1 - 1e-6) * (1 - 1e-6) ||
+                    std::norm(start[i].value - start[j].value) <= 1e-24 * std::norm(start[i].value));
+  const auto copies = [&](std::size_t i, std::size_t j) { return copy[i][j]; };
   const auto basin_radius = [&](std::size_t i, const std::array<bool, SpectrumT<N>::capacity>& group) {
     ld radius = std::numeric_limits<ld>::infinity();
+    double radius_squared = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < m; ++j)
       if (start[j].value != start[i].value && !copies(i, j) && !group[j])
-        radius = std::min(radius, std::abs(as_ld(start[j].value - start[i].value)) / 2);
+        radius_squared = std::min(radius_squared, std::norm(start[j].value - start[i].value) / 4);
+    if (radius_squared < std::numeric_limits<double>::infinity()) radius = std::sqrt(ld(radius_squared));
     return radius;
   };
   std::array<bool, SpectrumT<N>::capacity> failed{};
