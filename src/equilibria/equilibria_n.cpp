@@ -134,7 +134,10 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
         set.degeneracy |= balanced_collinear;
         e.position(0) = e.position(1) = 0;
       }
-      e.structural_zeros = on_set ? f.n - 1 : double_root ? 1 : 0;
+      // (twice that where no ball's friction has a slope: Jordan pairs, model.md §13.4)
+      bool any_slope = false;
+      for (int i = 0; i < f.n; ++i) any_slope = any_slope || friction_slope(p, i, 0.0) != 0.0;
+      e.structural_zeros = on_set ? (any_slope ? 1 : 2) * (f.n - 1) : double_root ? 1 : 0;
       set.list.push_back(polish_equilibrium(p, e));
     }
   }

@@ -89,7 +89,7 @@ SpectrumN compute_normal_spectrum(const Linearization<ld, N>& lin, const Tangent
   using namespace spectrum_detail;
   const Eigen::Index d = lin.mass.rows(), t = V.cols();
   // Friction without slope leaves C V_T = 0 (the balls drift along the set): the zeros
-  // pair into Jordan chains (v, 0) -> (0, v) and deflate twice (model.md §13.4).
+  // pair into Jordan chains, J (0, v) = (v, 0) and deflate twice (model.md §13.4).
   const ld cv = (lin.damping * V).norm();
   const int level = cv <= 64 * kEpsLong * lin.damping.norm() ? 2 : 1;
   const int structural = int(level * t);
