@@ -141,7 +141,7 @@ RefinedEigenpair<N> refine_eigenpair(const Linearization<ld, N>& lin, std::compl
   const auto T = [&](S l) -> Mat { return (l * l) * As + l * Cs + Ks; };
   // The rank-(k-1) update for a k-fold semisimple eigenvalue (see the header): fixed,
   // deterministic O(1) columns that are generic against any physical structure.
-  Mat update = Mat::Zero(multiplicity > 1 ? d : 0, multiplicity > 1 ? d : 0);
+  Mat update = Mat::Zero(d, d);
   for (int j = 0; j + 1 < multiplicity; ++j) {
     for (Eigen::Index r = 0; r < d; ++r)
       for (Eigen::Index c = 0; c < d; ++c)
