@@ -14,7 +14,10 @@
 #  6. the numpy/scipy baseline (../shared/peers/numpy) on the same 1000 x 1000 map, and its
 #     stability flags against the analyzer's;
 #  7. the same comparison with stiff friction (kappa = 1e6), where the baseline's flags are
-#     wrong in a third of the cells: the differing cells checked at 40 digits.
+#     wrong in a third of the cells: the differing cells checked at 40 digits;
+#  8. us per equilibrium against the number of balls (ring scene, n = 2 .. 12): the whole
+#     analysis, the refined spectrum, a plain dense QR and numpy.linalg.eigvals on the same
+#     Jacobians, numpy's worst error and wrong verdicts against the analyzer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
@@ -70,3 +73,14 @@ if [ -n "$peers" ] && [ -f "$peers/stability_map.py" ]; then
   rm -f "$stiff.np.csv"
 fi
 rm -rf "$stiff.map"
+echo "## 8. cost per equilibrium against the number of balls (ring scene, n = 2 .. 12), against numpy on the same Jacobians"
+# bench_n times the analyzer (1 thread) and writes every equilibrium's double Jacobian and
+# eigenvalues; bench_n_numpy.py times stacked numpy.linalg.eigvals on those matrices (one
+# thread), scores them and prints the table.
+cmake --build build -j"$(nproc)" --target bench_n >/dev/null
+nbin=$(mktemp --suffix=.bin)
+ncsv=$(mktemp --suffix=.csv)
+build/tests/benchmarks/bench_n data/scenes/ring11.toml "$nbin" "$ncsv" --repeat 5
+env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 \
+  /usr/bin/python3 tests/benchmarks/bench_n_numpy.py "$nbin" "$ncsv" --repeat 5
+rm -f "$nbin" "$ncsv"
