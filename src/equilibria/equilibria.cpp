@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "line_roots.hpp"
+
 namespace abu {
 
 namespace {
@@ -13,9 +15,7 @@ namespace {
 using ld = long double;
 constexpr ld kPi = std::numbers::pi_v<ld>;
 constexpr ld kTwoPi = 2 * kPi;
-// Two inputs are "equal" when they differ by less than a few roundings of a double:
-// the scene cannot tell them apart, so neither can we.
-constexpr ld kInputRounding = 8 * ld(std::numeric_limits<double>::epsilon());
+using equilibria_detail::kInputRounding;  // (line_roots.hpp)
 constexpr ld kLongEps = std::numeric_limits<ld>::epsilon();
 
 // The quantities of the closed forms (model.md §5), in long double from exact doubles.
@@ -93,25 +93,6 @@ void add_balanced(const ClosedForm& f, EquilibriumSet& set) {
   if (!first.singular()) set.add(make(Family::balanced, 2, with_rotor_response(f, kPi + t1, kPi - t2)));
 }
 
-// Roots of K U sin b + C U cos b + C a = 0, i.e. U R sin(b + phi) = -C a with
-// R = |K + iC|, phi = arg(K + iC) (model.md §5, report eq. 2.19 / Appendix A).
-// Returns the number of roots written to `roots` (0, 1 for a double root, or 2).
-int line_roots(const ClosedForm& f, ld a, std::array<ld, 2>& roots, bool& double_root) {
-  const ld R = std::hypot(f.K, f.C);
-  const ld phi = std::atan2(f.C, f.K);
-  const ld sigma = -f.C * a / (f.U * R);
-  const ld excess = std::abs(sigma) - 1;
-  double_root = std::abs(excess) <= kInputRounding;
-  if (excess > kInputRounding) return 0;
-  if (double_root) {
-    roots[0] = -phi + std::copysign(kPi / 2, sigma);
-    return 1;
-  }
-  const ld alpha = std::asin(sigma);
-  roots[0] = -phi + alpha;
-  roots[1] = kPi - phi - alpha;
-  return 2;
-}
 
 // Together (b1 = b2 = b) and opposite (b2 = b1 + pi) points: the balls on the line of q.
 void add_collinear(const ClosedForm& f, Family family, EquilibriumSet& set) {
@@ -133,7 +114,7 @@ void add_collinear(const ClosedForm& f, Family family, EquilibriumSet& set) {
   }
   std::array<ld, 2> roots{};
   bool double_root = false;
-  const int n = line_roots(f, a, roots, double_root);
+  const int n = equilibria_detail::line_roots(f.K, f.C, f.U, a, roots, double_root);
   if (double_root) set.degeneracy |= together ? together_double_root : opposite_double_root;
   // Where the balanced points merged into this family, its root at the merging point is
   // the same configuration and shares the zero eigenvalue.

@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 
+#include "line_roots.hpp"
+
 #include "abu/model/friction.hpp"
 
 namespace abu {
@@ -18,9 +20,7 @@ namespace {
 using ld = long double;
 using cld = std::complex<ld>;
 constexpr ld kPi = std::numbers::pi_v<ld>;
-// Two inputs are "equal" when they differ by less than a few roundings of a double: the
-// scene cannot tell them apart, so neither can we (as equilibria.cpp).
-constexpr ld kInputRounding = 8 * ld(std::numeric_limits<double>::epsilon());
+using equilibria_detail::kInputRounding;  // (line_roots.hpp)
 constexpr ld kLongEps = std::numeric_limits<ld>::epsilon();
 
 // The quantities of model.md §13.1 in long double from the exact doubles.
@@ -63,25 +63,6 @@ EquilibriumN make_equilibrium(const Problem& f, Family family, unsigned pattern,
   return e;
 }
 
-// Roots of K U sin phi + C U cos phi + C S = 0 (model.md §13.2): U R sin(phi + delta) =
-// -C S with R = |K + iC|, delta = arg(K + iC). Returns the number of roots (0, 1 for a
-// double root, or 2), in the order phi = r - delta, pi - r - delta.
-int line_roots(const Problem& f, ld S, std::array<ld, 2>& roots, bool& double_root) {
-  const ld R = std::hypot(f.K, f.C);
-  const ld delta = std::atan2(f.C, f.K);
-  const ld sine = -f.C * S / (f.U * R);
-  const ld excess = std::abs(sine) - 1;
-  double_root = std::abs(excess) <= kInputRounding;
-  if (excess > kInputRounding) return 0;
-  if (double_root) {
-    roots[0] = std::copysign(kPi / 2, sine) - delta;
-    return 1;
-  }
-  const ld r = std::asin(sine);
-  roots[0] = r - delta;
-  roots[1] = kPi - r - delta;
-  return 2;
-}
 
 // The isolated equilibria, every ball on the line of q (model.md §13.2).
 void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
@@ -121,7 +102,7 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
     }
     std::array<ld, 2> roots{};
     bool double_root = false;
-    const int count = line_roots(f, S, roots, double_root);
+    const int count = equilibria_detail::line_roots(f.K, f.C, f.U, S, roots, double_root);
     if (double_root) set.degeneracy |= aligned_double_root;
     for (int r = 0; r < count; ++r) {
       const ld phi = roots[std::size_t(r)];
