@@ -110,21 +110,6 @@ bool law_uses(FrictionLaw law, Quantity q) {
   }
 }
 
-namespace {
-template <class Ball>
-auto& ball_field(Ball& b, Quantity q) {
-  switch (q) {
-    case Quantity::ball_mass: return b.mass;
-    case Quantity::race_radius: return b.race_radius;
-    case Quantity::ball_radius: return b.radius;
-    case Quantity::mu: return b.mu;
-    case Quantity::d: return b.d;
-    case Quantity::mu_c: return b.mu_c;
-    case Quantity::mu_s: return b.mu_s;
-    default: return b.v_s;
-  }
-}
-}  // namespace
 
 template <class T, int N>
 T get(const ParamsT<T, N>& p, ParamRef ref) {

@@ -575,18 +575,6 @@ double& global_field(Scene& scene, Quantity q) {
     default: return scene.omega;
   }
 }
-double& ball_field(BallT<double>& b, Quantity q) {
-  switch (q) {
-    case Quantity::ball_mass: return b.mass;
-    case Quantity::race_radius: return b.race_radius;
-    case Quantity::ball_radius: return b.radius;
-    case Quantity::mu: return b.mu;
-    case Quantity::d: return b.d;
-    case Quantity::mu_c: return b.mu_c;
-    case Quantity::mu_s: return b.mu_s;
-    default: return b.v_s;
-  }
-}
 
 // "ball index out of range: the scene has 3 balls (m1..m3)".
 std::string index_out_of_range(std::string_view symbol, std::size_t n) {

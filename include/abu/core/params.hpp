@@ -176,6 +176,26 @@ std::string_view param_symbols_help();
 /// Does the friction law read this coefficient? (`mu` is coulomb's, `d` viscous', ...)
 bool law_uses(FrictionLaw law, Quantity q);
 
+/// The member of a ball that a per-ball quantity names (ball_mass -> mass, mu -> mu, ...;
+/// v_s for any other quantity).
+template <class T>
+T& ball_field(BallT<T>& b, Quantity q) {
+  switch (q) {
+    case Quantity::ball_mass: return b.mass;
+    case Quantity::race_radius: return b.race_radius;
+    case Quantity::ball_radius: return b.radius;
+    case Quantity::mu: return b.mu;
+    case Quantity::d: return b.d;
+    case Quantity::mu_c: return b.mu_c;
+    case Quantity::mu_s: return b.mu_s;
+    default: return b.v_s;
+  }
+}
+template <class T>
+const T& ball_field(const BallT<T>& b, Quantity q) {
+  return ball_field(const_cast<BallT<T>&>(b), q);
+}
+
 /// Value of a parameter. For an every-ball reference it is ball 1's value (the balls
 /// of a scene addressed as a set are usually equal; `set` makes them so).
 template <class T, int N>
