@@ -25,6 +25,7 @@ struct ContinueOptions {
   std::string state;
   bool all = false;
   ContinuationOptions numerics;
+  BalancedSampling sampling;  // n >= 3 balls
   bool chart = true;
   std::string output_dir = "out";
 };
@@ -44,6 +45,55 @@ Coordinates<long double, 2> parse_state(const std::string& text) {
   }
   if (n != 4) throw InputError("--from-state", 0, text, "expected four finite numbers q1,q2,beta1,beta2 (SI)");
   return s;
+}
+// Three or more balls (branches_n.hpp): every aligned branch and every balanced sample
+// (free angles held), LP/BP/HB located, the balanced set's Hopf envelope.
+int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
+  const int n_balls = int(scene.balls.size());
+  const auto ref = parse_param(o.param, n_balls);
+  if (!ref) throw InputError("--param", 0, o.param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+  if (ref->quantity == Quantity::ball_radius)
+    throw InputError("--param", 0, o.param, "the ball radius does not enter the equations of motion (model.md §3)");
+  {
+    Scene probe = scene;
+    set_checked(probe, *ref, o.to, "--to");
+  }
+  if (const auto rule = options_violation(o.numerics)) throw InputError("options", 0, "", *rule);
+  if (!o.family.empty() || !o.state.empty())
+    throw NotSupportedError(fmt::format("--from-equilibrium / --from-state with {} balls (every aligned equilibrium "
+                                        "and balanced sample is continued)", n_balls));
+  if (!o.param2.empty())
+    throw NotSupportedError(fmt::format("two-parameter curves (--param2) with {} balls", n_balls));
+  const ParamsN p = params_of<any_balls>(scene);
+  if (o.to == get(p, *ref))
+    throw InputError("--to", 0, o.param, fmt::format("must differ from the start value {}", get(p, *ref)));
+  const ContinuationRunN run = continue_branches(p, *ref, o.to, o.numerics, o.sampling);
+  fmt::print(stderr, "{}", continuation_warnings(run));
+  const std::string name = to_string(*ref);
+  const std::filesystem::path dir(o.output_dir);
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  OutputTransaction out;
+  const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+  const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
+  const auto envelope = out.stage(dir / fmt::format("envelope_{}.csv", name), envelope_csv(run, header));
+  if (o.chart)
+    run_gnuplot(plots_dir() / "bifurcation_n.gp",
+                {{"branches", branches.string()},
+                 {"specials", specials.string()},
+                 {"envelope", envelope.string()},
+                 {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
+                 {"param", name},
+                 {"unit", std::string(unit(ref->quantity))},
+                 {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)}});
+  out.commit();
+  std::size_t points = 0, specials_count = 0;
+  for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
+  fmt::print(stderr, "{} branches ({} balanced samples), {} points, {} special points -> {}\n", run.branches.size(),
+             run.envelope.samples, points, specials_count, dir.string());
+  for (const auto& b : run.branches)
+    for (int end = 0; end < 2; ++end)
+      if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
+  return exit_ok;
 }
 }  // namespace
 
@@ -69,11 +119,16 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--ds-min", o->numerics.ds_min, "Minimum step")->capture_default_str();
   sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
+  sub->add_option("--set-samples", o->sampling.samples_per_sheet,
+                  "n >= 3 balls: samples of the balanced set per sheet, each continued as a branch (docs/model.md §13.5)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
   sub->add_option("-o,--output-dir", o->output_dir, "Directory for branch_NAME.csv, special_NAME.csv and the chart")
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const auto ref = parse_param(o->param, int(scene.balls.size()));
     if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
     if (ref->quantity == Quantity::ball_radius)

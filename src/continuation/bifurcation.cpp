@@ -85,40 +85,54 @@ auto central_difference(const Fn& fn, const Eigen::Matrix<ld, Dim, 1>& y, int k)
 // positive |.|^2). It changes sign where a complex pair crosses the imaginary axis (and
 // at neutral saddles, which the location then tells apart). Factors inside their error
 // bands are left out: their sign is noise (e.g. the conservative case's centres).
-int hopf_test_sign(const Spectrum& sp) {
+template <int N>
+int hopf_test_sign(const SpectrumT<N>& sp) {
+  // Structural zeros (along a set of equilibria) are not part of the normal spectrum
+  // whose crossings this detects (model.md §13.4).
+  const std::size_t count = std::size_t(sp.count);
   int sign = 1;
-  for (std::size_t i = 0; i < 8; ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     const auto li = sp.eigenvalues[i];
+    if (sp.structural[i]) continue;
     if (li.imag() > 0) {
       if (!sp.on_axis[i] && li.real() < 0) sign = -sign;
       continue;
     }
     if (li.imag() != 0) continue;
-    for (std::size_t j = i + 1; j < 8; ++j) {
+    for (std::size_t j = i + 1; j < count; ++j) {
       const auto lj = sp.eigenvalues[j];
-      if (lj.imag() != 0) continue;
+      if (lj.imag() != 0 || sp.structural[j]) continue;
       const double sum = li.real() + lj.real();
       if (std::abs(sum) > 8 * (sp.error[i] + sp.error[j]) && sum < 0) sign = -sign;
     }
   }
   return sign;
 }
+template int hopf_test_sign<2>(const SpectrumT<2>&);
+template int hopf_test_sign<any_balls>(const SpectrumT<any_balls>&);
 
 // The complex pair that crosses between two spectra: an upper-half-plane eigenvalue of
 // `a`, clear of the real axis, whose nearest counterpart in `b` is too and lies on the
 // other side of the imaginary axis.
-std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a, const Spectrum& b) {
-  for (std::size_t i = 0; i < 8; ++i) {
+template <int N>
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const SpectrumT<N>& a,
+                                                                                    const SpectrumT<N>& b) {
+  const std::size_t count = std::size_t(a.count);
+  for (std::size_t i = 0; i < count; ++i) {
     const auto la = a.eigenvalues[i];
     if (!(la.imag() > 8 * a.error[i])) continue;
     std::size_t best = 0;
-    for (std::size_t j = 1; j < 8; ++j)
+    for (std::size_t j = 1; j < count; ++j)
       if (std::abs(b.eigenvalues[j] - la) < std::abs(b.eigenvalues[best] - la)) best = j;
     const auto lb = b.eigenvalues[best];
     if (lb.imag() > 8 * b.error[best] && (la.real() > 0) != (lb.real() > 0)) return std::pair{la, lb};
   }
   return std::nullopt;
 }
+template std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair<2>(const SpectrumT<2>&,
+                                                                                                const SpectrumT<2>&);
+template std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair<any_balls>(
+    const SpectrumT<any_balls>&, const SpectrumT<any_balls>&);
 
 FoldCondition::FoldCondition(const StaticEquations& eq, const Vec5& z) {
   // Border with the left null vector as column (outside the range of F_s) and the right

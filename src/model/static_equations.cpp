@@ -2,58 +2,77 @@
 
 namespace abu {
 
-StaticEquations::StaticEquations(const Params& base, ParamRef param, ld origin, ld span)
-    : base_(base), base_ld_(base.cast<ld>()), param_(param), origin_(origin), span_(span) {
+template <int N>
+StaticEquationsT<N>::StaticEquationsT(const ParamsT<double, N>& base, ParamRef param, ld origin, ld span)
+    : base_(base), base_ld_(base.template cast<ld>()), param_(param), origin_(origin), span_(span) {
   length_ = displacement_scale(base_ld_);
+  dofs_ = dofs_of<N>(ball_count(base) + 2);
 }
 
-StaticEquations::Vec5 StaticEquations::scaled(const Coordinates<ld, 2>& s, ld parameter) const {
-  Vec5 z;
-  z << s(0) / length_, s(1) / length_, s(2), s(3), (parameter - origin_) / span_;
+template <int N>
+typename StaticEquationsT<N>::Unknowns StaticEquationsT<N>::scaled(const Coordinates<ld, N>& s, ld parameter) const {
+  Unknowns z(dofs_ + 1);
+  z.template head<forces_size>(dofs_) = s;
+  z(0) /= length_;
+  z(1) /= length_;
+  z(dofs_) = (parameter - origin_) / span_;
   return z;
 }
 
-Coordinates<long double, 2> StaticEquations::position(const Vec5& z) const {
-  Coordinates<ld, 2> s;
-  s << z(0) * length_, z(1) * length_, z(2), z(3);
+template <int N>
+Coordinates<long double, N> StaticEquationsT<N>::position(const Unknowns& z) const {
+  Coordinates<ld, N> s = z.template head<forces_size>(dofs_);
+  s(0) *= length_;
+  s(1) *= length_;
   return s;
 }
 
-ParamsT<long double, 2> StaticEquations::params_ld(const Vec5& z) const {
-  ParamsT<ld, 2> p = base_ld_;  // the long-double parameter keeps every digit of z
+template <int N>
+ParamsT<long double, N> StaticEquationsT<N>::params_ld(const Unknowns& z) const {
+  ParamsT<ld, N> p = base_ld_;  // the long-double parameter keeps every digit of z
   set(p, param_, parameter(z));
   return p;
 }
 
-Params StaticEquations::params(const Vec5& z) const {
-  Params p = base_;
+template <int N>
+ParamsT<double, N> StaticEquationsT<N>::params(const Unknowns& z) const {
+  ParamsT<double, N> p = base_;
   set(p, param_, double(parameter(z)));
   return p;
 }
 
-StaticEquations::Vec4 StaticEquations::row_scale(const Vec5& z) const {
+template <int N>
+typename StaticEquationsT<N>::Forces StaticEquationsT<N>::row_scale(const Unknowns& z) const {
   return static_force_scale(params_ld(z), position(z));
 }
 
-StaticEquations::Vec4 StaticEquations::residual(const Vec5& z) const {
+template <int N>
+typename StaticEquationsT<N>::Forces StaticEquationsT<N>::residual(const Unknowns& z) const {
   const auto p = params_ld(z);
-  const Vec4 b = generalized_forces(p, at_rest<ld, 2>(position(z)));
+  const Forces b = generalized_forces(p, at_rest<ld, N>(position(z)));
   return b.cwiseQuotient(static_force_scale(p, position(z)));
 }
 
-StaticEquations::Mat45 StaticEquations::jacobian(const Vec5& z) const {
+template <int N>
+typename StaticEquationsT<N>::JacobianMatrix StaticEquationsT<N>::jacobian(const Unknowns& z) const {
   const auto p = params_ld(z);
-  const State<ld, 2> x = at_rest<ld, 2>(position(z));
-  const Vec4 scale = static_force_scale(p, position(z));
-  Mat45 D;
+  const State<ld, N> x = at_rest<ld, N>(position(z));
+  const Forces scale = static_force_scale(p, position(z));
+  JacobianMatrix D(dofs_, dofs_ + 1);
   // db/ds = -K at rest (K's (dA/ds) s'' part vanishes on the branch, where s'' = 0).
-  D.leftCols<4>() = -linearize(p, x).stiffness * Eigen::DiagonalMatrix<ld, 4>(length_, length_, 1, 1);
-  D.col(4) = generalized_force_derivative(p, x, param_) * span_;
+  D.template leftCols<forces_size>(dofs_) = -linearize(p, x).stiffness;
+  D.col(0) *= length_;
+  D.col(1) *= length_;
+  D.col(dofs_) = generalized_force_derivative(p, x, param_) * span_;
   return scale.cwiseInverse().asDiagonal() * D;
 }
 
-Linearization<long double, 2> StaticEquations::linearization(const Vec5& z) const {
-  return linearize(params_ld(z), at_rest<ld, 2>(position(z)));
+template <int N>
+Linearization<long double, N> StaticEquationsT<N>::linearization(const Unknowns& z) const {
+  return linearize(params_ld(z), at_rest<ld, N>(position(z)));
 }
+
+template class StaticEquationsT<2>;
+template class StaticEquationsT<any_balls>;
 
 }  // namespace abu

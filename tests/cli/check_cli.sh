@@ -148,7 +148,11 @@ check "sweep --param n: 2^n aligned equilibria of the equal-ball ring" \
 bad "sweep --param n without a ring" sweep "$scene" --param n --from 2 --to 4 -o swn2
 grep -q "ring" "$work/err" && pass "its message names the [balls] ring" || fail "sweep --param n message"
 bad "sweep --param n to 13" sweep "$src/data/scenes/ring11.toml" --param n --from 2 --to 13 -o swn3
-bad "three balls: continue not supported yet" continue "$work/three.toml" --param omega --to 1000 -o out
+"$bin" continue "$work/three.toml" --param omega --to 1000 --no-chart -o "$work/c3" 2>/dev/null
+check "three balls: continue exits 0" "[ $? -eq 0 ]"
+check "three balls: continue writes branches, special points and the balanced set's envelope" \
+  "[ \"\$(ls '$work/c3' | tr '\n' ' ')\" = 'branch_omega.csv envelope_omega.csv special_omega.csv ' ]"
+bad "three balls: --param2 not supported yet" continue "$work/three.toml" --param omega --to 1000 --param2 mu --to2 0.01 -o out
 grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
 
 finish

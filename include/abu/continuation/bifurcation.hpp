@@ -73,13 +73,16 @@ FoldCoefficients fold_coefficients(const StaticEquations& eq, const StaticEquati
 /// where a complex pair crosses the imaginary axis, and at neutral saddles (a real pair
 /// lambda, -lambda), which the location tells apart. Factors within their error bands are
 /// left out (their sign is noise: the conservative case's centres).
-int hopf_test_sign(const Spectrum& sp);
+/// Structural zeros (SpectrumT::structural) are left out. N = 2 and any_balls.
+template <int N>
+int hopf_test_sign(const SpectrumT<N>& sp);
 
 /// The complex pair that crosses the imaginary axis between two spectra: an upper-half-
 /// plane eigenvalue of `a` clear of the real axis whose nearest counterpart in `b` is too
-/// and lies on the other side.
-std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const Spectrum& a,
-                                                                                    const Spectrum& b);
+/// and lies on the other side. N = 2 and any_balls.
+template <int N>
+std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair(const SpectrumT<N>& a,
+                                                                                    const SpectrumT<N>& b);
 
 struct Located {
   StaticEquations::Vec5 z = StaticEquations::Vec5::Zero();

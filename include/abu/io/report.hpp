@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "abu/continuation/boundaries.hpp"
+#include "abu/continuation/branches_n.hpp"
 #include "abu/continuation/continuation.hpp"
 #include "abu/scan/scan.hpp"
 
@@ -65,6 +66,18 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header);
 
 /// How each branch ended, one line per end that is not the end of the interval (stderr).
 std::string continuation_warnings(const ContinuationRun& run);
+
+/// Continuation of n >= 3 balls (report_branches_n.cpp): one row per branch point,
+/// `branch,point,label,<param>,family,pattern,member,q1,q2,beta1..beta<n>,q_abs,residual,
+/// spectral_abscissa,stable,n_unstable,n_structural_zero,re1,im1,...,re<2n+4>,im<2n+4>`
+/// (eigenvalues sorted, normal stability on balanced samples).
+std::string branch_csv(const ContinuationRunN& run, std::string_view header);
+/// `branch,label,<param>,family,pattern,member,q1,..,q_abs,frequency,re,im,converged,
+/// n_unstable_before,n_unstable_after,bracket_from,bracket_to,note` (frequency empty off HB).
+std::string special_points_csv(const ContinuationRunN& run, std::string_view header);
+/// The balanced set's stability boundary: `from,to,samples,normally_stable,fraction_stable`.
+std::string envelope_csv(const ContinuationRunN& run, std::string_view header);
+std::string continuation_warnings(const ContinuationRunN& run);
 
 /// Warnings for the user (stderr): equilibria whose polish or spectrum did not
 /// converge, ill-conditioned spectra; `where` says at which parameter value.

@@ -1,9 +1,13 @@
 // The equilibrium equations F(s, p) = b(s, 0; p) = 0 of model.md §5 as a function of
-// the scaled unknowns z = (q1 / L, q2 / L, beta1, beta2, (p - p0) / P): L the
+// the scaled unknowns z = (q1 / L, q2 / L, beta_1 .. beta_n, (p - p0) / P): L the
 // displacement scale, P the length of the parameter interval. Every equation is divided
 // by its natural size at z (model.hpp static_force_scale), so |F| ~ 1e-16 is rounding
 // level and the Jacobian's entries are O(1). Continuation, the location of special
 // points and the two-parameter curves all work on this one scaled system.
+//
+// N = 2 is the two-ball system (fixed-size: Vec5 unknowns, Mat45 Jacobian); N =
+// any_balls takes the ball count from the parameters at run time, in bounded storage
+// (n + 3 <= max_balls + 3 unknowns, no heap allocation).
 //
 //   abu::StaticEquations eq(p, *abu::parse_param("omega", 2), 300.0, 1700.0);
 //   abu::StaticEquations::Vec5 z = eq.scaled(s, 900.0L);
@@ -16,43 +20,57 @@
 
 namespace abu {
 
-class StaticEquations {
+template <int N>
+class StaticEquationsT {
  public:
   using ld = long double;
-  using Vec4 = Eigen::Matrix<ld, 4, 1>;
-  using Vec5 = Eigen::Matrix<ld, 5, 1>;
-  using Mat45 = Eigen::Matrix<ld, 4, 5>;
+  static constexpr int forces_size = dof_size<N>;  ///< n + 2 equations
+  static constexpr int unknowns_size = N == any_balls ? Eigen::Dynamic : N + 3;
+  using Forces = Coordinates<ld, N>;
+  using Unknowns = Eigen::Matrix<ld, unknowns_size, 1, Eigen::ColMajor, dof_capacity<N> + 1, 1>;
+  using JacobianMatrix =
+      Eigen::Matrix<ld, forces_size, unknowns_size, Eigen::ColMajor, dof_capacity<N>, dof_capacity<N> + 1>;
+  // The two-ball names.
+  using Vec4 = Forces;
+  using Vec5 = Unknowns;
+  using Mat45 = JacobianMatrix;
 
   /// `origin` is p0, `span` the parameter scale P (> 0).
-  StaticEquations(const Params& base, ParamRef param, ld origin, ld span);
+  StaticEquationsT(const ParamsT<double, N>& base, ParamRef param, ld origin, ld span);
 
-  Vec5 scaled(const Coordinates<ld, 2>& s, ld parameter) const;
-  Coordinates<ld, 2> position(const Vec5& z) const;
-  ld parameter(const Vec5& z) const { return origin_ + span_ * z(4); }
+  /// n + 2, the number of equations (the parameter is unknown n + 3).
+  Eigen::Index dofs() const { return dofs_; }
+  Unknowns scaled(const Coordinates<ld, N>& s, ld parameter) const;
+  Coordinates<ld, N> position(const Unknowns& z) const;
+  ld parameter(const Unknowns& z) const { return origin_ + span_ * z(dofs_); }
   /// The parameter set at z, in long double (and as given, in double).
-  ParamsT<ld, 2> params_ld(const Vec5& z) const;
-  Params params(const Vec5& z) const;
+  ParamsT<ld, N> params_ld(const Unknowns& z) const;
+  ParamsT<double, N> params(const Unknowns& z) const;
 
   /// F(z), each equation divided by its natural size at z.
-  Vec4 residual(const Vec5& z) const;
+  Forces residual(const Unknowns& z) const;
   /// The natural sizes the equations are divided by at z.
-  Vec4 residual_scale(const Vec5& z) const { return row_scale(z); }
-  /// [dF/ds * diag(L, L, 1, 1), dF/dp * P] with the same row scaling as residual(z).
-  Mat45 jacobian(const Vec5& z) const;
+  Forces residual_scale(const Unknowns& z) const { return row_scale(z); }
+  /// [dF/ds * diag(L, L, 1, .., 1), dF/dp * P] with the same row scaling as residual(z).
+  JacobianMatrix jacobian(const Unknowns& z) const;
   /// The second-order linearization at z (for spectra and augmented systems).
-  Linearization<ld, 2> linearization(const Vec5& z) const;
+  Linearization<ld, N> linearization(const Unknowns& z) const;
 
   ParamRef param() const { return param_; }
   ld length() const { return length_; }
   ld span() const { return span_; }
-  const Params& base() const { return base_; }
+  const ParamsT<double, N>& base() const { return base_; }
 
  private:
-  Vec4 row_scale(const Vec5& z) const;
-  Params base_;
-  ParamsT<ld, 2> base_ld_;
+  Forces row_scale(const Unknowns& z) const;
+  ParamsT<double, N> base_;
+  ParamsT<ld, N> base_ld_;
   ParamRef param_;
   ld origin_, span_, length_;
+  Eigen::Index dofs_;
 };
+
+using StaticEquations = StaticEquationsT<2>;
+using StaticEquationsN = StaticEquationsT<any_balls>;
 
 }  // namespace abu

@@ -1,0 +1,517 @@
+#include "abu/continuation/branches_n.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "abu/continuation/arclength.hpp"
+#include "abu/continuation/bifurcation.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/model/static_equations.hpp"
+
+namespace abu {
+
+namespace {
+
+using ld = long double;
+using Unknowns = StaticEquationsN::Unknowns;
+
+// The max-norm distance of two scaled points, the angles (entries 2 .. size-2) compared
+// modulo 2 pi.
+template <class Vec>
+ld angle_distance(const Vec& a, const Vec& b) {
+  ld d = 0;
+  const Eigen::Index last = a.size() - 1;
+  for (Eigen::Index k = 0; k <= last; ++k) {
+    ld x = a(k) - b(k);
+    if (k >= 2 && k < last) x = std::remainder(x, 2 * std::numbers::pi_v<ld>);
+    d = std::max(d, std::abs(x));
+  }
+  return d;
+}
+
+// An aligned branch: all n + 2 equations in all n + 3 unknowns.
+struct AlignedSystem {
+  using Vec = Unknowns;
+  using Jacobian = StaticEquationsN::JacobianMatrix;
+  static constexpr bool balanced = false;
+  const StaticEquationsN& eq;
+
+  Unknowns full(const Vec& u) const { return u; }
+  Vec reduced(const Unknowns& z) const { return z; }
+  StaticEquationsN::Forces residual(const Vec& u) const { return eq.residual(u); }
+  Jacobian jacobian(const Vec& u) const { return eq.jacobian(u); }
+  ld residual_size(const Vec& u) const { return eq.residual(u).cwiseAbs().maxCoeff(); }
+  static arclength::NewtonSettings newton() { return {}; }
+};
+
+// A balanced sample with beta_3..beta_n held (model.md §13.7): unknowns (q / L, beta_1,
+// beta_2, p), the rotor's equations and those of balls 1 and 2.
+struct HeldSystem {
+  using Vec = Eigen::Matrix<ld, 5, 1>;
+  using Jacobian = Eigen::Matrix<ld, 4, 5>;
+  static constexpr bool balanced = true;
+  const StaticEquationsN& eq;
+  Unknowns frame;  ///< the full unknowns, with the held angles
+
+  Unknowns full(const Vec& u) const {
+    Unknowns z = frame;
+    z.head<4>() = u.head<4>();
+    z(eq.dofs()) = u(4);
+    return z;
+  }
+  Vec reduced(const Unknowns& z) const {
+    Vec u;
+    u << z.head<4>(), z(eq.dofs());
+    return u;
+  }
+  Eigen::Matrix<ld, 4, 1> residual(const Vec& u) const { return eq.residual(full(u)).head<4>(); }
+  Jacobian jacobian(const Vec& u) const {
+    const StaticEquationsN::JacobianMatrix J = eq.jacobian(full(u));
+    Jacobian out;
+    out.leftCols<4>() = J.topLeftCorner<4, 4>();
+    out.col(4) = J.col(eq.dofs()).head<4>();
+    return out;
+  }
+  ld residual_size(const Vec& u) const { return residual(u).cwiseAbs().maxCoeff(); }
+  static arclength::NewtonSettings newton() { return {}; }
+};
+
+// One direction of one branch as a Problem of the engine.
+template <class S>
+class Tracer : public S {
+ public:
+  using Vec = typename S::Vec;
+  using Jacobian = typename S::Jacobian;
+  static constexpr std::size_t test_count = 3;
+  enum Test : unsigned { lp_test = 1u << 0, bp_test = 1u << 1, hb_test = 1u << 2 };
+
+  explicit Tracer(const S& system) : S(system) {}
+
+  arclength::Crossing crossing(const Vec& /*from*/, const Vec& to) const {
+    const int last = int(to.size()) - 1;
+    arclength::Crossing x = arclength::box_crossing(to, {last});
+    if (x.kind != arclength::Crossing::inside) return x;
+    const double value = double(this->eq.parameter(this->full(to)));
+    if (const auto rule = range_violation(this->eq.param().quantity, value))
+      return arclength::Crossing::leaving(fmt::format("{} would become {:.17g}: {}", to_string(this->eq.param()), value, *rule));
+    return x;
+  }
+
+  arclength::Evaluation<ld, test_count> evaluate(const Vec& u, const Vec& t, const Jacobian& DF, arclength::Stage stage) {
+    pending_ = make_point(u);
+    pending_.tangent_parameter = double(t(t.size() - 1));
+    pending_.branch_test = double(arclength::bordered_determinant(DF, t));
+    arclength::Evaluation<ld, test_count> e;
+    // A step is only checked at its ends: the test functions see sign changes between
+    // points, not what the branch did in between, and a long step in the parameter
+    // across a resonance can land on the branch beyond an excursion (the aligned
+    // branches near omega_n rise by two orders in |q| and come back), with tangents
+    // alike at both ends. So the chord's midpoint is corrected onto the branch (normal
+    // to the chord): on a branch that the step followed, it lies within the sagitta
+    // ~ ds^2 kappa / 8 of the chord's middle, which the step control keeps near 0.025 ds
+    // (predictor error 0.1 ~ kappa ds / 2); beyond 0.1 ds, or if no point is found,
+    // the step is retried shorter (the engine takes it anyway near ds_min).
+    if (stage == arclength::Stage::step && !us_.empty()) {
+      const Vec& last = us_.back();
+      const ld chord = (u - last).norm();
+      const Vec middle = (u + last) / 2;
+      const auto mid = arclength::correct(static_cast<const S&>(*this), middle, Vec((u - last) / chord));
+      e.retry = !mid.converged() || (mid.u - middle).norm() > 0.1L * chord;
+      e.reason = "the branch strays from the step's chord between its ends";
+    }
+    e.tests = {ld(pending_.tangent_parameter), ld(pending_.branch_test), ld(hopf_test_sign(pending_.spectrum))};
+    return e;
+  }
+
+  void commit(Vec& u, Vec& t, arclength::Stage stage) {
+    points.push_back(std::move(pending_));
+    if (stage == arclength::Stage::edge) points.back().label = Label::EP;
+    us_.push_back(u);
+    ts_.push_back(t);
+  }
+
+  ld distance(const Vec& a, const Vec& b) const { return angle_distance(a, b); }
+
+  void locate(unsigned changed, const arclength::Segment<Vec>& between) {
+    const BranchPointN& a = points.back();
+    // The pending point is b (evaluated, not yet committed).
+    const BranchPointN& b = pending_;
+    if (changed & lp_test) {
+      locate_singular(a, b, between, Label::LP);
+    } else if (changed & bp_test) {
+      locate_singular(a, b, between, Label::BP);
+    }
+    if (changed & hb_test) locate_hopf(a, b, between);
+  }
+
+  std::vector<BranchPointN> points;
+  std::vector<SpecialPointN> specials;
+  ContinuationStats stats;
+
+ private:
+  BranchPointN make_point(const Vec& u) {
+    BranchPointN pt;
+    const Unknowns z = this->full(u);
+    pt.parameter = this->eq.parameter(z);
+    pt.position = this->eq.position(z);
+    pt.spectrum = spectrum_at(z);
+    const ParamsN p = this->eq.params(z);
+    pt.residual = static_residual<any_balls>(p, pt.position);
+    return pt;
+  }
+
+  SpectrumN spectrum_at(const Unknowns& z) {
+    ++stats.full_spectra;
+    const Linearization<ld, any_balls> lin = this->eq.linearization(z);
+    if constexpr (S::balanced) {
+      return compute_normal_spectrum(lin, balanced_tangent_basis(this->eq.params(z), this->eq.position(z)));
+    } else {
+      return compute_spectrum<any_balls>(lin);
+    }
+  }
+
+  SpecialPointN special_at(Label label, const Vec& u, const BranchPointN& a, const BranchPointN& b) const {
+    SpecialPointN sp;
+    sp.label = label;
+    const Unknowns z = this->full(u);
+    sp.parameter = this->eq.parameter(z);
+    sp.position = this->eq.position(z);
+    sp.n_unstable_before = a.spectrum.n_unstable;
+    sp.n_unstable_after = b.spectrum.n_unstable;
+    sp.bracket_from = a.parameter;
+    sp.bracket_to = b.parameter;
+    sp.next_point = int(points.size());  // b, the pending point, is committed next
+    return sp;
+  }
+
+  // Brent (GSL) on f(sigma), sigma the arclength along the chord from `from` to `to`,
+  // f evaluated on the branch (the corrector with the chord as constraint direction).
+  template <class F>
+  std::optional<Vec> root_on_chord(const Vec& from, const Vec& to, F&& f) const {
+    const ld length = (to - from).norm();
+    if (!(length > 0)) return std::nullopt;
+    struct Context {
+      const Tracer* self;
+      Vec from, d;
+      std::remove_reference_t<F>* f;
+      bool failed = false;
+    } ctx{this, from, Vec((to - from) / length), &f};
+    gsl_function fn;
+    fn.params = &ctx;
+    fn.function = [](double sigma, void* raw) -> double {
+      auto* c = static_cast<Context*>(raw);
+      const auto on = arclength::correct(static_cast<const S&>(*c->self), Vec(c->from + ld(sigma) * c->d), c->d);
+      if (!on.converged()) {
+        c->failed = true;
+        return 0.0;  // ends the search; reported as not converged
+      }
+      return (*c->f)(on);
+    };
+    gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    double lo = 0, hi = double(length), root = 0.5 * hi;
+    bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
+    for (int it = 0; ok && it < 200 && !ctx.failed; ++it) {
+      if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
+        ok = false;
+        break;
+      }
+      root = gsl_root_fsolver_root(solver);
+      lo = gsl_root_fsolver_x_lower(solver);
+      hi = gsl_root_fsolver_x_upper(solver);
+      if (gsl_root_test_interval(lo, hi, 0, 1e-13 * double(length)) == GSL_SUCCESS) break;
+    }
+    gsl_root_fsolver_free(solver);
+    const auto on = arclength::correct(static_cast<const S&>(*this), Vec(from + ld(root) * ctx.d), ctx.d);
+    if (!(ok && !ctx.failed && on.converged())) return std::nullopt;
+    return on.u;
+  }
+
+  void locate_singular(const BranchPointN& a, const BranchPointN& b, const arclength::Segment<Vec>& br, Label label) {
+    const Vec ta = br.from_tangent;
+    const bool fold = label == Label::LP;
+    const auto test = [&](const auto& on) -> double {
+      const Vec t = arclength::tangent(on.jacobian, ta);
+      return fold ? double(t(t.size() - 1)) : double(arclength::bordered_determinant(on.jacobian, t));
+    };
+    const std::optional<Vec> u = root_on_chord(br.from, br.to, test);
+    SpecialPointN sp = special_at(label, u ? *u : Vec((br.from + br.to) / 2), a, b);
+    sp.converged = u.has_value();
+    const SpectrumN s = spectrum_at(this->full(u ? *u : Vec((br.from + br.to) / 2)));
+    // The eigenvalue nearest 0 that is not structural: the one that crosses.
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < s.count; ++k)
+      if (!s.structural[std::size_t(k)] && std::abs(s.eigenvalues[std::size_t(k)]) < best)
+        best = std::abs(s.eigenvalues[std::size_t(k)]), sp.eigenvalue = s.eigenvalues[std::size_t(k)];
+    if (!sp.converged) sp.note = "test function changed sign but its root was not located (corrector failed)";
+    specials.push_back(sp);
+  }
+
+  void locate_hopf(const BranchPointN& a, const BranchPointN& b, const arclength::Segment<Vec>& br) {
+    // A Hopf crossing changes the number of unstable eigenvalues by two; a neutral
+    // saddle (lambda, -lambda) changes the test's sign but not the count: not reported.
+    if (std::abs(a.spectrum.n_unstable - b.spectrum.n_unstable) != 2) return;
+    Vec ua = br.from, ub = br.to;
+    SpectrumN sa = a.spectrum, sb = b.spectrum;
+    const int sign_a = hopf_test_sign(sa);
+    // Narrow the bracket until the crossing pair is complex at both ends (it can be
+    // complex in a sliver of the step only, near a coalescence on the real axis).
+    std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
+    for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it) {
+      if (angle_distance(ua, ub) < 1e-15L) break;
+      const Vec d = (ub - ua).normalized();
+      const auto mid = arclength::correct(static_cast<const S&>(*this), Vec((ua + ub) / 2), d);
+      if (!mid.converged()) break;
+      const SpectrumN sm = spectrum_at(this->full(mid.u));
+      if (hopf_test_sign(sm) == sign_a) {
+        ua = mid.u, sa = sm;
+      } else {
+        ub = mid.u, sb = sm;
+      }
+    }
+    if (!pair) return;  // a neutral saddle (or unresolvable coalescence): not a Hopf point
+    // Brent on the real part of the crossing eigenvalue, followed by nearness to the
+    // linear interpolation between the bracket's pair.
+    const auto [la, lb] = *pair;
+    const ld chord = (ub - ua).norm();
+    std::complex<double> critical = la;
+    const Vec from = ua;
+    const auto real_part = [&](const auto& on) -> double {
+      const SpectrumN s = spectrum_at(this->full(on.u));
+      const double theta = chord > 0 ? double((on.u - from).norm() / chord) : 0.0;
+      const std::complex<double> guess = la + theta * (lb - la);
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < std::size_t(s.count); ++k)
+        if (std::abs(s.eigenvalues[k] - guess) < std::abs(s.eigenvalues[best] - guess)) best = k;
+      critical = s.eigenvalues[best];
+      return critical.real();
+    };
+    const std::optional<Vec> u = root_on_chord(ua, ub, real_part);
+    const double theta = la.real() / (la.real() - lb.real());
+    const Vec at = u ? *u : Vec(ua + ld(theta) * (ub - ua));
+    SpecialPointN sp = special_at(Label::HB, at, a, b);
+    sp.converged = u.has_value();
+    if (sp.converged) real_part(arclength::correct(static_cast<const S&>(*this), at, Vec((ub - ua).normalized())));
+    sp.eigenvalue = sp.converged ? critical : la + theta * (lb - la);
+    sp.frequency = std::abs(sp.eigenvalue.imag());
+    if (!sp.converged) sp.note = "Hopf crossing detected, its location by Brent's method failed (interpolated)";
+    specials.push_back(sp);
+  }
+
+  BranchPointN pending_;
+  std::vector<Vec> us_, ts_;
+};
+
+// How one direction of a branch ended, in the terms of continuation.hpp.
+template <class P>
+std::pair<StopReason, std::string> stop_of(const StaticEquationsN& eq, const P& problem,
+                                           const arclength::Result<P>& r, const ContinuationOptions& options) {
+  const auto at = [&](const typename P::Vec& u) {
+    return fmt::format("{}={:.17g}", to_string(eq.param()), double(eq.parameter(problem.full(u))));
+  };
+  switch (r.end) {
+    case arclength::End::end_of_interval: return {StopReason::end_of_range, {}};
+    case arclength::End::edge_not_reached:
+      return {StopReason::step_underflow, fmt::format("no equilibrium found at the end value {}", at(r.beyond))};
+    case arclength::End::left_domain: return {StopReason::invalid_parameter, r.reason};
+    case arclength::End::closed_loop: return {StopReason::closed_loop, {}};
+    case arclength::End::max_steps:
+      return {StopReason::max_steps, fmt::format("stopped after {} steps at {}", options.max_steps, at(r.last))};
+    case arclength::End::step_underflow:
+      return {StopReason::step_underflow, fmt::format("{} with step {:.3g} at {}", r.reason, double(r.ds), at(r.last))};
+  }
+  return {StopReason::step_underflow, r.reason};
+}
+
+// Traces the branch of `system` through z0 (scaled parameter `end`: 0 the start value,
+// 1 the far end), heading into the interval.
+template <class S>
+BranchN trace_branch(const S& system, const Unknowns& z0, ld end, const ContinuationOptions& options,
+                     ContinuationStats& stats) {
+  using Vec = typename S::Vec;
+  const Vec u0 = system.reduced(z0);
+  Vec inward = Vec::Zero(u0.size());
+  inward(u0.size() - 1) = end == 0 ? 1 : -1;
+  Tracer<S> forward(system), backward(system);
+  const auto start = arclength::start(forward, u0, inward);
+  const auto run = arclength::trace_both_ways(forward, backward, start, options);
+  for (const auto* r : {&run.forward, &run.backward}) {
+    stats.steps += r->stats.steps;
+    stats.rejected += r->stats.rejected;
+    stats.newton_iterations += r->stats.newton_iterations;
+  }
+  stats += forward.stats;
+  stats += backward.stats;
+  BranchN b;
+  b.start_parameter = system.eq.parameter(z0);
+  // Backward point j (j >= 1) becomes point back - j, the start (j = 0) is forward's
+  // first, at `back`; a special before backward point j lies before assembled point
+  // back - j + 1.
+  const int back = backward.points.empty() ? 0 : int(backward.points.size()) - 1;
+  for (std::size_t k = backward.points.size(); k > 1; --k) b.points.push_back(backward.points[k - 1]);
+  for (auto it = backward.specials.rbegin(); it != backward.specials.rend(); ++it) {
+    SpecialPointN sp = *it;  // traversed the other way: before and after swap
+    std::swap(sp.n_unstable_before, sp.n_unstable_after);
+    std::swap(sp.bracket_from, sp.bracket_to);
+    sp.next_point = back - sp.next_point + 1;
+    b.specials.push_back(sp);
+  }
+  b.points.insert(b.points.end(), forward.points.begin(), forward.points.end());
+  for (SpecialPointN sp : forward.specials) {
+    sp.next_point += back;
+    b.specials.push_back(sp);
+  }
+  std::tie(b.stop[1], b.stop_detail[1]) = stop_of(system.eq, forward, run.forward, options);
+  if (run.backward_traced) {
+    std::tie(b.stop[0], b.stop_detail[0]) = stop_of(system.eq, backward, run.backward, options);
+  } else {
+    b.stop[0] = StopReason::end_of_range;
+    b.stop_detail[0] = "the start value is an end of the interval";
+    b.points.front().label = Label::EP;
+  }
+  return b;
+}
+
+// Does an aligned branch pass through the configuration z (scaled)?
+bool passes_through(const StaticEquationsN& eq, const BranchN& b, const Unknowns& z) {
+  for (const auto& pt : b.points)
+    if (angle_distance(eq.scaled(pt.position, pt.parameter), z) < 1e-8L) return true;
+  return false;
+}
+
+// The envelope of the Hopf points of all samples: the parameter interval cut at every
+// located HB and LP of any sample (and at the ends of every sample's branch); in each
+// piece a sample counts as normally stable if every part of its branch over the piece
+// is (a part: the points between two consecutive special points, all of one stability,
+// as no test function changed sign between them).
+BalancedEnvelope envelope_of(const std::vector<BranchN>& branches, ld from, ld to) {
+  struct Part {
+    ld lo, hi;
+    bool stable;
+  };
+  BalancedEnvelope env;
+  std::vector<ld> cuts{std::min(from, to), std::max(from, to)};
+  std::vector<std::vector<Part>> parts;
+  for (const auto& b : branches) {
+    if (b.family != Family::balanced || b.points.empty()) continue;
+    ++env.samples;
+    bool hopf = false;
+    std::vector<Part>& mine = parts.emplace_back();
+    std::size_t next = 0;  // the next special along the branch
+    for (std::size_t k = 0; k < b.points.size(); ++k) {
+      const BranchPointN& pt = b.points[k];
+      const bool stable = pt.spectrum.stability == Stability::stable;
+      bool fresh = mine.empty();
+      while (next < b.specials.size() && b.specials[next].next_point <= int(k)) {
+        const SpecialPointN& sp = b.specials[next++];
+        if (sp.label != Label::HB && sp.label != Label::LP) continue;
+        hopf = hopf || sp.label == Label::HB;
+        cuts.push_back(sp.parameter);
+        if (!mine.empty()) mine.back().lo = std::min(mine.back().lo, sp.parameter), mine.back().hi = std::max(mine.back().hi, sp.parameter);
+        mine.push_back({sp.parameter, sp.parameter, stable});
+        fresh = false;
+      }
+      if (fresh) mine.push_back({pt.parameter, pt.parameter, stable});
+      Part& part = mine.back();
+      part.lo = std::min(part.lo, pt.parameter), part.hi = std::max(part.hi, pt.parameter);
+      part.stable = part.stable && stable;
+    }
+    env.samples_with_hopf += hopf;
+    cuts.push_back(b.points.front().parameter), cuts.push_back(b.points.back().parameter);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  const auto same = [](ld x, ld y) { return std::abs(x - y) <= 1e-12L * std::max(std::abs(x), std::abs(y)); };
+  cuts.erase(std::unique(cuts.begin(), cuts.end(), same), cuts.end());
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    BalancedEnvelope::Interval iv{cuts[k], cuts[k + 1], 0, 0};
+    const ld mid = (iv.from + iv.to) / 2;
+    for (const auto& mine : parts) {
+      bool covered = false, stable = true;
+      for (const Part& part : mine)
+        if (part.lo <= mid && mid <= part.hi) covered = true, stable = stable && part.stable;
+      iv.samples += covered;
+      iv.stable += covered && stable;
+    }
+    env.intervals.push_back(iv);
+  }
+  return env;
+}
+
+}  // namespace
+
+ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, const ContinuationOptions& options,
+                                   const BalancedSampling& sampling) {
+  ContinuationRunN run;
+  run.param = param;
+  run.from = get(p, param);
+  run.to = to;
+  run.n_balls = p.n_balls();
+  if (run.n_balls < 3)
+    throw InputError("continuation", 0, "n", "the n-ball continuation needs n >= 3 (two balls: continuation.hpp)");
+  if (const auto rule = range_violation(param.quantity, to)) throw InputError("continuation", 0, to_string(param), *rule);
+  if (to == run.from) throw InputError("continuation", 0, to_string(param), "the end value equals the start value");
+  const StaticEquationsN eq(p, param, run.from, ld(to) - ld(run.from));
+  ParamsN far = p;
+  set(far, param, to);
+  const EquilibriumSetN here = find_equilibria(p, sampling);
+  const EquilibriumSetN there = find_equilibria(far, sampling);
+  run.balanced_set = here.balanced_set;
+
+  // Balanced samples, free angles held: from the start value, or from the far end if
+  // the set exists only there.
+  const bool samples_here = here.balanced_set.samples > 0;
+  const auto& sample_source = samples_here ? here : there;
+  for (const auto& e : sample_source.points()) {
+    if (e.family != Family::balanced) continue;
+    const ld parameter = samples_here ? ld(run.from) : ld(to);
+    const HeldSystem system{eq, eq.scaled(e.position, parameter)};
+    BranchN b = trace_branch(system, system.frame, samples_here ? 0 : 1, options, run.stats);
+    b.family = Family::balanced;
+    b.member = e.member;
+    run.branches.push_back(std::move(b));
+  }
+  if (!samples_here && there.balanced_set.samples > 0)
+    run.notes.push_back(fmt::format("the balanced set exists only towards {}={}: its samples start there",
+                                    to_string(param), to));
+
+  // Aligned equilibria, at the start value and then those at the far end no branch reached.
+  const AlignedSystem aligned{eq};
+  for (int side = 0; side < 2; ++side) {
+    const ld parameter = side == 0 ? ld(run.from) : ld(to);
+    for (const auto& e : (side == 0 ? here : there).points()) {
+      if (e.family == Family::balanced) continue;
+      if (e.singular()) {
+        if (side == 0)
+          run.notes.push_back(fmt::format("aligned {} {} is singular ({} structural zero eigenvalues): not continued",
+                                          pattern_string(e.pattern, run.n_balls), e.member, e.structural_zeros));
+        continue;
+      }
+      const Unknowns z = eq.scaled(e.position, parameter);
+      const BranchN* on = nullptr;
+      for (const auto& b : run.branches)
+        if (b.family != Family::balanced && passes_through(eq, b, z)) on = &b;
+      if (on) {
+        if (side == 0)
+          run.notes.push_back(fmt::format("aligned {} {} lies on the branch of {} {}; not traced again",
+                                          pattern_string(e.pattern, run.n_balls), e.member,
+                                          pattern_string(on->pattern, run.n_balls), on->member));
+        continue;
+      }
+      BranchN b = trace_branch(aligned, z, side, options, run.stats);
+      b.family = Family::aligned;
+      b.pattern = e.pattern;
+      b.member = e.member;
+      run.branches.push_back(std::move(b));
+    }
+  }
+  run.envelope = envelope_of(run.branches, run.from, to);
+  return run;
+}
+
+}  // namespace abu
