@@ -191,27 +191,60 @@ class Tracer : public S {
     return sp;
   }
 
+  // The system with Newton's rules relaxed for the location of branch points, where the
+  // corrector converges only linearly (the bordered matrix is singular at the point):
+  // more iterations, and a stalled run accepted at steps of 1e-9 (the point is then
+  // determined to ~1e-9 of the scaled unknowns, near sqrt(eps) as it can be).
+  struct Relaxed : S {
+    static arclength::NewtonSettings newton() {
+      arclength::NewtonSettings rules;
+      rules.max_iterations = 60;
+      rules.stall_tolerance = 1e-9L;
+      rules.residual_tolerance = 1e-13L;
+      return rules;
+    }
+  };
+
+  // Where a test function vanishes between two points: `u` on the branch, `width` the
+  // final bracket relative to the chord (1e-13 when Brent converged).
+  struct ChordRoot {
+    std::optional<Vec> u;
+    double width = 1;
+  };
+
   // Brent (GSL) on f(sigma), sigma the arclength along the chord from `from` to `to`,
   // f evaluated on the branch (the corrector with the chord as constraint direction).
+  // Next to a branch point the bordered corrector loses its quadratic convergence (F_u
+  // has a two-dimensional kernel there) and its stall rule stops it: the root is then
+  // the last point found, accepted if the bracket has shrunk below 1e-6 of the chord
+  // (a branch point is determined only to ~sqrt(eps) along the null direction anyway).
   template <class F>
-  std::optional<Vec> root_on_chord(const Vec& from, const Vec& to, F&& f) const {
+  ChordRoot root_on_chord(const Vec& from, const Vec& to, F&& f) const {
     const ld length = (to - from).norm();
-    if (!(length > 0)) return std::nullopt;
+    if (!(length > 0)) return {};
     struct Context {
       const Tracer* self;
       Vec from, d;
       std::remove_reference_t<F>* f;
       bool failed = false;
-    } ctx{this, from, Vec((to - from) / length), &f};
+      std::optional<Vec> last;  // the last point found on the branch
+    } ctx{this, from, Vec((to - from) / length), &f, false, std::nullopt};
     gsl_function fn;
     fn.params = &ctx;
     fn.function = [](double sigma, void* raw) -> double {
       auto* c = static_cast<Context*>(raw);
-      const auto on = arclength::correct(static_cast<const S&>(*c->self), Vec(c->from + ld(sigma) * c->d), c->d);
+      const Vec guess = c->from + ld(sigma) * c->d;
+      auto on = arclength::correct(static_cast<const S&>(*c->self), guess, c->d);
+      if (!on.converged()) {
+        // Linear convergence next to a branch point: the relaxed rules below.
+        const auto relaxed = arclength::correct(Relaxed{*c->self}, guess, c->d);
+        on.u = relaxed.u, on.jacobian = relaxed.jacobian, on.status = relaxed.status;
+      }
       if (!on.converged()) {
         c->failed = true;
-        return 0.0;  // ends the search; reported as not converged
+        return 0.0;  // ends the search (below)
       }
+      c->last = on.u;
       return (*c->f)(on);
     };
     gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
@@ -222,15 +255,23 @@ class Tracer : public S {
         ok = false;
         break;
       }
+      if (ctx.failed) break;  // lo, hi: the bracket before the failed evaluation
       root = gsl_root_fsolver_root(solver);
       lo = gsl_root_fsolver_x_lower(solver);
       hi = gsl_root_fsolver_x_upper(solver);
       if (gsl_root_test_interval(lo, hi, 0, 1e-13 * double(length)) == GSL_SUCCESS) break;
     }
     gsl_root_fsolver_free(solver);
+    ChordRoot out;
+    out.width = std::max(1e-13, (hi - lo) / double(length));
+    if (!ok) return out;
+    if (ctx.failed) {
+      if (out.width <= 1e-6 && ctx.last) out.u = ctx.last;
+      return out;
+    }
     const auto on = arclength::correct(static_cast<const S&>(*this), Vec(from + ld(root) * ctx.d), ctx.d);
-    if (!(ok && !ctx.failed && on.converged())) return std::nullopt;
-    return on.u;
+    if (on.converged()) out.u = on.u;
+    return out;
   }
 
   void locate_singular(const BranchPointN& a, const BranchPointN& b, const arclength::Segment<Vec>& br, Label label) {
@@ -240,7 +281,8 @@ class Tracer : public S {
       const Vec t = arclength::tangent(on.jacobian, ta);
       return fold ? double(t(t.size() - 1)) : double(arclength::bordered_determinant(on.jacobian, t));
     };
-    const std::optional<Vec> u = root_on_chord(br.from, br.to, test);
+    const ChordRoot root = root_on_chord(br.from, br.to, test);
+    const std::optional<Vec>& u = root.u;
     SpecialPointN sp = special_at(label, u ? *u : Vec((br.from + br.to) / 2), a, b);
     sp.converged = u.has_value();
     const SpectrumN s = spectrum_at(this->full(u ? *u : Vec((br.from + br.to) / 2)));
@@ -249,7 +291,11 @@ class Tracer : public S {
     for (int k = 0; k < s.count; ++k)
       if (!s.structural[std::size_t(k)] && std::abs(s.eigenvalues[std::size_t(k)]) < best)
         best = std::abs(s.eigenvalues[std::size_t(k)]), sp.eigenvalue = s.eigenvalues[std::size_t(k)];
-    if (!sp.converged) sp.note = "test function changed sign but its root was not located (corrector failed)";
+    if (!sp.converged)
+      sp.note = fmt::format("test function changed sign but its root was not located (corrector failed; bracket {:.2g} "
+                            "of the step)", root.width);
+    else if (root.width > 1e-13)
+      sp.note = fmt::format("located to {:.2g} of the step (the corrector stalls next to the point)", root.width);
     specials.push_back(sp);
   }
 
@@ -292,7 +338,8 @@ class Tracer : public S {
       critical = s.eigenvalues[best];
       return critical.real();
     };
-    const std::optional<Vec> u = root_on_chord(ua, ub, real_part);
+    const ChordRoot root = root_on_chord(ua, ub, real_part);
+    const std::optional<Vec>& u = root.u;
     const double theta = la.real() / (la.real() - lb.real());
     const Vec at = u ? *u : Vec(ua + ld(theta) * (ub - ua));
     SpecialPointN sp = special_at(Label::HB, at, a, b);
