@@ -62,11 +62,21 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   if (!o.family.empty() || !o.state.empty())
     throw NotSupportedError(fmt::format("--from-equilibrium / --from-state with {} balls (every aligned equilibrium "
                                         "and balanced sample is continued)", n_balls));
-  if (!o.param2.empty())
-    throw NotSupportedError(fmt::format("two-parameter curves (--param2) with {} balls", n_balls));
   const ParamsN p = params_of<any_balls>(scene);
   if (o.to == get(p, *ref))
     throw InputError("--to", 0, o.param, fmt::format("must differ from the start value {}", get(p, *ref)));
+  std::optional<ParamRef> ref2;
+  if (!o.param2.empty()) {
+    ref2 = parse_param(o.param2, n_balls);
+    if (!ref2) throw InputError("--param2", 0, o.param2, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (*ref2 == *ref) throw InputError("--param2", 0, o.param2, "must differ from --param");
+    if (ref2->quantity == Quantity::ball_radius)
+      throw InputError("--param2", 0, o.param2, "the ball radius does not enter the equations of motion (model.md §3)");
+    Scene probe = scene;
+    set_checked(probe, *ref2, o.to2, "--to2");
+    if (o.to2 == get(p, *ref2))
+      throw InputError("--to2", 0, o.param2, fmt::format("must differ from the start value {}", get(p, *ref2)));
+  }
   const ContinuationRunN run = continue_branches(p, *ref, o.to, o.numerics, o.sampling);
   fmt::print(stderr, "{}", continuation_warnings(run));
   const std::string name = to_string(*ref);
@@ -85,6 +95,26 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
                  {"param", name},
                  {"unit", std::string(unit(ref->quantity))},
                  {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)}});
+  if (ref2) {
+    const BoundaryRunN boundaries = continue_boundaries(p, run, *ref2, o.to2, o.numerics);
+    const std::string name2 = to_string(*ref2);
+    const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
+    if (o.chart)
+      run_gnuplot(plots_dir() / "boundary_n.gp",
+                  {{"curves", curves.string()},
+                   {"png", out.reserve(dir / fmt::format("boundary_{}_{}.png", name, name2)).string()},
+                   {"param", name},
+                   {"unit", std::string(unit(ref->quantity))},
+                   {"param2", name2},
+                   {"unit2", std::string(unit(ref2->quantity))},
+                   {"title", fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
+                                         name2)}});
+    for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
+      for (int end = 0; end < 2; ++end)
+        if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
+          fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
+    fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
+  }
   out.commit();
   std::size_t points = 0, specials_count = 0;
   for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();

@@ -26,16 +26,21 @@ constexpr ld kStep = 1e-7L;
 constexpr int kMaxIterations = 80;
 
 // Solves the bordered system [M b; c^H 0] [v; g] = [0; 1] for g (the minimally
-// augmented test function); M is equilibrated by the caller.
-template <class S>
-S bordered_g(const Eigen::Matrix<S, 4, 4>& m, const Eigen::Matrix<S, 4, 1>& b, const Eigen::Matrix<S, 4, 1>& c) {
-  Eigen::Matrix<S, 5, 5> B = Eigen::Matrix<S, 5, 5>::Zero();
-  B.template topLeftCorner<4, 4>() = m;
-  B.template topRightCorner<4, 1>() = b;
-  B.template bottomLeftCorner<1, 4>() = c.adjoint();
-  Eigen::Matrix<S, 5, 1> rhs = Eigen::Matrix<S, 5, 1>::Zero();
-  rhs(4) = S(1);
-  return B.partialPivLu().solve(rhs)(4);
+// augmented test function); M is equilibrated by the caller. Fixed or bounded sizes.
+template <class S, class Mat, class Vec>
+S bordered_g(const Mat& m, const Vec& b, const Vec& c) {
+  constexpr int size = Mat::RowsAtCompileTime == Eigen::Dynamic ? Eigen::Dynamic : Mat::RowsAtCompileTime + 1;
+  constexpr int capacity = Mat::MaxRowsAtCompileTime + 1;
+  using Square = Eigen::Matrix<S, size, size, 0, capacity, capacity>;
+  using Column = Eigen::Matrix<S, size, 1, 0, capacity, 1>;
+  const Eigen::Index n = m.rows();
+  Square B = Square::Zero(n + 1, n + 1);
+  B.topLeftCorner(n, n) = m;
+  B.topRightCorner(n, 1) = b;
+  B.bottomLeftCorner(1, n) = c.adjoint();
+  Column rhs = Column::Zero(n + 1);
+  rhs(n) = S(1);
+  return B.partialPivLu().solve(rhs)(n);
 }
 
 // Newton with a square Jacobian; stops where the steps stop shrinking. Where the
@@ -134,41 +139,61 @@ template std::optional<std::pair<std::complex<double>, std::complex<double>>> cr
 template std::optional<std::pair<std::complex<double>, std::complex<double>>> crossing_pair<any_balls>(
     const SpectrumT<any_balls>&, const SpectrumT<any_balls>&);
 
-FoldCondition::FoldCondition(const StaticEquations& eq, const Vec5& z) {
+template <int N>
+FoldConditionT<N>::FoldConditionT(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z) {
   // Border with the left null vector as column (outside the range of F_s) and the right
   // null vector as row (not orthogonal to its kernel): then the bordered matrix is regular.
-  const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  left_ = svd.matrixU().col(3);
-  right_ = svd.matrixV().col(3);
+  const Eigen::Index d = eq.dofs();
+  const DofMatrix<ld, N> Fs = eq.jacobian(z).template leftCols<dof_size<N>>(d);
+  const Eigen::JacobiSVD<DofMatrix<ld, N>> svd(Fs, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(d - 1);
+  right_ = svd.matrixV().col(d - 1);
 }
 
-long double FoldCondition::operator()(const StaticEquations& eq, const Vec5& z) const {
-  return bordered_g<ld>(eq.jacobian(z).leftCols<4>(), left_, right_);
+template <int N>
+long double FoldConditionT<N>::operator()(const StaticEquationsT<N>& eq,
+                                          const typename StaticEquationsT<N>::Unknowns& z) const {
+  const DofMatrix<ld, N> Fs = eq.jacobian(z).template leftCols<dof_size<N>>(eq.dofs());
+  return bordered_g<ld>(Fs, left_, right_);
 }
 
 namespace {
-Mat4c hopf_pencil(const StaticEquations& eq, const Vec5& z, ld w) {
+template <int N>
+DofMatrix<cld, N> hopf_pencil(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z, ld w) {
   const auto lin = eq.linearization(z);
   const cld l(0, w);
-  return (l * l) * lin.mass.cast<cld>() + l * lin.damping.cast<cld>() + lin.stiffness.cast<cld>();
+  return (l * l) * lin.mass.template cast<cld>() + l * lin.damping.template cast<cld>() +
+         lin.stiffness.template cast<cld>();
 }
 }  // namespace
 
-HopfCondition::HopfCondition(const StaticEquations& eq, const Vec5& z, long double omega) {
-  const Mat4c T0 = hopf_pencil(eq, z, omega);
-  for (int i = 0; i < 4; ++i) rows_(i) = 1 / T0.row(i).cwiseAbs().maxCoeff();
-  for (int j = 0; j < 4; ++j) cols_(j) = 1 / (rows_.asDiagonal() * T0).col(j).cwiseAbs().maxCoeff();
-  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * T0 * cols_.cast<cld>().asDiagonal();
-  const Eigen::JacobiSVD<Mat4c> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  left_ = svd.matrixU().col(3);
-  right_ = svd.matrixV().col(3);
+template <int N>
+HopfConditionT<N>::HopfConditionT(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z,
+                                  long double omega) {
+  const Eigen::Index d = eq.dofs();
+  const DofMatrix<cld, N> T0 = hopf_pencil<N>(eq, z, omega);
+  rows_.resize(d), cols_.resize(d);
+  for (Eigen::Index i = 0; i < d; ++i) rows_(i) = 1 / T0.row(i).cwiseAbs().maxCoeff();
+  for (Eigen::Index j = 0; j < d; ++j) cols_(j) = 1 / (rows_.asDiagonal() * T0).col(j).cwiseAbs().maxCoeff();
+  const DofMatrix<cld, N> scaled = rows_.template cast<cld>().asDiagonal() * T0 * cols_.template cast<cld>().asDiagonal();
+  const Eigen::JacobiSVD<DofMatrix<cld, N>> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  left_ = svd.matrixU().col(d - 1);
+  right_ = svd.matrixV().col(d - 1);
 }
 
-std::complex<long double> HopfCondition::operator()(const StaticEquations& eq, const Vec5& z,
-                                                    long double omega) const {
-  const Mat4c scaled = rows_.cast<cld>().asDiagonal() * hopf_pencil(eq, z, omega) * cols_.cast<cld>().asDiagonal();
+template <int N>
+std::complex<long double> HopfConditionT<N>::operator()(const StaticEquationsT<N>& eq,
+                                                        const typename StaticEquationsT<N>::Unknowns& z,
+                                                        long double omega) const {
+  const DofMatrix<cld, N> scaled =
+      rows_.template cast<cld>().asDiagonal() * hopf_pencil<N>(eq, z, omega) * cols_.template cast<cld>().asDiagonal();
   return bordered_g<cld>(scaled, left_, right_);
 }
+
+template class FoldConditionT<2>;
+template class FoldConditionT<any_balls>;
+template class HopfConditionT<2>;
+template class HopfConditionT<any_balls>;
 
 FoldCoefficients fold_coefficients(const StaticEquations& eq, const Vec5& z, const FoldCoefficients* previous) {
   const Eigen::JacobiSVD<Mat4> svd(eq.jacobian(z).leftCols<4>(), Eigen::ComputeFullU | Eigen::ComputeFullV);

@@ -14,13 +14,13 @@
 #include "abu/continuation/bifurcation.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/static_equations.hpp"
+#include "branch_systems_n.hpp"
 
 namespace abu {
 
 namespace {
 
-using ld = long double;
-using Unknowns = StaticEquationsN::Unknowns;
+using namespace n_balls;
 
 // The max-norm distance of two scaled points, the angles (entries 2 .. size-2) compared
 // modulo 2 pi.
@@ -35,53 +35,6 @@ ld angle_distance(const Vec& a, const Vec& b) {
   }
   return d;
 }
-
-// An aligned branch: all n + 2 equations in all n + 3 unknowns.
-struct AlignedSystem {
-  using Vec = Unknowns;
-  using Jacobian = StaticEquationsN::JacobianMatrix;
-  static constexpr bool balanced = false;
-  const StaticEquationsN& eq;
-
-  Unknowns full(const Vec& u) const { return u; }
-  Vec reduced(const Unknowns& z) const { return z; }
-  StaticEquationsN::Forces residual(const Vec& u) const { return eq.residual(u); }
-  Jacobian jacobian(const Vec& u) const { return eq.jacobian(u); }
-  ld residual_size(const Vec& u) const { return eq.residual(u).cwiseAbs().maxCoeff(); }
-  static arclength::NewtonSettings newton() { return {}; }
-};
-
-// A balanced sample with beta_3..beta_n held (model.md §13.7): unknowns (q / L, beta_1,
-// beta_2, p), the rotor's equations and those of balls 1 and 2.
-struct HeldSystem {
-  using Vec = Eigen::Matrix<ld, 5, 1>;
-  using Jacobian = Eigen::Matrix<ld, 4, 5>;
-  static constexpr bool balanced = true;
-  const StaticEquationsN& eq;
-  Unknowns frame;  ///< the full unknowns, with the held angles
-
-  Unknowns full(const Vec& u) const {
-    Unknowns z = frame;
-    z.head<4>() = u.head<4>();
-    z(eq.dofs()) = u(4);
-    return z;
-  }
-  Vec reduced(const Unknowns& z) const {
-    Vec u;
-    u << z.head<4>(), z(eq.dofs());
-    return u;
-  }
-  Eigen::Matrix<ld, 4, 1> residual(const Vec& u) const { return eq.residual(full(u)).head<4>(); }
-  Jacobian jacobian(const Vec& u) const {
-    const StaticEquationsN::JacobianMatrix J = eq.jacobian(full(u));
-    Jacobian out;
-    out.leftCols<4>() = J.topLeftCorner<4, 4>();
-    out.col(4) = J.col(eq.dofs()).head<4>();
-    return out;
-  }
-  ld residual_size(const Vec& u) const { return residual(u).cwiseAbs().maxCoeff(); }
-  static arclength::NewtonSettings newton() { return {}; }
-};
 
 // One direction of one branch as a Problem of the engine.
 template <class S>

@@ -155,6 +155,41 @@ std::string envelope_csv(const ContinuationRunN& run, std::string_view header) {
   return out;
 }
 
+std::string boundary_csv(const BoundaryRunN& run, std::string_view header) {
+  const std::string n1 = to_string(run.param), n2 = to_string(run.param2);
+  const int n = run.n_balls;
+  std::string out(header);
+  out += fmt::format(
+      "# stability boundaries of {} balls in ({} [{}], {} [{}]): the folds of the aligned branches and the Hopf "
+      "points of the aligned branches and of the balanced samples (free angles held), continued in {} from {} to {} "
+      "(docs/model.md §13.7)\n"
+      "# columns: curve (1-based), kind (LP fold curve, HB Hopf curve), family, pattern, member (aligned: root; "
+      "balanced: sample), source_branch (of branch_{}.csv), point, label (EP end, BT where a Hopf frequency reached 0),\n"
+      "#   {} {}, q1 q2 [m], beta_i [rad], q_abs [m], frequency [rad/s] (Hopf curves: omega_H, rotating frame; empty "
+      "on fold curves)\n",
+      n, n1, unit(run.param.quantity), n2, unit(run.param2.quantity), n2, run.from2, run.to2, n1, n1, n2);
+  for (std::size_t k = 0; k < run.curves.size(); ++k)
+    for (int end = 0; end < 2; ++end)
+      out += fmt::format("# curve {} {}: {}{}{}\n", k + 1, end == 0 ? "start side" : "far side",
+                         to_string(run.curves[k].stop[std::size_t(end)]),
+                         run.curves[k].stop_detail[std::size_t(end)].empty() ? "" : ": ",
+                         run.curves[k].stop_detail[std::size_t(end)]);
+  for (const auto& note : run.notes) out += "# note: " + note + "\n";
+  out += fmt::format("curve,kind,family,pattern,member,source_branch,point,label,{},{},{},frequency\n", n1, n2,
+                     position_header(n));
+  for (std::size_t k = 0; k < run.curves.size(); ++k) {
+    const BoundaryCurveN& c = run.curves[k];
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const BoundaryPointN& pt = c.points[i];
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", k + 1, to_string(c.kind), to_string(c.family),
+                         c.family == Family::aligned ? pattern_string(c.pattern, n) : "", c.member, c.source_branch, i,
+                         to_string(pt.label), num(double(pt.parameter), n1), num(double(pt.parameter2), n2),
+                         position_cells(pt.position), pt.frequency ? num(*pt.frequency, "frequency") : "");
+    }
+  }
+  return out;
+}
+
 std::string continuation_warnings(const ContinuationRunN& run) {
   std::string out;
   for (std::size_t k = 0; k < run.branches.size(); ++k)

@@ -152,7 +152,7 @@ bad "sweep --param n to 13" sweep "$src/data/scenes/ring11.toml" --param n --fro
 check "three balls: continue exits 0" "[ $? -eq 0 ]"
 check "three balls: continue writes branches, special points and the balanced set's envelope" \
   "[ \"\$(ls '$work/c3' | tr '\n' ' ')\" = 'branch_omega.csv envelope_omega.csv special_omega.csv ' ]"
-bad "three balls: --param2 not supported yet" continue "$work/three.toml" --param omega --to 1000 --param2 mu --to2 0.01 -o out
+bad "three balls: --from-state not supported yet" continue "$work/three.toml" --param omega --to 1000 --from-state 0,0,0,0,0 -o out
 grep -q "not supported yet" "$work/err" && pass "three balls message says 'not supported yet'" || fail "three balls message"
 
 finish

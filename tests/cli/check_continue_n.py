@@ -14,7 +14,12 @@ independent path: closed forms, polish and spectra at one value, no continuation
    at omega_LP (1 -+ 1e-6) (a fold joins two of them).
 3. The envelope's fraction stable is 0 below the first sample's Hopf point and 1 above
    the last one, where step 1 says so, and its pieces tile the interval.
-4. Two-parameter curves for n >= 3 are refused (exit 2), nothing written.
+4. Two-parameter curves in (omega, mu): a fold curve keeps omega constant to 1e-9
+   relative (friction does not move equilibria, docs/model.md §4; the curve's points are
+   Newton solutions to ~1e-12); at the middle point of every balanced sample's Hopf
+   curve, `equilibria` at omega (1 -+ 1e-5) with that mu finds the sample stable on one
+   side and unstable on the other.
+5. --param2 equal to --param is refused (exit 2), nothing written.
 """
 import csv
 import io
@@ -89,13 +94,46 @@ with tempfile.TemporaryDirectory() as tmp:
         if mid > last and e["fraction_stable"] != "1":
             failures.append(f"envelope above the last Hopf point: {e}")
 
-    bad = os.path.join(tmp, "bad")
-    r = subprocess.run([exe, "continue", scene, "--param", "omega", "--to", "100", "--param2", "mu", "--to2", "0.01",
-                        "-o", bad], capture_output=True, text=True)
-    if r.returncode != 2 or os.path.exists(bad) or "not supported" not in r.stderr:
-        failures.append(f"--param2 on 3 balls: exit {r.returncode}, stderr {r.stderr!r}, wrote {os.path.exists(bad)}")
+    d2 = os.path.join(tmp, "c2")
+    subprocess.run([exe, "continue", scene, "--param", "omega", "--to", "100", "--set-samples", "16", "--param2", "mu",
+                    "--to2", "0.02", "-o", d2, "--no-chart"], check=True, capture_output=True)
+    curves = rows(os.path.join(d2, "boundary_omega_mu.csv"))
+    by_curve = {}
+    for r in curves:
+        by_curve.setdefault(r["curve"], []).append(r)
+    kinds = {(c[0]["kind"], c[0]["family"]) for c in by_curve.values()}
+    if ("LP", "aligned") not in kinds or ("HB", "balanced") not in kinds:
+        failures.append(f"boundary curves: expected aligned fold and balanced Hopf curves, got {kinds}")
+    for k, c in by_curve.items():
+        mus = [float(r["mu"]) for r in c]
+        if max(mus) < 0.019:
+            failures.append(f"curve {k} does not reach mu = 0.02 (max {max(mus)})")
+        if c[0]["kind"] == "LP":
+            w = [float(r["omega"]) for r in c]
+            if (max(w) - min(w)) > 1e-9 * max(w):
+                failures.append(f"fold curve {k}: omega varies with mu by {max(w) - min(w)}")
+        elif c[0]["family"] == "balanced":
+            mid = c[len(c) // 2]
+            w, mu = float(mid["omega"]), mid["mu"]
+            verdicts = []
+            for omega in (w * (1 - 1e-5), w * (1 + 1e-5)):
+                out = subprocess.run([exe, "equilibria", scene, "--format", "csv", "--set-samples", "16", "--set",
+                                      f"omega={omega!r}", "--set", f"mu={mu}"], check=True, capture_output=True,
+                                     text=True).stdout
+                eq = [e for e in csv.DictReader(io.StringIO("".join(l for l in out.splitlines(True) if not l.startswith("#"))))
+                      if e["family"] == "balanced" and e["member"] == mid["member"]]
+                verdicts.append(eq[0]["stable"] if len(eq) == 1 else "missing")
+            if sorted(verdicts) != ["0", "1"]:
+                failures.append(f"Hopf curve {k} (sample {mid['member']}) at mu={mu}, omega={w}: stable either side {verdicts}")
 
-print(f"{len(hopf)} Hopf points of {len(samples)} samples, {len(folds)} folds checked against `equilibria`")
+    bad = os.path.join(tmp, "bad")
+    r = subprocess.run([exe, "continue", scene, "--param", "omega", "--to", "100", "--param2", "omega", "--to2", "300",
+                        "-o", bad], capture_output=True, text=True)
+    if r.returncode != 2 or os.path.exists(bad) or "must differ" not in r.stderr:
+        failures.append(f"--param2 = --param: exit {r.returncode}, stderr {r.stderr!r}, wrote {os.path.exists(bad)}")
+
+print(f"{len(hopf)} Hopf points of {len(samples)} samples, {len(folds)} folds, {len(by_curve)} boundary curves "
+      "checked against `equilibria`")
 for f in failures:
     print("FAIL:", f)
 sys.exit(1 if failures else 0)

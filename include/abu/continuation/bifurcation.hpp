@@ -32,27 +32,32 @@ namespace abu {
 
 /// The fold test function g(z) of the minimally augmented system, for borders fixed at
 /// construction (the singular vectors of F_s there; rebuild it as the fold moves).
-class FoldCondition {
+/// N = 2 and any_balls (F_s of the n + 2 static equations).
+template <int N>
+class FoldConditionT {
  public:
-  FoldCondition(const StaticEquations& eq, const StaticEquations::Vec5& z);
-  long double operator()(const StaticEquations& eq, const StaticEquations::Vec5& z) const;
+  FoldConditionT(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z);
+  long double operator()(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z) const;
 
  private:
-  Eigen::Matrix<long double, 4, 1> left_, right_;
+  Coordinates<long double, N> left_, right_;
 };
+using FoldCondition = FoldConditionT<2>;
 
 /// The Hopf test function g(z, w) (complex) for T(i w) equilibrated and bordered at
-/// construction.
-class HopfCondition {
+/// construction. N = 2 and any_balls.
+template <int N>
+class HopfConditionT {
  public:
-  HopfCondition(const StaticEquations& eq, const StaticEquations::Vec5& z, long double omega);
-  std::complex<long double> operator()(const StaticEquations& eq, const StaticEquations::Vec5& z,
+  HopfConditionT(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z, long double omega);
+  std::complex<long double> operator()(const StaticEquationsT<N>& eq, const typename StaticEquationsT<N>::Unknowns& z,
                                        long double omega) const;
 
  private:
-  Eigen::Matrix<long double, 4, 1> rows_, cols_;
-  Eigen::Matrix<std::complex<long double>, 4, 1> left_, right_;
+  Coordinates<long double, N> rows_, cols_;
+  Coordinates<std::complex<long double>, N> left_, right_;
 };
+using HopfCondition = HopfConditionT<2>;
 
 /// Normal-form coefficients along fold curves, whose sign changes flag codimension-two
 /// points: the cusp coefficient w^T F_ss[v, v] (CP where it vanishes) and w^T C v, the

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "abu/continuation/boundaries.hpp"
+#include "abu/continuation/boundaries_n.hpp"
 #include "abu/continuation/branches_n.hpp"
 #include "abu/continuation/continuation.hpp"
 #include "abu/scan/scan.hpp"
@@ -78,6 +79,9 @@ std::string special_points_csv(const ContinuationRunN& run, std::string_view hea
 /// The balanced set's stability boundary: `from,to,samples,normally_stable,fraction_stable`.
 std::string envelope_csv(const ContinuationRunN& run, std::string_view header);
 std::string continuation_warnings(const ContinuationRunN& run);
+/// n >= 3 balls' stability boundaries: `curve,kind,family,pattern,member,source_branch,point,
+/// label,<param>,<param2>,q1,q2,beta1..beta<n>,q_abs,frequency` (frequency empty on fold curves).
+std::string boundary_csv(const BoundaryRunN& run, std::string_view header);
 
 /// Warnings for the user (stderr): equilibria whose polish or spectrum did not
 /// converge, ill-conditioned spectra; `where` says at which parameter value.
