@@ -1,0 +1,103 @@
+// n-ball continuation (branches_n.hpp, model.md §13.7) against the closed forms: every
+// point of every aligned branch is one of the equilibria that find_equilibria computes
+// afresh at that point's parameter (an independent path: closed forms and polish, no
+// continuation), and every balanced sample's branch in a parameter that does not move
+// the set (omega) keeps its state.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "abu/continuation/branches_n.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
+
+using namespace abu;
+
+namespace {
+
+ParamsN unequal_ring(int n) {
+  ParamsN p;
+  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
+  p.omega = 600;
+  p.law = FrictionLaw::viscous;
+  p.balls.resize(std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const double f = 1 + 0.09 * i;  // unequal balls: no permutation images
+    p.balls[std::size_t(i)] = {3.3e-5 * f, 0.018, 1e-3, 1.4, 0.002, 1e-4 * f, 0.001, 0.003, 0.1};
+  }
+  return p;
+}
+
+// Max-norm distance of two configurations, q in units of `length`, angles mod 2 pi.
+double config_distance(const Coordinates<long double, any_balls>& a, const Coordinates<long double, any_balls>& b,
+                       double length) {
+  double d = std::max(std::abs(double(a(0) - b(0))), std::abs(double(a(1) - b(1)))) / length;
+  for (Eigen::Index i = 2; i < a.size(); ++i)
+    d = std::max(d, std::abs(std::remainder(double(a(i) - b(i)), 2 * std::numbers::pi)));
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("n-ball aligned branches pass through the closed-form equilibria", "[n-balls][continuation]") {
+  for (int n : {3, 4}) {
+    const ParamsN p = unequal_ring(n);
+    const ParamRef omega{Quantity::omega, 0};
+    ContinuationOptions options;
+    options.ds_max = 0.05;
+    const ContinuationRunN run = continue_branches(p, omega, 150.0, options, BalancedSampling{8});
+    const double length = double(displacement_scale(p.cast<long double>()));
+    int checked = 0;
+    for (const auto& b : run.branches) {
+      if (b.family != Family::aligned) continue;
+      for (std::size_t i = 0; i < b.points.size(); i += 7) {
+        const BranchPointN& pt = b.points[i];
+        ParamsN at = p;
+        set(at, omega, double(pt.parameter));
+        const EquilibriumSetN set = find_equilibria(at, BalancedSampling{8});
+        double best = 1e300;
+        for (const auto& e : set.points())
+          if (e.family == Family::aligned) best = std::min(best, config_distance(e.position, pt.position, length));
+        // The branch point is a Newton solution of the scaled equations to ~1e-15 at a
+        // long-double parameter, the closed form is polished at that parameter rounded to
+        // double (relative 1e-16 of omega): they agree to ~1e-12 unless the branch point is
+        // no equilibrium at all (then the distance is O(1e-3) or more).
+        CHECK(best < 1e-9);
+        ++checked;
+      }
+    }
+    CHECK(checked > 20);
+    // Both ends: every aligned equilibrium at the start value lies on some branch.
+    const EquilibriumSetN start = find_equilibria(p, BalancedSampling{8});
+    for (const auto& e : start.points()) {
+      if (e.family != Family::aligned) continue;
+      double best = 1e300;
+      for (const auto& b : run.branches)
+        for (const auto& pt : b.points)
+          if (std::abs(double(pt.parameter) - p.omega) < 1e-9 * p.omega)
+            best = std::min(best, config_distance(e.position, pt.position, length));
+      CHECK(best < 1e-9);
+    }
+  }
+}
+
+TEST_CASE("a balanced sample's branch in omega keeps its state, with n - 2 structural zeros", "[n-balls][continuation]") {
+  const ParamsN p = unequal_ring(4);
+  const ContinuationRunN run = continue_branches(p, ParamRef{Quantity::omega, 0}, 1200.0, {}, BalancedSampling{8});
+  int samples = 0;
+  for (const auto& b : run.branches) {
+    if (b.family != Family::balanced) continue;
+    ++samples;
+    for (const auto& pt : b.points) {
+      // q = 0 and the angles of the start: the set does not move with omega (model.md §13.4).
+      CHECK(std::hypot(double(pt.position(0)), double(pt.position(1))) < 1e-18);
+      CHECK(config_distance(pt.position, b.points.front().position, 1.0) < 1e-12);
+      CHECK(pt.spectrum.n_structural == 2);
+    }
+  }
+  CHECK(samples == run.balanced_set.samples);
+  CHECK(samples > 0);
+  REQUIRE(!run.envelope.intervals.empty());
+  CHECK(run.envelope.intervals.front().from == Approx(600.0));
+  CHECK(run.envelope.intervals.back().to == Approx(1200.0));
+}
