@@ -13,7 +13,6 @@
 
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/io/io.hpp"
 
 namespace abu {
 
@@ -22,6 +21,13 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string axis_name(const Axis& a) { return a.name(); }
+
+// Shortest round-trip form, as io's format_number (scan sits below io, so it does not
+// call it): a non-finite value is a numerical failure, never a "nan" in a file.
+std::string format_number(double value, std::string_view what = "value") {
+  if (!std::isfinite(value)) throw NumericalError(fmt::format("non-finite {} ({}) would be written", what, value));
+  return fmt::format("{}", value);
+}
 
 // No NaN reaches a file: a non-finite value is a numerical failure naming its cell.
 void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
