@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <csignal>
-#include <fstream>
 #include <thread>
 
 #include <unistd.h>
