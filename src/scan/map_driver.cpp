@@ -61,7 +61,9 @@ std::string common_header(const MapJob& job) {
 
 }  // namespace
 
-int tile_count(const MapJob& job) { return (job.x.count + kTileColumns - 1) / kTileColumns; }
+int MapJob::tile_columns() const { return any_balls ? 1 : kTileColumns; }
+
+int tile_count(const MapJob& job) { return (job.x.count + job.tile_columns() - 1) / job.tile_columns(); }
 
 std::string map_file_name(const MapJob& job) {
   return fmt::format("map_{}_{}.csv", axis_name(job.x), axis_name(job.y));
@@ -226,7 +228,7 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
 
 TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
   TileText text;
-  const int first = tile * kTileColumns, last = std::min(job.x.count, first + kTileColumns);
+  const int first = tile * job.tile_columns(), last = std::min(job.x.count, first + job.tile_columns());
   std::vector<std::string> y_values(std::size_t(job.y.count));
   for (int iy = 0; iy < job.y.count; ++iy) y_values[std::size_t(iy)] = format_number(job.y.value(iy), "y value");
   // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
@@ -298,7 +300,7 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
 namespace {
 
 std::string manifest_of(const MapJob& job) {
-  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", kTileColumns, tile_count(job)) +
+  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job)) +
          map_csv_header(job) + summary_csv_header(job);
 }
 

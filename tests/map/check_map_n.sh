@@ -3,7 +3,7 @@
 # §13.7): an n = 3 map whose every cell agrees with `equilibria` at the cell's
 # parameters; the ball count as an axis (`n:2:5:4` on a [balls] ring), its n = 2 row
 # against the two-ball path, capacity and 2^n aligned equilibria; the same bytes on 1 and
-# 2 threads and on a re-run; charts; bad ball-count axes refused (exit 2, nothing written).
+# 2 threads and after a kill and --resume; charts; bad ball-count axes refused (exit 2, nothing written).
 #   check_map_n.sh BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -64,10 +64,19 @@ sed 's/^mass = 3.3e-5 .*/total_mass = 3.63e-4/' "$ring" >"$work/ring_total.toml"
 q "$work/ring_total.toml" --x omega:900:900:1 --y n:2:4:3 --no-chart -o "$work/tot"
 check "total_mass ring: capacity the same for every n" \
   "grep -v '^#' '$work/tot/summary_omega_n.csv' | tail -n +2 | cut -d, -f6 | awk '{ if (NR == 1) c = \$1; d = \$1 - c; if (d < 0) d = -d; if (d > 1e-12 * c) e = 1 } END {exit e}' && grep -q 'total mass 0.000363 kg held' '$work/tot/summary_omega_n.csv'"
-# a re-run into a fresh directory gives the same bytes (resume itself: check_map.sh, same driver)
-q "$ring" --x omega:400:900:10 --y n:2:3:2 --no-chart -o "$work/ra" --threads 1
-mkdir -p "$work/rb" && "$bin" map "$ring" --x omega:400:900:10 --y n:2:3:2 --no-chart --no-boundaries --quiet -o "$work/rb" >/dev/null 2>&1
-check "n axis: a re-run gives the same bytes" "cmp -s '$work/ra/summary_omega_n.csv' '$work/rb/summary_omega_n.csv' && cmp -s '$work/ra/map_omega_n.csv' '$work/rb/map_omega_n.csv'"
+# killed after a few tiles (one column each), then resumed: the bytes of an uninterrupted run
+RX=omega:400:900:40
+q "$ring" --x $RX --y n:2:6:5 --no-chart -o "$work/whole" --threads 2
+"$bin" map "$ring" --x $RX --y n:2:6:5 --no-chart --no-boundaries --quiet -o "$work/cut" --threads 1 2>/dev/null &
+pid=$!
+wait_for_tiles "$work/cut/.map_omega_n.tiles" 3
+kill -KILL $pid
+wait $pid 2>/dev/null
+n=$(tile_count "$work/cut/.map_omega_n.tiles")
+check "n axis: the killed run left complete tiles and no output ($n of 40)" "[ $n -ge 3 ] && [ $n -lt 40 ] && [ ! -e '$work/cut/summary_omega_n.csv' ]"
+q "$ring" --x $RX --y n:2:6:5 --no-chart -o "$work/cut" --resume --threads 2
+check "n axis: killed + resumed gives the bytes of an uninterrupted run" \
+  "cmp -s '$work/whole/summary_omega_n.csv' '$work/cut/summary_omega_n.csv' && cmp -s '$work/whole/map_omega_n.csv' '$work/cut/map_omega_n.csv'"
 
 # --- bad ball-count axes: exit 2, the rule named, nothing written ------------------------
 bad() {  # name, message fragment, scene, axes...

@@ -48,6 +48,9 @@ struct MapJob {
   BalancedSampling sampling;      ///< of the balanced set (model.md §13.5)
   /// The most balls of any cell: the number of beta columns of the n-ball long CSV.
   int max_balls_in_map() const;
+  /// Columns per tile: kTileColumns for two balls; 1 for n balls, whose cells cost up to
+  /// seconds each (n = 12), so that a map a few columns wide still keeps every thread busy.
+  int tile_columns() const;
 };
 
 int tile_count(const MapJob& job);
