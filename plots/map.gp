@@ -1,16 +1,22 @@
 # Heat maps of a two-parameter stability map, each written as PNG and SVG:
-#   stability: where the balanced state (q = 0) is absent / exists but unstable / stable;
+#   stability: where the balanced state (q = 0) is absent / exists but unstable / stable
+#              (n-ball maps: also "partly stable", some samples of the balanced set stable);
 #   vibration: the residual vibration |q| of the best stable state on a log colour scale,
-#              grey where no state is stable.
+#              grey where no state is stable;
+#   fraction (n-ball maps, nballs='1'): balanced_stable_fraction, the fraction of the
+#              balanced set's samples that are normally stable (model.md §13.5).
 # The fold (LP, black) and Hopf (HB, red) curves and the codimension-two points on them
 # are drawn on top of both when a boundary CSV is given. Reads the CSVs of
 # `stability-scan map`; re-run by hand with
 #   gnuplot -e "summary='out/map/summary_omega_mu.csv'; curves='out/map/boundary_omega_mu.csv'; png_stability='s.png'; svg_stability='s.svg'; png_vibration='v.png'; svg_vibration='v.svg'; xname='omega'; xunit='rad/s'; yname='mu'; yunit='-'; logx='0'; logy='1'; title='x'" plots/map.gp
-# (curves='' when there is no boundary file).
-# summary columns: 1 ix, 2 iy, 3 x, 4 y, 5 balanced, 8 balanced_stable (empty without a
-#   balanced state), 9 n_stable, 12 best_q_abs [m] (empty if nothing is stable); rows in
-#   order ix outer, iy inner; x and y evenly spaced (in log10 on a log axis).
-# boundary columns: 1 curve, 2 kind (LP|HB), 4 label, 5 x, 6 y.
+# (curves='' when there is no boundary file; n-ball maps add nballs='1'; png_fraction='f.png';
+# svg_fraction='f.svg').
+# Columns are found by their header NAME (the first line that is not a comment), never
+# by position: summary ix, iy, <xname>, <yname>, and two balls balanced, balanced_stable
+#   (empty without a balanced state), n_stable, best_q_abs [m] (empty if nothing is
+#   stable); n balls balanced_exists, balanced_stable_fraction (empty without samples),
+#   n_stable, best_q_abs. Rows in order ix outer, iy inner; x and y evenly spaced (in
+#   log10 on a log axis). boundary: curve, kind (LP|HB), label, <xname>, <yname>.
 #
 # How it is drawn:
 # - Cells sit at their grid indices (ix, iy), so `with image` always sees an even grid and
@@ -40,6 +46,10 @@ if (!exists("yunit")) yunit = '-'
 if (!exists("logx")) logx = '0'
 if (!exists("logy")) logy = '0'
 if (!exists("title")) title = ''
+if (!exists("nballs")) nballs = '0'
+if (!exists("png_fraction")) png_fraction = 'fraction.png'
+if (!exists("svg_fraction")) svg_fraction = 'fraction.svg'
+nb = (nballs eq '1')
 
 set datafile separator ','
 set datafile commentschars '#'
@@ -48,24 +58,46 @@ set datafile columnheaders
 c_none = '#d9d9d9'      # stability chart: no balanced state
 c_unstable = '#fee090'  #   balanced state exists, unstable
 c_stable = '#74add1'    #   balanced state stable
+c_partly = '#b8d8a0'    #   n balls: some samples of the balanced set stable
 c_nostable = '#a6a6a6'  # vibration chart: no stable state
 c_hopf = '#d62728'
 c_fold = '#1f1f1f'
 qfloor = 1e-15          # |q| at or below this [m] counts as 0
 
+# ---- columns by name ----------------------------------------------------------------
+# `name = 'x'; file = f; eval COL` sets c to the 1-based index of column x in f's header.
+header_of(f) = system(sprintf("grep -m1 -v '^#' '%s' | tr ',\\r' '  '", f))
+COL = "H = header_of(file); c = 0; do for [i = 1 : words(H)] { if (word(H, i) eq name) { c = i } }; " . \
+      "if (c == 0) { print sprintf('map.gp: %s has no column %s', file, name); exit status 1 }"
+file = summary
+name = 'ix'; eval COL; c_ix = c
+name = 'iy'; eval COL; c_iy = c
+name = xname; eval COL; c_x = c
+name = yname; eval COL; c_y = c
+name = 'n_stable'; eval COL; c_nstable = c
+name = 'best_q_abs'; eval COL; c_q = c
+if (nb) {
+  name = 'balanced_exists'; eval COL; c_bal = c
+  name = 'balanced_stable_fraction'; eval COL; c_balst = c
+} else {
+  name = 'balanced'; eval COL; c_bal = c
+  name = 'balanced_stable'; eval COL; c_balst = c
+}
+
 # ---- grid geometry -------------------------------------------------------------------
 K = 256
 more = 1
 while (more) {
-  stats summary every ::0::(K-1) using 1 nooutput
+  stats summary every ::0::(K-1) using (column(c_ix)) nooutput
   more = (STATS_max == 0 && STATS_records == K)
   if (more) { K = 2 * K }
 }
 # the first K rows hold all rows with ix = 0: x0 y0 from iy = 0, y1 from the last of them
-stats summary every ::0::(K-1) using ($1 == 0 ? ($2 == 0 ? (x0 = $3, y0 = $4) : 0, y1 = $4, $2) : NaN) nooutput
+stats summary every ::0::(K-1) using (column(c_ix) == 0 ? (column(c_iy) == 0 ? (x0 = column(c_x), y0 = column(c_y)) : 0, \
+  y1 = column(c_y), column(c_iy)) : NaN) nooutput
 ny = int(STATS_max) + 1
 # rows iy = 0, one per ix: x1 from the last
-stats summary every ny using (x1 = $3, $1) nooutput
+stats summary every ny using (x1 = column(c_x), column(c_ix)) nooutput
 nx = int(STATS_max) + 1
 grid = (nx > 1 && ny > 1)
 
@@ -145,14 +177,20 @@ if (strlen(curves) > 0) {
   stats curves using (1) nooutput   # counts the header line too: no warning for 0 rows
   set datafile columnheaders
   if (exists("STATS_records") && STATS_records > 1) {
+    file = curves
+    name = 'curve'; eval COL; cb_curve = c
+    name = 'kind'; eval COL; cb_kind = c
+    name = 'label'; eval COL; cb_label = c
+    name = xname; eval COL; cb_x = c
+    name = yname; eval COL; cb_y = c
     seen = ''
     labs = ' '
     lastk = NaN
     lastkind = ''
-    stats curves using (k = column(1), kd = strcol(2), \
+    stats curves using (k = column(cb_curve), kd = strcol(cb_kind), \
       (k != lastk || kd ne lastkind) ? (lastk = k, lastkind = kd, \
         (kd eq 'HB' || kd eq 'LP') ? (seen = seen . sprintf(' %s:%d', kd, k), 0) : 0) : 0, \
-      l = strcol(4), (strlen(l) > 0 && l ne 'EP' && strstrt(labs, ' ' . l . ' ') == 0) ? (labs = labs . l . ' ', 0) : 0, \
+      l = strcol(cb_label), (strlen(l) > 0 && l ne 'EP' && strstrt(labs, ' ' . l . ' ') == 0) ? (labs = labs . l . ' ', 0) : 0, \
       1) nooutput
     halo = ''
     lines = ''
@@ -161,7 +199,7 @@ if (strlen(curves) > 0) {
     do for [w in seen] {
       kd = w[1:2]
       k = int(w[4:])
-      sel = sprintf("(px(column(5))):(column(1) == %d && strcol(2) eq '%s' ? py(column(6)) : NaN)", k, kd)
+      sel = sprintf("(px(column(cb_x))):(column(cb_curve) == %d && strcol(cb_kind) eq '%s' ? py(column(cb_y)) : NaN)", k, kd)
       halo = halo . sprintf(", curves using %s with lines lw 5 lc rgb 'white' notitle", sel)
       ttl = ''
       if (kd eq 'HB' && !hopf_titled) { ttl = 'Hopf curve (HB)'; hopf_titled = 1 }
@@ -176,7 +214,7 @@ if (strlen(curves) > 0) {
       if (l eq 'ZH') { pt = 9; pc = '#ff7f0e'; desc = 'ZH zero-Hopf' }
       if (l eq 'CP') { pt = 7; pc = '#2ca02c'; desc = 'CP cusp' }
       if (l eq 'GH') { pt = 13; pc = '#17becf'; desc = 'GH generalized Hopf' }
-      points = points . sprintf(", curves using (px(column(5))):(strcol(4) eq '%s' ? py(column(6)) : NaN) " . \
+      points = points . sprintf(", curves using (px(column(cb_x))):(strcol(cb_label) eq '%s' ? py(column(cb_y)) : NaN) " . \
                                 "with points pt %d ps 1.5 lc rgb '%s' title '%s'", l, pt, pc, desc)
     }
     CURVES = halo . lines . points
@@ -194,18 +232,23 @@ if (yd > 0) { set yrange [-0.5 : ny - 0.5] } else { set yrange [ny - 0.5 : -0.5]
 qlo = 1e300
 qhi = 0
 low = 0
-category(balanced, balanced_stable) = balanced == 0 ? 0 : balanced_stable == 1 ? 2 : 1
+# category: 0 no balanced state, 1 exists but unstable, 2 partly stable (n balls: some
+# samples of the set), 3 stable (two balls: balanced_stable = 1; n balls: every sample)
+category(balanced, stable) = balanced == 0 ? 0 : nb ? (stable == 1 ? 3 : stable > 0 ? 2 : 1) : (stable == 1 ? 3 : 1)
 scan(q) = q > qfloor ? (q < qlo ? qlo = q : 0, q > qhi ? qhi = q : 0) : (q <= qfloor && !low ? low = 1 : 0)
 vibration(n_stable, q) = n_stable > 0 ? (q < cbmin ? cbmin : q) : NaN
-VAL1 = '(scan(column(12)) + category(column(5), column(8)))'
-VAL2 = '(vibration(column(9), column(12)))'
+VAL1 = sprintf('(scan(column(%d)) + category(column(%d), column(%d)))', c_q, c_bal, c_balst)
+VAL2 = sprintf('(vibration(column(%d), column(%d)))', c_nstable, c_q)
+VAL3 = sprintf('(column(%d) == 0 ? NaN : column(%d))', c_bal, c_balst)
 if (grid) {
-  USE1 = '1:2:' . VAL1
-  USE2 = '1:2:' . VAL2
+  USE1 = sprintf('%d:%d:', c_ix, c_iy) . VAL1
+  USE2 = sprintf('%d:%d:', c_ix, c_iy) . VAL2
+  USE3 = sprintf('%d:%d:', c_ix, c_iy) . VAL3
   WITH = 'with image'
 } else {
-  USE1 = '1:2:(0.5):(0.5):' . VAL1
-  USE2 = '1:(column(9) > 0 ? $2 : NaN):(0.5):(0.5):' . VAL2   # no box where nothing is stable
+  USE1 = sprintf('%d:%d:(0.5):(0.5):', c_ix, c_iy) . VAL1
+  USE2 = sprintf('%d:(column(%d) > 0 ? column(%d) : NaN):(0.5):(0.5):', c_ix, c_nstable, c_iy) . VAL2   # no box where nothing is stable
+  USE3 = sprintf('%d:%d:(0.5):(0.5):', c_ix, c_iy) . VAL3
   WITH = 'with boxxyerror lc palette fs solid 1.0 border'     # border: no seams between boxes
 }
 # SVG viewers smooth an enlarged bitmap: browsers and Inkscape honour this mark
@@ -214,12 +257,14 @@ heading(what) = strlen(title) > 0 ? sprintf("%s\n%s", what, title) : what
 set terminal pngcairo size 1200,800 enhanced font 'DejaVu Sans,10'
 set output png_stability
 set title heading('stability region of the balanced state') noenhanced
-set palette defined (0 c_none, 1 c_unstable, 2 c_stable)
-set cbrange [0:2]
+set palette defined (0 c_none, 1 c_unstable, 2 c_partly, 3 c_stable)
+set cbrange [0:3]
 unset colorbox
+PARTLY = nb ? ", keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_partly title 'balanced set partly stable'" : ''
 plot summary using @USE1 @WITH notitle, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_none title 'no balanced state', \
-     keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_unstable title 'balanced exists, unstable', \
+     keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_unstable title 'balanced exists, unstable' \
+     @PARTLY, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_stable title 'balanced stable' \
      @CURVES
 set terminal svg size 1200,800 enhanced font 'DejaVu Sans,13' background rgb 'white'
@@ -265,3 +310,23 @@ set terminal svg size 1200,800 enhanced font 'DejaVu Sans,13' background rgb 'wh
 set output svg_vibration
 refresh
 unset output
+
+# ---- chart 3 (n balls): fraction of the balanced set normally stable ------------------
+if (nb) {
+  unset logscale cb
+  set cbrange [0:1]
+  set cbtics 0.2
+  set cblabel 'balanced_stable_fraction: samples of the balanced set normally stable' noenhanced
+  set palette defined (0 c_unstable, 0.5 '#fdae61', 1 c_stable)
+  set object 1 rectangle from graph 0, 0 to graph 1, 1 behind fc rgb c_none fs solid 1.0 noborder
+  set terminal pngcairo size 1200,800 enhanced font 'DejaVu Sans,10'
+  set output png_fraction
+  set title heading('fraction of the balanced set that is stable') noenhanced
+  plot summary using @USE3 @WITH notitle, \
+       keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_none title 'no balanced state' \
+       @CURVES
+  set terminal svg size 1200,800 enhanced font 'DejaVu Sans,13' background rgb 'white'
+  set output svg_fraction
+  refresh
+  unset output
+}

@@ -18,6 +18,11 @@
 #  8. us per equilibrium against the number of balls (ring scene, n = 2 .. 12): the whole
 #     analysis, the refined spectrum, a plain dense QR and numpy.linalg.eigvals on the same
 #     Jacobians, numpy's worst error and wrong verdicts against the analyzer.
+#     Also one n-ball map cell (CellAnalyzerN) per n against numpy's stacked eigvals of
+#     the same cell's Jacobians, one core each;
+#  9. why the map's characteristic-polynomial path stays two balls: how far the roots of
+#     the exact degree-(2n+4) polynomial move when its coefficients are rounded to long
+#     double (model.md §13.7).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
@@ -84,3 +89,5 @@ build/tests/benchmarks/bench_n data/scenes/ring11.toml "$nbin" "$ncsv" --repeat 
 env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 \
   /usr/bin/python3 tests/benchmarks/bench_n_numpy.py "$nbin" "$ncsv" --repeat 5
 rm -f "$nbin" "$ncsv"
+echo "## 9. degree-(2n+4) polynomial: root sensitivity to one long-double rounding of the coefficients"
+/usr/bin/python3 tests/benchmarks/polynomial_conditioning.py build/stability-scan data/scenes/ring11.toml --counts 2,3,4,6,12

@@ -260,11 +260,18 @@ std::string pattern_string(unsigned pattern, int n_balls) {
   return s;
 }
 
-EquilibriumSetN find_equilibria(const ParamsN& p, const BalancedSampling& sampling) {
+void find_equilibria(const ParamsN& p, const BalancedSampling& sampling, EquilibriumSetN& set) {
   const Problem f = problem_of(p);
-  EquilibriumSetN set;
+  set.list.clear();  // (keeps its capacity: a reused set does not allocate again)
+  set.degeneracy = degeneracy_none;
+  set.balanced_set = BalancedSetSummary{};
   add_balanced_samples(p, f, sampling, set);
   add_aligned(p, f, set);
+}
+
+EquilibriumSetN find_equilibria(const ParamsN& p, const BalancedSampling& sampling) {
+  EquilibriumSetN set;
+  find_equilibria(p, sampling, set);
   return set;
 }
 

@@ -2,72 +2,24 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <limits>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "abu/core/errors.hpp"
-#include "abu/model/friction.hpp"
 #include "abu/linear/spectrum.hpp"
+#include "abu/model/friction.hpp"
 
 namespace abu {
 
 double Axis::value(int i) const {
+  if (ball_count) return from + i;
   if (i <= 0) return from;
   if (i >= count - 1) return to;
   const double t = double(i) / double(count - 1);
   return logarithmic ? std::exp(std::log(from) + t * (std::log(to) - std::log(from))) : from + t * (to - from);
 }
 
-Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& origin) {
-  const std::string text(spec);
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= spec.size(); ++i)
-    if (i == spec.size() || spec[i] == ':') {
-      parts.emplace_back(spec.substr(start, i - start));
-      start = i + 1;
-    }
-  const auto fail = [&](const std::string& rule) -> Axis { throw InputError(origin, 0, text, rule); };
-  if (parts.size() != 4 && parts.size() != 5) return fail("expected NAME:FROM:TO:N or NAME:FROM:TO:N:log");
-  Axis axis;
-  const auto ref = parse_param(parts[0], int(scene.balls.size()));
-  if (!ref) return fail(fmt::format("unknown parameter '{}'; known: {}", parts[0], param_symbols_help()));
-  if (ref->quantity == Quantity::ball_radius)
-    return fail("the ball radius does not enter the equations of motion (model.md §3)");
-  axis.param = *ref;
-  const auto number = [&](const std::string& s, const char* what) {
-    double v = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
-      fail(fmt::format("{} '{}' is not a finite number", what, s));
-    return v;
-  };
-  axis.from = number(parts[1], "FROM");
-  axis.to = number(parts[2], "TO");
-  {
-    long n = 0;
-    const auto& s = parts[3];
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), n);
-    if (ec != std::errc() || ptr != s.data() + s.size()) return fail(fmt::format("N '{}' is not an integer", s));
-    if (n < 1 || n > kMaxAxisCount) return fail(fmt::format("N must be in [1, {}] (got {})", kMaxAxisCount, n));
-    axis.count = int(n);
-  }
-  if (parts.size() == 5) {
-    if (parts[4] != "log") return fail(fmt::format("the fifth field must be 'log' (got '{}')", parts[4]));
-    if (!(axis.from > 0 && axis.to > 0))
-      return fail(fmt::format("a log axis needs both ends > 0 (got {} .. {})", axis.from, axis.to));
-    axis.logarithmic = true;
-  }
-  if (axis.count > 1 && axis.from == axis.to) return fail("FROM and TO are equal but N > 1");
-  // The axis is an interval; the physical range and the scene's rules hold at both ends.
-  Scene probe = scene;
-  set_checked(probe, axis.param, axis.from, origin);
-  set_checked(probe, axis.param, axis.to, origin);
-  return axis;
-}
+std::string Axis::name() const { return ball_count ? std::string("n") : to_string(param); }
 
 int MapCell::best_stable() const {
   int best = -1;
@@ -189,6 +141,75 @@ void CellAnalyzer::analyze(int ix, int iy, MapCell& out) {
   }
   tracked_ = next;
   tracked_count_ = next_count;
+}
+
+// ---------------------------------------------------------------------------------------
+// n balls (model.md §13.8): every cell by the full analysis, no per-column shortcut (the
+// degree-(2n+4) polynomial is not used beyond two balls).
+
+int MapCellN::best_stable() const {
+  int best = -1;
+  for (int i = 0; i < int(equilibria.size()); ++i) {
+    const auto& e = equilibria[std::size_t(i)];
+    if (e.stable && (best < 0 || e.q_abs < equilibria[std::size_t(best)].q_abs)) best = i;
+  }
+  return best;
+}
+
+CellAnalyzerN::CellAnalyzerN(const ParamsN& base, std::vector<ParamsN> by_count, const Axis& x, const Axis& y,
+                             const BalancedSampling& sampling)
+    : base_(base), by_count_(std::move(by_count)), x_(x), y_(y), sampling_(sampling) {}
+
+ParamsN CellAnalyzerN::cell_params(int ix, int iy) const {
+  ParamsN p = x_.ball_count ? by_count_[std::size_t(ix)] : y_.ball_count ? by_count_[std::size_t(iy)] : base_;
+  if (!x_.ball_count) set(p, x_.param, x_.value(ix));
+  if (!y_.ball_count) set(p, y_.param, y_.value(iy));
+  return p;
+}
+
+void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
+  const ParamsN p = cell_params(ix, iy);
+  const auto pl = p.cast<long double>();
+  find_equilibria(p, sampling_, set_);
+  out.n_balls = p.n_balls();
+  out.capacity = 0;
+  for (const auto& b : p.balls) out.capacity += b.mass * b.race_radius;
+  out.unbalance = p.rotor.unbalance;
+  out.balanced_exists = balanced_set_exists(p);
+  out.degeneracy = set_.degeneracy;
+  out.balanced_samples = out.balanced_stable = out.aligned = out.aligned_stable = 0;
+  out.normal_abscissa_max = 0;
+  const auto points = set_.points();
+  out.equilibria.resize(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const EquilibriumN& e = points[k];
+    // As equilibrium_spectrum (scan.hpp): on the balanced set the normal spectrum, the
+    // tangent directions deflated (model.md §13.5); elsewhere the refined spectrum.
+    const auto lin = linearize(pl, e.state());
+    const SpectrumN sp = e.on_balanced_set
+                             ? compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position))
+                             : compute_spectrum(lin, SpectrumMethod::refined, e.structural_zeros);
+    MapEquilibriumN& m = out.equilibria[k];
+    m.family = e.family;
+    m.pattern = e.pattern;
+    m.member = e.member;
+    m.n_unstable = sp.n_unstable;
+    m.n_structural = sp.n_structural;
+    m.stable = sp.stability == Stability::stable;
+    m.abscissa = sp.abscissa;
+    m.q_abs = std::hypot(double(e.position(0)), double(e.position(1)));
+    m.beta.fill(0);
+    for (int i = 0; i < out.n_balls; ++i) m.beta[std::size_t(i)] = double(e.position(2 + i));
+    if (e.family == Family::balanced) {
+      out.normal_abscissa_max =
+          out.balanced_samples == 0 ? m.abscissa : std::max(out.normal_abscissa_max, m.abscissa);
+      ++out.balanced_samples;
+      out.balanced_stable += m.stable;
+    } else {
+      ++out.aligned;
+      out.aligned_stable += m.stable;
+    }
+  }
 }
 
 }  // namespace abu

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/io/io.hpp"
 
 namespace abu {
 
@@ -20,7 +20,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string axis_name(const Axis& a) { return to_string(a.param); }
+std::string axis_name(const Axis& a) { return a.name(); }
+
+// Shortest round-trip form, as io's format_number (scan sits below io, so it does not
+// call it): a non-finite value is a numerical failure, never a "nan" in a file.
+std::string format_number(double value, std::string_view what = "value") {
+  if (!std::isfinite(value)) throw NumericalError(fmt::format("non-finite {} ({}) would be written", what, value));
+  return fmt::format("{}", value);
+}
 
 // No NaN reaches a file: a non-finite value is a numerical failure naming its cell.
 void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
@@ -29,12 +36,23 @@ void check_finite(double value, const MapJob& job, int ix, int iy, const char* w
                                      axis_name(job.x), job.x.value(ix), axis_name(job.y), job.y.value(iy), what));
 }
 
+std::string_view axis_unit(const Axis& a) { return a.ball_count ? std::string_view("-") : unit(a.param.quantity); }
+
 std::string axis_description(const Axis& a) {
+  if (a.ball_count)
+    return fmt::format("n [-]: the number of balls, every integer from {} to {}", format_number(a.from),
+                       format_number(a.to));
   return fmt::format("{} [{}]: {} values from {} to {}{}", axis_name(a), unit(a.param.quantity), a.count,
                      format_number(a.from), format_number(a.to), a.logarithmic ? ", evenly spaced in log" : "");
 }
 
 std::string common_header(const MapJob& job) {
+  if (job.any_balls)
+    return job.provenance +
+           fmt::format("# map: x = {}\n#      y = {}\n#      every cell by the full n-ball analysis (model.md §13.8): "
+                       "every aligned equilibrium and refined eigenvalues, the balanced set sampled with {} samples "
+                       "per sheet (§13.5) and judged by its normal spectrum\n",
+                       axis_description(job.x), axis_description(job.y), job.sampling.samples_per_sheet);
   return job.provenance + fmt::format("# map: x = {}\n#      y = {}\n#      stability decided by the {} method\n",
                                       axis_description(job.x), axis_description(job.y),
                                       job.method == CellMethod::fast ? "fast (characteristic polynomial, Routh)"
@@ -43,7 +61,9 @@ std::string common_header(const MapJob& job) {
 
 }  // namespace
 
-int tile_count(const MapJob& job) { return (job.x.count + kTileColumns - 1) / kTileColumns; }
+int MapJob::tile_columns() const { return any_balls ? 1 : kTileColumns; }
+
+int tile_count(const MapJob& job) { return (job.x.count + job.tile_columns() - 1) / job.tile_columns(); }
 
 std::string map_file_name(const MapJob& job) {
   return fmt::format("map_{}_{}.csv", axis_name(job.x), axis_name(job.y));
@@ -55,7 +75,73 @@ std::string tile_directory_name(const MapJob& job) {
   return fmt::format(".map_{}_{}.tiles", axis_name(job.x), axis_name(job.y));
 }
 
+namespace {
+
+// The n-ball CSVs' columns (one place: this file writes and documents both).
+std::string map_csv_header_n(const MapJob& job) {
+  const std::string x = axis_name(job.x), y = axis_name(job.y);
+  std::string betas;
+  for (int i = 1; i <= job.max_balls_in_map(); ++i) betas += fmt::format(",beta{}", i);
+  return common_header(job) +
+         fmt::format(
+             "# one row per equilibrium per cell (balanced samples, then aligned), cells in order ix outer, iy inner\n"
+             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balls = n; family = balanced|aligned "
+             "(two balls: balanced|together|opposite, model.md §13.2); pattern = the ball signs along q ('+-+'), "
+             "empty for balanced;\n"
+             "#   member = root of the pattern (1 or 2) or the balanced sample's index; stable = 1 if every "
+             "eigenvalue but the structural zeros has negative real part, else 0; n_unstable = eigenvalues right "
+             "of the axis;\n"
+             "#   n_structural_zero = eigenvalues zero by construction (the balanced set's directions, §13.4), "
+             "left out of stable and the abscissa; spectral_abscissa [1/s] = largest real part (normal to the "
+             "set on it);\n"
+             "#   q_abs [m] = |q|, the residual vibration; beta_i [rad] in [0, 2 pi), empty beyond the cell's "
+             "ball count\n"
+             "ix,iy,{0},{1},balls,family,pattern,member,stable,n_unstable,n_structural_zero,spectral_abscissa,q_abs"
+             "{4}\n",
+             x, y, axis_unit(job.x), axis_unit(job.y), betas);
+}
+
+std::string summary_csv_header_n(const MapJob& job) {
+  const std::string x = axis_name(job.x), y = axis_name(job.y);
+  return common_header(job) +
+         fmt::format(
+             "# one row per cell, in order ix outer, iy inner; an empty field: not applicable (no such state)\n"
+             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balls = n; capacity [kg m] = sum m_i l_i, "
+             "against U [kg m];\n"
+             "#   balanced_exists = 1 if the balanced set exists (polygon inequality, model.md §13.4.2); "
+             "balanced_samples = its samples (§13.5);\n"
+             "#   balanced_stable_fraction = the fraction of samples normally stable (a marginal sample, an eigenvalue "
+             "inside its error band, is not stable), normal_abscissa_max [1/s] = the least stable sample's normal "
+             "spectral abscissa (both empty without samples);\n"
+             "#   aligned = isolated equilibria with q != 0 (§13.2, at most 2^n), aligned_stable = how many are "
+             "stable; n_stable = stable equilibria (samples included);\n"
+             "#   best_family, best_pattern, best_member, best_q_abs [m] = the stable state of least |q| (empty if "
+             "none is stable);\n"
+             "#   degenerate = bit flags (equilibria.hpp, Degeneracy): 1 U = 0, 8 K = C = 0, 64 a pattern's double "
+             "root (fold), 128 a pattern with S = 0, 256 a collinear point of the balanced set, 512 no balanced set\n"
+             "ix,iy,{0},{1},balls,capacity,U,balanced_exists,balanced_samples,balanced_stable_fraction,"
+             "normal_abscissa_max,aligned,aligned_stable,n_stable,best_family,best_pattern,best_member,best_q_abs,"
+             "degenerate\n",
+             x, y, axis_unit(job.x), axis_unit(job.y));
+}
+
+}  // namespace
+
+int MapJob::max_balls_in_map() const {
+  if (x.ball_count) return int(x.to);
+  if (y.ball_count) return int(y.to);
+  return any_balls ? params_n.n_balls() : 2;
+}
+
+CellWorkspace::CellWorkspace(const MapJob& job) {
+  if (job.any_balls)
+    any_balls.emplace(job.params_n, job.by_count, job.x, job.y, job.sampling);
+  else
+    two_balls.emplace(job.params, job.x, job.y, job.method);
+}
+
 std::string map_csv_header(const MapJob& job) {
+  if (job.any_balls) return map_csv_header_n(job);
   const std::string x = axis_name(job.x), y = axis_name(job.y);
   return common_header(job) +
          fmt::format(
@@ -73,6 +159,7 @@ std::string map_csv_header(const MapJob& job) {
 }
 
 std::string summary_csv_header(const MapJob& job) {
+  if (job.any_balls) return summary_csv_header_n(job);
   const std::string x = axis_name(job.x), y = axis_name(job.y);
   return common_header(job) +
          fmt::format(
@@ -90,9 +177,58 @@ std::string summary_csv_header(const MapJob& job) {
              x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
 }
 
-TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer) {
+namespace {
+
+// The n-ball rows of one cell (the columns of map_csv_header_n / summary_csv_header_n).
+void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y, const MapCellN& cell,
+                  fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
+  const int max_n = job.max_balls_in_map();
+  int n_stable = 0;
+  for (const MapEquilibriumN& e : cell.equilibria) {
+    n_stable += e.stable;
+    check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
+    check_finite(e.q_abs, job, ix, iy, "|q|");
+    const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
+    fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{},{}"), ix, iy, x, y,
+                   cell.n_balls, to_string(e.family), pattern, e.member, int(e.stable), e.n_unstable,
+                   e.n_structural, e.abscissa, e.q_abs);
+    for (int i = 0; i < max_n; ++i) {
+      if (i < cell.n_balls) {
+        check_finite(e.beta[std::size_t(i)], job, ix, iy, "a ball angle");
+        fmt::format_to(fmt::appender(rows), FMT_COMPILE(",{}"), e.beta[std::size_t(i)]);
+      } else {
+        rows.push_back(',');
+      }
+    }
+    rows.push_back('\n');
+  }
+  check_finite(cell.capacity, job, ix, iy, "the capacity");
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},{},{},"), ix, iy, x, y, cell.n_balls,
+                 cell.capacity, cell.unbalance, int(cell.balanced_exists), cell.balanced_samples);
+  if (cell.balanced_samples > 0) {
+    check_finite(cell.normal_abscissa_max, job, ix, iy, "the normal abscissa");
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{}"),
+                   double(cell.balanced_stable) / double(cell.balanced_samples), cell.normal_abscissa_max);
+  } else {
+    summary.push_back(',');
+  }
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},{},{},"), cell.aligned, cell.aligned_stable, n_stable);
+  if (const int best = cell.best_stable(); best >= 0) {
+    const MapEquilibriumN& e = cell.equilibria[std::size_t(best)];
+    const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{}"), to_string(e.family), pattern, e.member,
+                   e.q_abs);
+  } else {
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,,"));
+  }
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+}
+
+}  // namespace
+
+TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
   TileText text;
-  const int first = tile * kTileColumns, last = std::min(job.x.count, first + kTileColumns);
+  const int first = tile * job.tile_columns(), last = std::min(job.x.count, first + job.tile_columns());
   std::vector<std::string> y_values(std::size_t(job.y.count));
   for (int iy = 0; iy < job.y.count; ++iy) y_values[std::size_t(iy)] = format_number(job.y.value(iy), "y value");
   // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
@@ -100,7 +236,23 @@ TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer) {
   fmt::memory_buffer rows, summary;
   rows.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 6 * 140);
   summary.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 80);
-  MapCell cell;
+  if (job.any_balls) {
+    for (int ix = first; ix < last; ++ix) {
+      const std::string x_value = format_number(job.x.value(ix), "x value");
+      for (int iy = 0; iy < job.y.count; ++iy) {
+        workspace.any_balls->analyze(ix, iy, workspace.cell_n);
+        ++text.cells;
+        text.equilibria += long(workspace.cell_n.equilibria.size());
+        text.fallbacks += long(workspace.cell_n.equilibria.size());  // every one by full eigenvalues
+        write_cell_n(job, ix, iy, x_value, y_values[std::size_t(iy)], workspace.cell_n, rows, summary);
+      }
+    }
+    text.rows.assign(rows.data(), rows.size());
+    text.summary.assign(summary.data(), summary.size());
+    return text;
+  }
+  CellAnalyzer& analyzer = *workspace.two_balls;
+  MapCell& cell = workspace.cell;
   for (int ix = first; ix < last; ++ix) {
     const std::string x_value = format_number(job.x.value(ix), "x value");
     for (int iy = 0; iy < job.y.count; ++iy) {
@@ -148,7 +300,7 @@ TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer) {
 namespace {
 
 std::string manifest_of(const MapJob& job) {
-  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", kTileColumns, tile_count(job)) +
+  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job)) +
          map_csv_header(job) + summary_csv_header(job);
 }
 
@@ -291,9 +443,9 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
   const auto stopped = [&] { return failed.load() || (options.stop && options.stop->load()); };
   const auto worker = [&] {
     try {
-      CellAnalyzer analyzer(job.params, job.x, job.y, job.method);
+      CellWorkspace workspace(job);
       for (std::size_t i = next++; i < tiles.size() && !stopped(); i = next++) {
-        TileText text = compute_tile(job, tiles[i], analyzer);
+        TileText text = compute_tile(job, tiles[i], workspace);
         const long cells = text.cells;
         {
           std::lock_guard lock(mutex);
@@ -337,6 +489,28 @@ void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, 
   map_csv << map_csv_header(job);
   summary_csv << summary_csv_header(job);
   for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv);
+}
+
+std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
+  if (job.any_balls) return std::nullopt;
+  BoundaryRun all;
+  all.param = job.x.param;
+  all.param2 = job.y.param;
+  all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
+  ContinuationOptions options;
+  for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
+    Params p = job.params;
+    set(p, job.x.param, job.x.from);
+    set(p, job.y.param, at);
+    const ContinuationRun run = continue_branches(p, job.x.param, job.x.to, options, StartSelection{});
+    BoundaryRun part = continue_boundaries(p, run, job.y.param, to, options);
+    for (auto& c : part.curves) all.curves.push_back(std::move(c));
+    for (auto& n : part.notes) all.notes.push_back(std::move(n));
+  }
+  all.notes.push_back(
+      "curves found from the fold and Hopf points on the bottom and top edges of the map; a closed curve "
+      "inside the map touching neither edge is not drawn");
+  return all;
 }
 
 }  // namespace abu

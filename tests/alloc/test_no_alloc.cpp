@@ -14,6 +14,7 @@
 #include "abu/io/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
+#include "abu/scan/map.hpp"
 
 extern "C" void* __libc_malloc(std::size_t);
 static bool counting = false;
@@ -80,6 +81,28 @@ void check_ball_count(const std::string& scene_file, int n) {
   if (sink == 12345.678) std::printf("(unlikely)\n");
 }
 
+// A cell of an n-ball map (CellAnalyzerN, model.md §13.8): equilibria, linearizations and
+// every spectrum of the cell. The analyzer's equilibrium list and the cell's rows keep
+// their storage, so once a cell of this size has been computed the next allocates
+// nothing (the first cell of a thread grows them: that is the warm-up run).
+void check_map_cell(const std::string& scene_file, int n) {
+  abu::Scene scene = abu::load_scene(scene_file);
+  abu::set_ball_count(scene, n, "test");
+  const abu::ParamsN p = abu::params_of<abu::any_balls>(scene);
+  abu::Axis x, y;
+  x.param = *abu::parse_param("omega", n);
+  x.from = 800, x.to = 900, x.count = 2;
+  y.param = *abu::parse_param("mu", n);
+  y.from = 1e-3, y.to = 2e-3, y.count = 2;
+  abu::CellAnalyzerN cells(p, {}, x, y, abu::BalancedSampling{});
+  abu::MapCellN cell;
+  cells.analyze(0, 0, cell);  // a first cell of the same size: grows the storage
+  const long mallocs = mallocs_of([&] { cells.analyze(1, 1, cell); });
+  check(mallocs == 0 && !cell.equilibria.empty(),
+        "n = " + std::to_string(n) + ": a map cell (" + std::to_string(cell.equilibria.size()) +
+            " equilibria with their spectra): " + std::to_string(mallocs) + " mallocs");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,6 +115,7 @@ int main(int argc, char** argv) {
   const long probe = mallocs_of([] { std::free(std::malloc(64)); });
   check(probe == 1, "the malloc counter sees a deliberate allocation (" + std::to_string(probe) + ")");
   for (int n : {3, 4, 12}) check_ball_count(argv[1], n);
+  for (int n : {3, 5}) check_map_cell(argv[1], n);
   std::printf("%d passed, %d failed\n", passes, failures);
   return failures == 0 ? 0 : 1;
 }

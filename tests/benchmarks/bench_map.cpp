@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "abu/io/map_setup.hpp"
 #include "abu/scan/map.hpp"
 
 namespace {

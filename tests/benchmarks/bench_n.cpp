@@ -19,6 +19,9 @@
 //   structured   the same spectrum with SpectrumMethod::structured (its QRs without the
 //                long-double Newton refinement), to split the refined spectrum's time;
 //                on the same equilibria as refined
+//   map cell     abu::CellAnalyzerN::analyze, one cell of an n-ball map at the scene's
+//                parameters (the same equilibria and spectra, rows stored in the
+//                cell's reused storage), / cell: what `map` costs per cell at this n
 //   dense QR     Eigen::EigenSolver (eigenvalues only, no balancing) on the double
 //                Jacobian jacobian(p, at_rest(position)), precomputed: the same matrices
 //                as the numpy baseline's
@@ -51,6 +54,7 @@
 #include "abu/io/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
+#include "abu/scan/map.hpp"
 #include "abu/scan/scan.hpp"
 
 namespace {
@@ -99,7 +103,8 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
   csv << "n,aligned,balanced,grid_points,repeats,analyze_us,equilibria_us,refined_us,refined_aligned_us,"
          "refined_balanced_us,linearize_us,structured_us,qr_us,qr_aligned_us,qr_balanced_us,not_converged,"
          "ill_conditioned,marginal,spectrum_not_converged,timed_aligned,timed_balanced,refined_aligned_conv_us,"
-         "refined_aligned_nconv_us,refined_balanced_conv_us,refined_balanced_nconv_us,nconv_aligned,nconv_balanced\n";
+         "refined_aligned_nconv_us,refined_balanced_conv_us,refined_balanced_nconv_us,nconv_aligned,nconv_balanced,"
+         "map_cell_us\n";
   volatile double sink = 0;
   fmt::print("{:>3} {:>6} {:>6} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}   (us per equilibrium, median of {})\n",
              "n", "align.", "bal.", "analyze", "find_eq", "refined", "ref.align", "ref.bal", "linearize",
@@ -167,7 +172,18 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
     const auto per = [](double seconds, std::size_t k) { return k == 0 ? 0.0 : seconds / double(k) * 1e6; };
     const auto us = [](double seconds, double calls) { return calls == 0 ? 0.0 : seconds / calls * 1e6; };
     std::vector<double> t_an, t_find, t_ref_al, t_ref_bal, t_lin, t_struct, t_qr_al, t_qr_bal;
-    std::vector<double> t_conv[2], t_nconv[2];
+    std::vector<double> t_conv[2], t_nconv[2], t_cell;
+    // One map cell at the scene's parameters (1 x 1 map: omega and mu at their values).
+    abu::Axis ax, ay;
+    ax.param = *abu::parse_param("omega", n);
+    ax.from = ax.to = p.omega;
+    ax.count = 1;
+    ay.param = *abu::parse_param("mu", n);
+    ay.from = ay.to = p.balls[0].mu;
+    ay.count = 1;
+    abu::CellAnalyzerN cells(p, {}, ax, ay, abu::BalancedSampling{});
+    abu::MapCellN cell;
+    cells.analyze(0, 0, cell);  // warm-up: the cell's storage grows once
     for (int r = 0; r < repeats; ++r) {
       t_an.push_back(per(per_call([&] { sink = sink + double(abu::analyze(p).spectra.size()); }, min_s), count));
       t_find.push_back(
@@ -195,6 +211,7 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
                                  },
                                  min_s),
                              sub_all.size()));
+      t_cell.push_back(per_call([&] { cells.analyze(0, 0, cell); sink = sink + double(cell.equilibria.size()); }, min_s) * 1e6);
       t_qr_al.push_back(per(per_call([&] { qr_of(aligned); }, min_s), aligned.size()));
       t_qr_bal.push_back(per(per_call([&] { qr_of(balanced); }, min_s), balanced.size()));
     }
@@ -214,11 +231,13 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
                aligned.size(), balanced.size(), median(t_an), median(t_find), refined, ref_al, ref_bal, median(t_lin),
                qr);
     std::fflush(stdout);
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", n, aligned.size(), balanced.size(),
+    if (cell.equilibria.size() != count)
+      throw std::runtime_error(fmt::format("n = {}: the map cell has {} equilibria, analyze {}", n, cell.equilibria.size(), count));
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", n, aligned.size(), balanced.size(),
                        a.equilibria.balanced_set.grid_points, repeats, median(t_an), median(t_find), refined, ref_al,
                        ref_bal, median(t_lin), median(t_struct), qr, qr_al, qr_bal, not_converged, ill, marginal,
                        spec_nc, sub_al.size(), sub_bal.size(), median(t_conv[0]), median(t_nconv[0]),
-                       median(t_conv[1]), median(t_nconv[1]), nconv_al, nconv_bal);
+                       median(t_conv[1]), median(t_nconv[1]), nconv_al, nconv_bal, median(t_cell));
 
     // Matrices and eigenvalues for the numpy script.
     for (const std::int64_t v : {std::int64_t(n), std::int64_t(count), std::int64_t(dim), std::int64_t(0)}) put(bin, v);

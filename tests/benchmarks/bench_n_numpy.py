@@ -117,6 +117,7 @@ def main():
              f"{'rel. error':>11} {'naive / -zeros':>15} {'rel. err':>9}")
     lines = []
     notes = []
+    cell_lines = {}
     for n, b in sorted(blocks.items()):
         J = np.ascontiguousarray(b["J"])
         np.linalg.eigvals(J)  # warm-up
@@ -126,6 +127,10 @@ def main():
             got = np.linalg.eigvals(J)
             times.append(time.perf_counter() - t0)
         us = float(np.median(times)) / len(J) * 1e6
+        if "map_cell_us" in rows.get(n, {}):
+            cell_ms = float(rows[n]["map_cell_us"]) / 1e3
+            np_ms = us * len(J) / 1e3
+            cell_lines[n] = f"{n:>3} {len(J):>10} {cell_ms:>17.3f} {np_ms:>14.3f} {np_ms / cell_ms:>16.3f}x"
         got = np.asarray(got, dtype=complex)
         worst, worst_zero, wrong_naive, wrong_clean, marginal, worst_all = score(b, got)
         qr_worst, qr_zero, qr_wrong_naive, qr_wrong_clean, _, _ = score(b, b["qr"])
@@ -166,6 +171,13 @@ def main():
         print(line)
     for note in notes:
         print(note)
+    # A map cell (CellAnalyzerN::analyze: every equilibrium and spectrum of the cell)
+    # against numpy's stacked eigvals of the same cell's Jacobians, one core each.
+    print("# map cell cost against n: analyzer (one cell, 1 thread) vs numpy.linalg.eigvals of the cell's Jacobians "
+          "(stacked, 1 thread; equilibria not counted for numpy)")
+    print(f"{'n':>3} {'equilibria':>10} {'analyzer ms/cell':>17} {'numpy ms/cell':>14} {'numpy / analyzer':>17}")
+    for n, line in sorted(cell_lines.items()):
+        print(line)
 
 
 if __name__ == "__main__":

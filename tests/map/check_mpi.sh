@@ -44,4 +44,14 @@ check "mpirun -n 2 --resume exits 0" "[ $? -eq 0 ]"
 check "resumed across ranks: same bytes" "cmp -s '$work/one/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
 run_mpi 2 map "$scene" --x omega:1:2:0 --y "$Y" --quiet -o "$work/bad" 2>/dev/null
 check "bad axis under mpirun: exit 2, nothing written" "[ $? -eq 2 ] && [ ! -e '$work/bad' ]"
+# n balls, the ball count as an axis (model.md §13.8): the same bytes across ranks.
+ring=$src/data/scenes/ring11.toml
+"$bin" map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --no-chart -o "$work/n1" --threads 1
+for ranks in 2 3; do
+  run_mpi $ranks map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --no-chart -o "$work/n$ranks"
+  for f in map_omega_n.csv summary_omega_n.csv; do
+    check "n axis, mpirun -n $ranks: $f has the bytes of the single-process run" "cmp -s '$work/n1/$f' '$work/n$ranks/$f'"
+  done
+done
+
 finish

@@ -70,6 +70,9 @@ struct EquilibriumSetN {
 /// throws on degenerate physics; an equilibrium whose polish does not converge is kept
 /// with converged = false.
 EquilibriumSetN find_equilibria(const ParamsN& p, const BalancedSampling& sampling = {});
+/// The same into `set`, reusing its storage (a map cell per call: no allocation once
+/// the list has grown to the largest count, model.md §13.3).
+void find_equilibria(const ParamsN& p, const BalancedSampling& sampling, EquilibriumSetN& set);
 
 /// The balanced set exists (the polygon inequality, within input rounding).
 bool balanced_set_exists(const ParamsN& p);

@@ -6,9 +6,14 @@
 // (a map is processed column by column: x fixed, y varying), which lets it exploit that
 // friction parameters do not move equilibria (model.md §4): with a friction coefficient
 // on the y axis the equilibria and most of the linearization are computed once per
-// column. Tiling, threads, resume and MPI live in the map driver (map_driver.hpp).
+// column. Tiling, threads, resume and MPI live in the map driver (map_driver.hpp); axes
+// are parsed and checked against a scene in io (map_setup.hpp).
 //
-//   abu::Axis x = abu::parse_axis("omega:50:2000:1000", scene, "--x");
+// Two balls take CellAnalyzer (the degree-8 characteristic polynomial, Routh); any other
+// count, and the ball count as an axis, take CellAnalyzerN: the full n-ball analysis of
+// every cell (model.md §13.8).
+//
+//   abu::Axis x = abu::parse_axis("omega:50:2000:1000", scene, "--x");   // map_setup.hpp
 //   abu::CellAnalyzer cells(params, x, y);
 //   abu::MapCell cell;
 //   cells.analyze(ix, iy, cell);
@@ -19,27 +24,29 @@
 #include <string>
 #include <string_view>
 
-#include "abu/linear/characteristic.hpp"
+#include <vector>
+
 #include "abu/equilibria/equilibria.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/linear/characteristic.hpp"
 
 namespace abu {
 
 /// One axis of a map: `count` values from `from` to `to` (both included), evenly spaced
-/// or evenly spaced in log.
+/// or evenly spaced in log; or the ball count (`ball_count`: the integers from .. to,
+/// count = to - from + 1, `param` unused).
 struct Axis {
   ParamRef param;
   double from = 0, to = 0;
   int count = 0;
   bool logarithmic = false;
+  bool ball_count = false;
   /// The i-th value (i in [0, count)); the ends are exact.
   double value(int i) const;
+  /// The column name and file-name part: the parameter's symbol, or "n".
+  std::string name() const;
 };
 
-/// Parses "NAME:FROM:TO:N[:log]" and checks it against the scene (the parameter exists
-/// and its law uses it, both ends in its physical range, N in [1, kMaxAxisCount], log
-/// needs positive ends). Throws InputError with file `origin` (e.g. "--x").
-Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& origin);
 inline constexpr int kMaxAxisCount = 20000;
 /// Maps larger than this many cells are refused (memory and time), whatever the axes.
 inline constexpr long kMaxCells = 100'000'000;
@@ -102,6 +109,58 @@ class CellAnalyzer {
   std::array<Tracked, 6> tracked_{};
   int tracked_count_ = 0;
   unsigned column_degeneracy_ = degeneracy_none;
+};
+
+/// One equilibrium of an n-ball cell (CellAnalyzerN).
+struct MapEquilibriumN {
+  Family family = Family::balanced;
+  unsigned pattern = 0;  ///< aligned: the sign pattern (equilibria_n.hpp); 0 for balanced
+  int member = 1;        ///< root of the pattern (1, 2) or the balanced sample's index
+  int n_unstable = 0;
+  int n_structural = 0;  ///< zero by construction (model.md §13.4), left out of the verdict
+  bool stable = false;
+  double abscissa = 0;   ///< spectral abscissa [1/s]; on the balanced set the normal one
+  double q_abs = 0;      ///< |q| [m]
+  std::array<double, max_balls> beta{};
+};
+
+/// Everything computed for one cell of an n-ball map. `equilibria` keeps its storage
+/// from cell to cell (one MapCellN per thread), so a cell does not allocate once it has
+/// grown to the map's largest count.
+struct MapCellN {
+  int n_balls = 0;
+  double capacity = 0;     ///< sum m_i l_i [kg m]
+  double unbalance = 0;    ///< U [kg m]
+  bool balanced_exists = false;  ///< the polygon inequality (model.md §13.4.2)
+  int balanced_samples = 0, balanced_stable = 0;
+  double normal_abscissa_max = 0;  ///< over the balanced samples (meaningful if balanced_samples > 0)
+  int aligned = 0, aligned_stable = 0;
+  unsigned degeneracy = degeneracy_none;
+  std::vector<MapEquilibriumN> equilibria;  ///< balanced samples, then aligned (equilibria_n.hpp order)
+  /// The stable equilibrium with the smallest |q| (first in list order on ties), -1 if none.
+  int best_stable() const;
+};
+
+/// Per-thread analyzer of an n-ball map (any 2 <= n <= 12, also the ball count as an
+/// axis): every cell by the full analysis of model.md §13.8, which is what
+/// `equilibria` computes at the cell's parameters (scan.hpp, analyze). Reuses its
+/// equilibrium list and the cell's storage; the spectra are fixed-capacity values.
+class CellAnalyzerN {
+ public:
+  /// `base`: the scene's parameters; with a ball-count axis `by_count[k]` are those of
+  /// the scene's ring with from + k balls (io builds them: scan does not know scenes).
+  CellAnalyzerN(const ParamsN& base, std::vector<ParamsN> by_count, const Axis& x, const Axis& y,
+                const BalancedSampling& sampling);
+  void analyze(int ix, int iy, MapCellN& out);
+  /// The parameters of cell (ix, iy).
+  ParamsN cell_params(int ix, int iy) const;
+
+ private:
+  ParamsN base_;
+  std::vector<ParamsN> by_count_;
+  Axis x_, y_;
+  BalancedSampling sampling_;
+  EquilibriumSetN set_;
 };
 
 }  // namespace abu

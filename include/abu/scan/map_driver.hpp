@@ -6,7 +6,7 @@
 // starts every column afresh), and the files are the tiles concatenated in index order,
 // so 1 thread, N threads, N ranks and an interrupted-then-resumed run give the same bytes.
 //
-//   abu::MapJob job{params, x, y, abu::CellMethod::fast, header};
+//   abu::MapJob job;   // io builds it from a scene: map_setup.hpp, map_job()
 //   abu::TileStore store(dir / abu::tile_directory_name(job), job, abu::TileStore::Mode::fresh);
 //   abu::MapRunStats stats = abu::compute_tiles(job, store.missing(), options,
 //       [&](int tile, abu::TileText&& text) { store.put(tile, text); });
@@ -19,8 +19,11 @@
 #include <functional>
 #include <iosfwd>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "abu/continuation/boundaries.hpp"
 
 #include "abu/scan/map.hpp"
 
@@ -32,14 +35,34 @@ inline constexpr int kTileColumns = 8;
 
 /// Everything that determines a map's output.
 struct MapJob {
-  Params params;
+  Params params;  ///< two balls (any_balls false)
   Axis x, y;
   CellMethod method = CellMethod::fast;
   /// Provenance comment block ("# " lines) on top of both CSVs.
   std::string provenance;
+  /// Any ball count: a scene with n != 2 balls, or the ball count as an axis. Cells by
+  /// CellAnalyzerN (model.md §13.8), the n-ball CSV columns; `method` is not used.
+  bool any_balls = false;
+  ParamsN params_n;               ///< the scene (any_balls)
+  std::vector<ParamsN> by_count;  ///< ball-count axis: the ring with x/y.from + k balls
+  BalancedSampling sampling;      ///< of the balanced set (model.md §13.5)
+  /// The most balls of any cell: the number of beta columns of the n-ball long CSV.
+  int max_balls_in_map() const;
+  /// Columns per tile: kTileColumns for two balls; 1 for n balls, whose cells cost up to
+  /// seconds each (n = 12), so that a map a few columns wide still keeps every thread busy.
+  int tile_columns() const;
 };
 
 int tile_count(const MapJob& job);
+
+/// One thread's analyzers and cell storage for a job (reused over its tiles).
+struct CellWorkspace {
+  explicit CellWorkspace(const MapJob& job);
+  std::optional<CellAnalyzer> two_balls;
+  std::optional<CellAnalyzerN> any_balls;
+  MapCell cell;
+  MapCellN cell_n;
+};
 
 /// The computed text of one tile: its rows of the long CSV and of the summary CSV.
 struct TileText {
@@ -47,9 +70,9 @@ struct TileText {
   long cells = 0, equilibria = 0, fallbacks = 0;
 };
 
-/// Computes tile `tile` with `analyzer` (one per thread). Throws NumericalError naming the
-/// cell if a value is not finite.
-TileText compute_tile(const MapJob& job, int tile, CellAnalyzer& analyzer);
+/// Computes tile `tile` with `workspace` (one per thread). Throws NumericalError naming
+/// the cell if a value is not finite.
+TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace);
 
 /// Comment block and column names of the long CSV (one row per equilibrium per cell) and
 /// of the summary CSV (one row per cell).
@@ -130,6 +153,13 @@ using TileSink = std::function<void(int tile, TileText&& text)>;
 /// it to receive other ranks' tiles). Rethrows a worker's exception after all stopped.
 MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
                           const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait = {});
+
+/// The fold and Hopf curves in the map's plane (two balls): every fold and Hopf point of
+/// a continuation in x along the bottom and the top edge, continued in y across the map.
+/// A curve that meets neither edge is not found (a note of the run says so). nullopt
+/// where there are none to find: n != 2 balls or a ball-count axis (continuation follows
+/// two balls).
+std::optional<BoundaryRun> map_boundaries(const MapJob& job);
 
 /// Writes the two CSVs: headers, then every tile's rows in tile order.
 void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv);

@@ -1,0 +1,262 @@
+#include "abu/io/map_setup.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <vector>
+
+#include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report.hpp"
+#include "abu/scan/map_mpi.hpp"
+
+namespace abu {
+
+namespace {
+
+std::vector<std::string> split_fields(std::string_view spec) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= spec.size(); ++i)
+    if (i == spec.size() || spec[i] == ':') {
+      parts.emplace_back(spec.substr(start, i - start));
+      start = i + 1;
+    }
+  return parts;
+}
+
+std::optional<long> integer(const std::string& s) {
+  long n = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), n);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
+  return n;
+}
+
+// "n:FROM:TO:COUNT": the ball count of a ring (model.md §13.8).
+Axis parse_ball_count_axis(const std::vector<std::string>& parts, const Scene& scene, const std::string& origin,
+                           const std::string& text) {
+  const auto fail = [&](const std::string& rule) -> Axis { throw InputError(origin, 0, text, rule); };
+  if (!scene.ring)
+    return fail("the ball count is an axis only for a [balls] ring scene (this scene lists [[ball]] tables)");
+  if (parts.size() == 5) return fail("the ball-count axis takes every integer: no 'log'");
+  if (parts.size() != 4) return fail("expected n:FROM:TO:COUNT");
+  const auto from = integer(parts[1]), to = integer(parts[2]), count = integer(parts[3]);
+  if (!from) return fail(fmt::format("FROM '{}' is not an integer ball count", parts[1]));
+  if (!to) return fail(fmt::format("TO '{}' is not an integer ball count", parts[2]));
+  if (!count) return fail(fmt::format("COUNT '{}' is not an integer", parts[3]));
+  if (*from < kSceneMinBalls || *to > kSceneMaxBalls || *from > *to)
+    return fail(fmt::format("the ball count runs over {} <= FROM <= TO <= {} (got {} .. {})", kSceneMinBalls,
+                            kSceneMaxBalls, *from, *to));
+  if (*count != *to - *from + 1)
+    return fail(fmt::format("COUNT must be TO - FROM + 1 = {}: every integer in between (got {})", *to - *from + 1,
+                            *count));
+  Axis axis;
+  axis.ball_count = true;
+  axis.from = double(*from);
+  axis.to = double(*to);
+  axis.count = int(*count);
+  for (long n = *from; n <= *to; ++n) {  // every count's ring must be a valid scene
+    Scene probe = scene;
+    set_ball_count(probe, int(n), origin);
+  }
+  return axis;
+}
+
+}  // namespace
+
+Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& origin) {
+  const std::string text(spec);
+  const std::vector<std::string> parts = split_fields(spec);
+  const auto fail = [&](const std::string& rule) -> Axis { throw InputError(origin, 0, text, rule); };
+  if (!parts.empty() && parts[0] == "n") return parse_ball_count_axis(parts, scene, origin, text);
+  if (parts.size() != 4 && parts.size() != 5) return fail("expected NAME:FROM:TO:N or NAME:FROM:TO:N:log");
+  Axis axis;
+  const auto ref = parse_param(parts[0], int(scene.balls.size()));
+  if (!ref) return fail(fmt::format("unknown parameter '{}'; known: {}, or n (a ring's ball count)", parts[0],
+                                    param_symbols_help()));
+  if (ref->quantity == Quantity::ball_radius)
+    return fail("the ball radius does not enter the equations of motion (model.md §3)");
+  axis.param = *ref;
+  const auto number = [&](const std::string& s, const char* what) {
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
+      fail(fmt::format("{} '{}' is not a finite number", what, s));
+    return v;
+  };
+  axis.from = number(parts[1], "FROM");
+  axis.to = number(parts[2], "TO");
+  {
+    const auto n = integer(parts[3]);
+    if (!n) return fail(fmt::format("N '{}' is not an integer", parts[3]));
+    if (*n < 1 || *n > kMaxAxisCount) return fail(fmt::format("N must be in [1, {}] (got {})", kMaxAxisCount, *n));
+    axis.count = int(*n);
+  }
+  if (parts.size() == 5) {
+    if (parts[4] != "log") return fail(fmt::format("the fifth field must be 'log' (got '{}')", parts[4]));
+    if (!(axis.from > 0 && axis.to > 0))
+      return fail(fmt::format("a log axis needs both ends > 0 (got {} .. {})", axis.from, axis.to));
+    axis.logarithmic = true;
+  }
+  if (axis.count > 1 && axis.from == axis.to) return fail("FROM and TO are equal but N > 1");
+  // The axis is an interval; the physical range and the scene's rules hold at both ends.
+  Scene probe = scene;
+  set_checked(probe, axis.param, axis.from, origin);
+  set_checked(probe, axis.param, axis.to, origin);
+  return axis;
+}
+
+MapJob map_job(const Scene& scene, const MapRequest& request) {
+  MapJob job;
+  job.x = parse_axis(request.x, scene, "--x");
+  job.y = parse_axis(request.y, scene, "--y");
+  if (job.x.ball_count && job.y.ball_count) throw InputError("--y", 0, request.y, "only one axis can be the ball count");
+  if (!job.x.ball_count && !job.y.ball_count && job.x.param == job.y.param)
+    throw InputError("--y", 0, request.y, "the y parameter must differ from the x one");
+  if (long(job.x.count) * long(job.y.count) > kMaxCells)
+    throw InputError("--y", 0, request.y,
+                     fmt::format("the map would have {} x {} cells; at most {} are allowed (memory and time)",
+                                 job.x.count, job.y.count, kMaxCells));
+  job.method = request.method;
+  job.sampling = request.sampling;
+  const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;
+  job.any_balls = count_axis || scene.balls.size() != 2;
+  if (!job.any_balls) {
+    job.params = params_of<2>(scene);
+    job.provenance = provenance_header(request.command_line, scene.file, job.params);
+    return job;
+  }
+  if (const auto rule = options_violation(request.sampling)) throw InputError("--set-samples", 0, "samples", *rule);
+  job.params_n = params_of<any_balls>(scene);
+  std::string line = request.command_line + fmt::format(" --set-samples {}", request.sampling.samples_per_sheet);
+  if (count_axis) {
+    // The other axis must hold on every ball count (a per-ball symbol such as m3 needs 3
+    // balls); each count's ring is the scene's, rebuilt (scene.hpp, set_ball_count).
+    const bool other_is_x = count_axis == &job.y;
+    const std::string& other_spec = other_is_x ? request.x : request.y;
+    for (int k = 0; k < count_axis->count; ++k) {
+      Scene s = scene;
+      set_ball_count(s, int(count_axis->value(k)), other_is_x ? "--y" : "--x");
+      parse_axis(other_spec, s, other_is_x ? "--x" : "--y");
+      job.by_count.push_back(params_of<any_balls>(s));
+    }
+    job.provenance = provenance_header(line, scene.file, job.params_n) +
+                     (scene.ring->total_mass_held
+                          ? fmt::format("# ball-count axis: the ring's total mass {} kg held (m = total_mass / n)\n",
+                                        format_number(scene.ring->total_mass))
+                          : fmt::format("# ball-count axis: the ring's per-ball mass {} kg held\n",
+                                        format_number(scene.ring->ball.mass)));
+  } else {
+    job.provenance = provenance_header(line, scene.file, job.params_n);
+  }
+  return job;
+}
+
+MapRunReport run_map(const MapJob& job, const MapOutput& output) {
+  MapRunReport report;
+  const std::filesystem::path& dir = output.directory;
+  const bool root = mpi_rank() == 0;
+  std::optional<TileStore> store;
+  std::optional<std::vector<int>> missing;
+  {
+    std::exception_ptr failure;
+    try {
+      if (root) {
+        store.emplace(dir / tile_directory_name(job), job, output.mode);
+        missing = store->missing();
+      }
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    missing = share_missing_tiles(missing);
+    if (failure) std::rethrow_exception(failure);
+    if (!missing) {
+      report.outcome = MapRunReport::Outcome::refused;  // rank 0 refused the input and said why
+      return report;
+    }
+  }
+  report.tiles_total = tile_count(job);
+  ProgressMeter meter(report.tiles_total, report.tiles_total - int(missing->size()), root && output.progress);
+  MapRunOptions run_options;
+  run_options.threads = output.threads;
+  run_options.stop = output.stop;
+  run_options.progress = &meter;
+  report.stats = compute_distributed(job, *missing, run_options, store ? &*store : nullptr);
+  meter.finish();
+  const auto stopped = [&] { return output.stop && output.stop->load(); };
+  if (store) report.tile_directory = store->directory();
+  if (report.stats.interrupted || stopped()) {
+    report.outcome = MapRunReport::Outcome::interrupted;
+    if (store) report.tiles_kept = report.tiles_total - int(store->missing().size());
+    return report;
+  }
+  if (!root) {
+    report.outcome = MapRunReport::Outcome::other_rank;
+    return report;
+  }
+
+  OutputTransaction out;
+  const auto map_path = out.reserve(dir / map_file_name(job));
+  const auto summary_path = out.reserve(dir / summary_file_name(job));
+  {
+    std::ofstream map_csv(map_path, std::ios::binary), summary_csv(summary_path, std::ios::binary);
+    assemble(job, *store, map_csv, summary_csv);
+    map_csv.close();
+    summary_csv.close();
+    if (!map_csv || !summary_csv) throw std::runtime_error(fmt::format("{}: cannot write the map", dir.string()));
+  }
+  const std::string x = job.x.name(), y = job.y.name();
+  std::filesystem::path curves;
+  if (output.boundaries) {
+    const auto started = std::chrono::steady_clock::now();
+    if (const auto run = map_boundaries(job)) {
+      curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run, job.provenance));
+      report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    } else {
+      report.boundary_note = "no fold/Hopf boundaries: continuation follows two balls (this map has n != 2 or the "
+                             "ball count as an axis)";
+    }
+  }
+  if (output.chart) {
+    const auto name = [&](const char* kind, const char* ext) {
+      return out.reserve(dir / fmt::format("{}_{}_{}.{}", kind, x, y, ext)).string();
+    };
+    const auto axis_unit = [](const Axis& a) {
+      return a.ball_count ? std::string() : std::string(unit(a.param.quantity));
+    };
+    std::vector<std::pair<std::string, std::string>> variables{{"summary", summary_path.string()},
+                                                               {"curves", curves.string()},
+                                                               {"png_stability", name("stability", "png")},
+                                                               {"svg_stability", name("stability", "svg")},
+                                                               {"png_vibration", name("vibration", "png")},
+                                                               {"svg_vibration", name("vibration", "svg")},
+                                                               {"xname", x},
+                                                               {"xunit", axis_unit(job.x)},
+                                                               {"yname", y},
+                                                               {"yunit", axis_unit(job.y)},
+                                                               {"logx", job.x.logarithmic ? "1" : "0"},
+                                                               {"logy", job.y.logarithmic ? "1" : "0"},
+                                                               {"title", output.title}};
+    if (job.any_balls) {
+      variables.emplace_back("nballs", "1");
+      variables.emplace_back("png_fraction", name("fraction", "png"));
+      variables.emplace_back("svg_fraction", name("fraction", "svg"));
+    }
+    run_gnuplot(plots_dir() / "map.gp", variables);
+  }
+  if (stopped()) {
+    report.outcome = MapRunReport::Outcome::interrupted;  // `out` removes its temporaries
+    report.tiles_kept = report.tiles_total;
+    return report;
+  }
+  out.commit();
+  store->remove();
+  report.outcome = MapRunReport::Outcome::done;
+  return report;
+}
+
+}  // namespace abu
