@@ -124,7 +124,8 @@ void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out) 
 template <int N>
 void starting_values(const Linearization<ld, N>& lin, SpectrumMethod method, Starts<N>& out) {
   const int count = int(2 * lin.mass.rows());
-  balanced_qr<N>(companion(lin), out.direct);
+  if (!balanced_qr<N>(companion(lin), out.direct))
+    out.status.merge(Outcome::numerical_issue, "the QR of J failed (J not finite, GSL's balancing or the QR failed)");
   if (method == SpectrumMethod::dense_qr) return combine_starts(count, false, 0, out);
   FirstOrderMatrix<N> jinv;
   ld sigma = 0;
@@ -132,7 +133,9 @@ void starting_values(const Linearization<ld, N>& lin, SpectrumMethod method, Sta
     sigma = -ld(kEps * out.direct.norm);
     if (!shifted_inverse(lin, sigma, jinv)) return combine_starts(count, false, 0, out);
   }
-  balanced_qr<N>(jinv, out.inverse);
+  if (!balanced_qr<N>(jinv, out.inverse))
+    out.status.merge(Outcome::numerical_issue,
+                     "the QR of J's structured inverse failed (GSL's balancing or the QR failed)");
   combine_starts(count, true, double(sigma), out);
 }
 
