@@ -1,7 +1,8 @@
 # Stability boundaries from `stability-scan continue --param2`: the fold (LP) and Hopf
 # (HB) curves in the parameter plane, codimension-two points marked. Re-run with
 #   gnuplot -e "curves='out/boundary_omega_d.csv'; png='b.png'; param='omega'; unit='rad/s'; param2='d'; unit2='N s/m'; title='x'" plots/boundary.gp
-# columns: 1 curve, 2 kind, 3 point, 4 label, 5 param, 6 param2
+# Columns are read by their header names (robust to added or reordered columns): curve,
+# kind, label, and the two parameters' symbols.
 if (!exists("curves")) curves = 'out/boundary_omega_d.csv'
 if (!exists("png")) png = 'boundary.png'
 if (!exists("param")) param = 'omega'
@@ -15,18 +16,18 @@ set output png
 set datafile separator ','
 set datafile commentschars '#'
 set datafile columnheaders
-stats curves using 1 nooutput
+stats curves using (column("curve")) nooutput
 nc = int(STATS_max)
 set xlabel sprintf('%s [%s]', param, unit)
 set ylabel sprintf('%s [%s]', param2, unit2)
 set grid
 set key outside right top
 set title title noenhanced
-on(k, kind) = (column(1) == k && strcol(2) eq kind) ? column(6) : NaN
-label(l) = (strcol(4) eq l) ? column(6) : NaN
-plot for [k=1:nc] curves using 5:(on(k, 'HB')) with lines lw 2.5 lc rgb '#d62728' title (k == 1 ? 'Hopf curves' : ''), \
-     for [k=1:nc] curves using 5:(on(k, 'LP')) with lines lw 2.5 lc rgb '#1f1f1f' title (k == 1 ? 'fold curves' : ''), \
-     curves using 5:(label('BT')) with points pt 5 ps 1.5 lc rgb '#9467bd' title 'BT Bogdanov-Takens', \
-     curves using 5:(label('ZH')) with points pt 9 ps 1.5 lc rgb '#ff7f0e' title 'ZH zero-Hopf', \
-     curves using 5:(label('CP')) with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'CP cusp', \
-     curves using 5:(label('GH')) with points pt 13 ps 1.5 lc rgb '#17becf' title 'GH generalized Hopf'
+on(k, kind) = (column("curve") == k && strcol("kind") eq kind) ? column(param2) : NaN
+label(l) = (strcol("label") eq l) ? column(param2) : NaN
+plot for [k=1:nc] curves using (column(param)):(on(k, 'HB')) with lines lw 2.5 lc rgb '#d62728' title (k == 1 ? 'Hopf curves' : ''), \
+     for [k=1:nc] curves using (column(param)):(on(k, 'LP')) with lines lw 2.5 lc rgb '#1f1f1f' title (k == 1 ? 'fold curves' : ''), \
+     curves using (column(param)):(label('BT')) with points pt 5 ps 1.5 lc rgb '#9467bd' title 'BT Bogdanov-Takens', \
+     curves using (column(param)):(label('ZH')) with points pt 9 ps 1.5 lc rgb '#ff7f0e' title 'ZH zero-Hopf', \
+     curves using (column(param)):(label('CP')) with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'CP cusp', \
+     curves using (column(param)):(label('GH')) with points pt 13 ps 1.5 lc rgb '#17becf' title 'GH generalized Hopf'

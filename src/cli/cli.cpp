@@ -1,5 +1,4 @@
 #include <fmt/format.h>
-#include <gsl/gsl_errno.h>
 
 #include <exception>
 
@@ -32,7 +31,6 @@ void add_scene_options(CLI::App& sub, SceneOptions& options) {
 }
 
 int run(int argc, char** argv) {
-  gsl_set_error_handler_off();  // library code reports, never aborts
   for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
 
   CLI::App app{"stability-scan: linear stability of the automatic ball balancer (model: docs model.md)"};

@@ -16,15 +16,6 @@ std::optional<std::string> options_violation(const ContinuationOptions& o) {
 
 namespace arclength {
 
-std::string_view to_string(Status s) {
-  switch (s) {
-    case Status::converged: return "converged";
-    case Status::not_converged: return "not converged";
-    case Status::numerical_issue: return "numerical issue";
-  }
-  return "?";
-}
-
 std::string_view to_string(End e) {
   switch (e) {
     case End::end_of_interval: return "reached the end of the interval";

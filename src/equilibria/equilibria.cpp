@@ -202,6 +202,14 @@ EquilibriumT<N> polish_equilibrium(const ParamsT<double, N>& p, const Equilibriu
   // Converged: as exact as long double allows, far below the double rounding of the
   // reported state (whose own residual is ~1e-16).
   e.converged = residual <= ld(1e-17);
+  if (e.converged)
+    e.status = {};
+  else if (!std::isfinite(residual) || !s.allFinite())
+    e.status = {Outcome::numerical_issue, "the static residual or a Newton step was not finite"};
+  else if (it == kMaxIterations)
+    e.status = {Outcome::not_converged, "Newton ran out of iterations above the tolerance 1e-17"};
+  else
+    e.status = {Outcome::not_converged, "Newton stalled (the residual stopped halving) above the tolerance 1e-17"};
   e.residual = static_residual(p, Coordinates<ld, N>(s.template cast<double>().template cast<ld>()));
   return e;
 }
@@ -229,6 +237,7 @@ EquilibriumSet find_equilibria(const Params& p) {
   for (auto& e : set.points()) {
     if (e.is_set) {  // exact by symmetry; Newton has no isolated root to converge to
       e.converged = true;
+      e.status = {};
       e.residual = static_residual(p, Coordinates<ld, 2>(e.position.cast<double>().cast<ld>()));
     } else {
       e = polish_equilibrium(p, e);

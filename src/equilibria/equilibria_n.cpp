@@ -199,6 +199,8 @@ void add_balanced_samples(const ParamsN& p, const Problem& f, const BalancedSamp
       e.on_balanced_set = f.n >= 3;
       e.newton_iterations = iterations;
       e.converged = residual <= ld(1e-17);
+      e.status = e.converged ? Status{}
+                             : Status{Outcome::not_converged, "the polish onto the balanced set stopped above 1e-17"};
       if (collinear) set.degeneracy |= balanced_collinear;
       e.residual = static_residual(p, Coordinates<ld, any_balls>(e.position.cast<double>().cast<ld>()));
       // Structural zeros: the tangent directions, twice over where no ball's friction has

@@ -140,7 +140,8 @@ std::string balanced_set_comment(const A& a) {
         "abscissa from {} to {} 1/s\n",
         info.dimension, info.grid, info.dimension + 2, info.samples, info.grid_points, st.stable, st.samples,
         st.samples ? num(double(st.stable) / st.samples, "fraction") : std::string("-"),
-        num(st.min_abscissa, "abscissa"), num(st.max_abscissa, "abscissa"));
+        st.samples ? num(st.min_abscissa, "abscissa") : std::string("-"),
+        st.samples ? num(st.max_abscissa, "abscissa") : std::string("-"));
   } else {
     return {};
   }
@@ -242,7 +243,10 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
       out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"error\": {}, \"condition\": {}, \"structural\": {}}}",
                          k ? ",\n       " : "", num(sp.eigenvalues[k].real(), "eigenvalue"),
                          num(sp.eigenvalues[k].imag(), "eigenvalue"), num(sp.error[k], "error"),
-                         std::isfinite(sp.condition[k]) ? num(sp.condition[k], "condition") : std::string("null"),
+                         // A structural zero has no condition number (it is exact, not computed);
+                         // an eigenvalue 0 has none either (cond divides by |lambda|): null.
+                         std::isfinite(sp.condition[k]) && !sp.structural[k] ? num(sp.condition[k], "condition")
+                                                                              : std::string("null"),
                          sp.structural[k]);
     }
     out += "]}";

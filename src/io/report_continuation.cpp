@@ -30,6 +30,11 @@ std::string stop_line(const Branch& b, std::size_t k, int end) {
 
 bool failed(StopReason r) { return r == StopReason::step_underflow || r == StopReason::max_steps; }
 
+// A value that is not defined at a point (a Hopf frequency off Hopf points, a Lyapunov
+// coefficient where no Hopf point was located) is an empty field, never a sentinel 0:
+// 0 is a meaningful value of both (a Bogdanov-Takens end, a degenerate Hopf point).
+std::string num_if(bool defined, double v, std::string_view what) { return defined ? num(v, what) : std::string(); }
+
 std::string run_comments(const ContinuationRun& run) {
   const auto& st = run.stats;
   std::string out = fmt::format(
@@ -77,9 +82,10 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
   out += fmt::format(
       "# special points of the continuation in {} [{}]: LP fold, BP branch point, HB Hopf, MX a branch that ended "
       "in failure\n# columns: branch, label, {} (located by an augmented system to the rounding level), q1 q2 [m], "
-      "beta1 beta2 [rad], q_abs [m], family,\n#   frequency [rad/s] (HB), re im [1/s] the critical eigenvalue, "
-      "lyapunov = first Lyapunov coefficient (HB; < 0 supercritical, > 0 subcritical; state in SI, <q,q> = 1),\n"
-      "#   converged (1/0), n_unstable before/after along the branch\n",
+      "beta1 beta2 [rad], q_abs [m], family,\n#   frequency [rad/s] (HB; empty otherwise), re im [1/s] the critical eigenvalue, "
+      "lyapunov = first Lyapunov coefficient (HB; < 0 supercritical, > 0 subcritical; state in SI, <q,q> = 1;\n"
+      "#   empty off HB rows and where the Hopf system did not converge), converged (1/0), n_unstable before/after "
+      "along the branch;\n#   MX rows: frequency, re, im, lyapunov and converged empty (no point was located)\n",
       name, unit(run.param.quantity), name);
   out += run_comments(run);
   out += fmt::format(
@@ -91,13 +97,16 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
     for (const auto& sp : branch.specials)
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", b + 1, to_string(sp.label),
                          num(double(sp.parameter), name), position_cells(sp.position), to_string(sp.family),
-                         num(sp.frequency, "frequency"), num(sp.eigenvalue.real(), "eigenvalue"),
-                         num(sp.eigenvalue.imag(), "eigenvalue"), num(sp.lyapunov, "lyapunov"), sp.converged ? 1 : 0,
+                         num_if(sp.label == Label::HB, sp.frequency, "frequency"),
+                         num(sp.eigenvalue.real(), "eigenvalue"), num(sp.eigenvalue.imag(), "eigenvalue"),
+                         num_if(sp.label == Label::HB && sp.converged, sp.lyapunov, "lyapunov"), sp.converged ? 1 : 0,
                          sp.n_unstable_before, sp.n_unstable_after);
     for (int end = 0; end < 2; ++end) {
       if (!failed(branch.stop[std::size_t(end)])) continue;
       const auto& pt = end == 0 ? branch.points.front() : branch.points.back();
-      out += fmt::format("{},MX,{},{},{},0,0,0,0,0,{},{}\n", b + 1, num(double(pt.parameter), name),
+      // No special point was located here: frequency, eigenvalue, lyapunov and converged
+      // are not defined (empty).
+      out += fmt::format("{},MX,{},{},{},,,,,,{},{}\n", b + 1, num(double(pt.parameter), name),
                          position_cells(pt.position), to_string(branch.family), pt.spectrum.n_unstable,
                          pt.spectrum.n_unstable);
     }
@@ -113,7 +122,7 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
       "{}\n# columns: curve, kind (LP fold curve, HB Hopf curve), point (index along the curve), label (EP end, BT "
       "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp, GH generalized Hopf: where the curve meets them, located by "
       "interpolating their test functions), the two\n#   parameters, q1 q2 [m], beta1 beta2 [rad], q_abs [m], family, "
-      "frequency [rad/s] (Hopf curves)\n",
+      "frequency [rad/s] (Hopf curves; empty on fold curves)\n",
       n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
   for (std::size_t c = 0; c < run.curves.size(); ++c)
     for (int end = 0; end < 2; ++end) {
@@ -130,7 +139,7 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
       const auto& pt = curve.points[i];
       out += fmt::format("{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
                          num(double(pt.parameter), n1), num(double(pt.parameter2), n2), position_cells(pt.position),
-                         to_string(pt.family), num(double(pt.frequency), "frequency"));
+                         to_string(pt.family), num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"));
     }
   }
   return out;

@@ -108,7 +108,9 @@ SpectrumN compute_normal_spectrum(const Linearization<ld, N>& lin, const Tangent
   const int count = int(JN.rows());
 
   Starts<N> starts;
-  balanced_qr<N>(JN.cast<double>(), starts.direct);
+  if (!balanced_qr<N>(JN.cast<double>(), starts.direct))
+    starts.status.merge(Outcome::numerical_issue,
+                        "the QR of the deflated J failed (not finite, GSL's balancing or the QR failed)");
   bool have_inverse = false;
   ld sigma = 0;
   if (method != SpectrumMethod::dense_qr) {
@@ -127,6 +129,7 @@ SpectrumN compute_normal_spectrum(const Linearization<ld, N>& lin, const Tangent
   const Linearization<ld, N> deflated = deflated_problem(lin, P, V, level);
   SpectrumN sp;
   sp.count = int(2 * d);
+  sp.status = starts.status;
   std::array<ld, SpectrumN::capacity> band{};
   const VectorSource<N> vector_of = [&deflated](const Estimate<N>& e, bool) {
     return inverse_iteration(deflated, e.value);

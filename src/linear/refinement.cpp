@@ -200,7 +200,7 @@ RefinedEigenpair<N> refine_eigenpair(const Linearization<ld, N>& lin, std::compl
   W final_step = last_step;
   const W enough = std::is_same_v<W, double> ? std::sqrt(eps) : 4 * eps;
   std::optional<BorderedSolver<N>> solver;
-  for (int it = 0; it < 16; ++it) {
+  for (int it = 0; it < kRefinementTolerances.max_iterations; ++it) {
     const Mat t = T_updated(lambda);
     solver.emplace(bordered(lambda, t, x));
     const Vec r = t * x;  // in the working precision
@@ -246,7 +246,7 @@ RefinedEigenpair<N> refine_eigenpair(const Linearization<ld, N>& lin, std::compl
   // into two real eigenvalues). The limit 1e-8 ~ sqrt(eps_double) admits multiple
   // eigenvalues, where Newton stalls near sqrt(eps) of the working precision (merging
   // equilibria: eta ~ 1e-11 in long double), and nothing that has not converged.
-  const bool converged = std::isfinite(std::abs(lambda)) && eta <= W(1e-8) &&
+  const bool converged = std::isfinite(std::abs(lambda)) && eta <= W(kRefinementTolerances.backward_error) &&
                          (final_step <= 1e3 * eps * std::abs(lambda) || final_step <= 8 * abs_condition * eta);
   QepVector<N> unscaled(d);
   for (Eigen::Index i = 0; i < d; ++i) {

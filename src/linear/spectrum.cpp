@@ -102,6 +102,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
       band[first + i] = ld(8 * kEps * std::abs(start[i].value));
     }
     sp.converged = false;
+    sp.status.merge(Outcome::not_converged, "QR values only: this method does not refine them");
     return;
   }
   std::array<bool, SpectrumT<N>::capacity> filled{};
@@ -263,8 +264,10 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
       sp.eigenvalues[first + i] = start[i].value;
       sp.error[first + i] = double(std::abs(refined[i] - as_ld(start[i].value)));
       sp.converged = false;
+      sp.status.merge(Outcome::not_converged, "an eigenvalue refinement did not converge; its QR value is kept");
     } else if (!converged_at[i]) {
       sp.converged = false;
+      sp.status.merge(Outcome::not_converged, "an eigenvalue refinement stopped above its tolerance");
     }
   }
 }
@@ -292,6 +295,7 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
   starting_values(lin, method, starts);
   SpectrumT<N> sp;
   sp.count = starts.count;
+  sp.status = starts.status;
   std::array<ld, SpectrumT<N>::capacity> band{};
   const VectorSource<N> vector_of = [](const Estimate<N>& e, bool complex) {
     return complex ? position_vector<std::complex<double>, N>(e) : position_vector<double, N>(e);

@@ -1,5 +1,6 @@
 #include "spectrum_starts.hpp"
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 
 #include <Eigen/Cholesky>
@@ -9,11 +10,18 @@
 #include <cmath>
 #include <limits>
 
+#include "abu/core/gsl_errors.hpp"
+
 namespace abu::spectrum_detail {
 
 namespace {
 
 using ld = long double;
+
+// GSL's default handler aborts (gsl_errors.hpp): off before main() in every program that
+// links the spectra, which is every program that analyses anything.
+[[maybe_unused]] const bool gsl_quiet_at_start = (quiet_gsl_errors(), true);
+
 constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // unit roundoff 2^-53
 constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon() / 2;
 
@@ -65,9 +73,10 @@ bool balanced_qr(const FirstOrderMatrix<N>& m, BalancedQr<N>& r) {
   const auto n = std::size_t(m.rows());
   r.balanced = m;
   if (!r.balanced.allFinite()) return false;
+  quiet_gsl_errors();  // (a no-op after static initialization)
   gsl_matrix_view view = gsl_matrix_view_array(r.balanced.data(), n, n);
   gsl_vector_view dv = gsl_vector_view_array(r.scale.data(), n);
-  gsl_linalg_balance_matrix(&view.matrix, &dv.vector);
+  if (gsl_linalg_balance_matrix(&view.matrix, &dv.vector) != GSL_SUCCESS) return false;
   using ColMajor = Eigen::Matrix<double, state_size<N>, state_size<N>, Eigen::ColMajor, state_capacity<N>,
                                  state_capacity<N>>;
   const Eigen::EigenSolver<ColMajor> solver(ColMajor(r.balanced), false);
@@ -115,7 +124,8 @@ void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out) 
 template <int N>
 void starting_values(const Linearization<ld, N>& lin, SpectrumMethod method, Starts<N>& out) {
   const int count = int(2 * lin.mass.rows());
-  balanced_qr<N>(companion(lin), out.direct);
+  if (!balanced_qr<N>(companion(lin), out.direct))
+    out.status.merge(Outcome::numerical_issue, "the QR of J failed (J not finite, GSL's balancing or the QR failed)");
   if (method == SpectrumMethod::dense_qr) return combine_starts(count, false, 0, out);
   FirstOrderMatrix<N> jinv;
   ld sigma = 0;
@@ -123,7 +133,9 @@ void starting_values(const Linearization<ld, N>& lin, SpectrumMethod method, Sta
     sigma = -ld(kEps * out.direct.norm);
     if (!shifted_inverse(lin, sigma, jinv)) return combine_starts(count, false, 0, out);
   }
-  balanced_qr<N>(jinv, out.inverse);
+  if (!balanced_qr<N>(jinv, out.inverse))
+    out.status.merge(Outcome::numerical_issue,
+                     "the QR of J's structured inverse failed (GSL's balancing or the QR failed)");
   combine_starts(count, true, double(sigma), out);
 }
 

@@ -62,6 +62,7 @@ struct Starts {
   std::array<Estimate<N>, state_capacity<N>> estimates{};
   int count = 0;      ///< eigenvalues, the size of `direct`
   double shift = 0;   ///< sigma of the inverse
+  Status status{};    ///< numerical issue if a QR (or its balancing) failed
 };
 
 /// Every eigenvalue from the QR whose error bound relative to it is smaller: eps ||J||

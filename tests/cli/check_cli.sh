@@ -57,14 +57,30 @@ check "special points: LP and HB found between 200 and 400 rad/s" \
   "grep -q '^[0-9]*,LP,' '$work/cont/special_omega.csv' && grep -q '^[0-9]*,HB,' '$work/cont/special_omega.csv'"
 check "branch csv has the tracked-eigenvalue columns" "grep -v '^#' '$work/cont/branch_omega.csv' | head -1 | grep -q ',n_unstable,re1,im1,'"
 check "no nan in the continuation csvs" "! grep -v '^#' '$work/cont/branch_omega.csv' '$work/cont/special_omega.csv' | grep -qi nan"
+# Values not defined at a point are empty fields, never a sentinel 0 (README, Outputs):
+# frequency only on HB rows, lyapunov only on located HB rows; both set there.
+fields() {  # CSV, then a Python condition on row r (a dict by header name): 0 if it holds for every row
+  /usr/bin/python3 -c 'import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+sys.exit(0 if rows and all(eval(sys.argv[2], {"r": r}) for r in rows) else 1)' "$1" "$2"
+}
+check "special points: frequency and lyapunov empty off HB rows" \
+  "fields '$work/cont/special_omega.csv' 'r[\"label\"] == \"HB\" or (r[\"frequency\"] == \"\" and r[\"lyapunov\"] == \"\")'"
+check "special points: HB rows have a positive frequency and a lyapunov coefficient" \
+  "fields '$work/cont/special_omega.csv' 'r[\"label\"] != \"HB\" or (float(r[\"frequency\"]) > 0 and r[\"lyapunov\"] != \"\")'"
+check "plots address columns by name (no positional using N:)" "! grep -nE 'using +[0-9]|column\\([0-9]' '$src/plots/bifurcation.gp' '$src/plots/boundary.gp'"
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --from-equilibrium balanced --no-chart -o "$work/cb"
 check "--from-equilibrium balanced continues only balanced branches" \
-  "[ -z \"\$(grep -v '^#' '$work/cb/branch_omega.csv' | tail -n +2 | cut -d, -f10 | grep -v balanced)\" ]"
+  "fields '$work/cb/branch_omega.csv' 'r[\"family\"] == \"balanced\"'"
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --param2 mu --to2 0.004 -o "$work/c2" 2>/dev/null
 check "two-parameter run writes the boundary csv and chart" "[ -s '$work/c2/boundary_omega_mu.csv' ] && [ -s '$work/c2/boundary_omega_mu.png' ]"
+check "boundary: frequency empty on fold curves, positive on Hopf curves" \
+  "fields '$work/c2/boundary_omega_mu.csv' '(r[\"frequency\"] == \"\") if r[\"kind\"] == \"LP\" else float(r[\"frequency\"]) > 0'"
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/cmx" 2>"$work/cmx.err"
 check "a branch stopped early says so on stderr and in the csv" \
   "grep -q 'maximum number of steps' '$work/cmx.err' && grep -q 'maximum number of steps' '$work/cmx/branch_omega.csv'"
+check "MX rows: frequency, re, im, lyapunov, converged empty" \
+  "grep -q '^[0-9]*,MX,' '$work/cmx/special_omega.csv' && fields '$work/cmx/special_omega.csv' 'r[\"label\"] != \"MX\" or all(r[k] == \"\" for k in (\"frequency\", \"re\", \"im\", \"lyapunov\", \"converged\"))'"
 
 # --- bad input: exit 2, message, nothing written ----------------------------------------
 bad() {  # name, then the arguments; run in an empty directory with -o inside it
@@ -138,6 +154,12 @@ check "three balls: the header names every ball and all 10 eigenvalues" \
 # samples carry 2 (n - 2) = 2 structural zeros each.
 check "three balls: balanced samples have 2 structural zeros (friction none)" \
   "grep -v '^#' '$work/three.csv' | awk -F, '\$1 == \"balanced\" && \$12 != 2 {exit 1} \$1 == \"balanced\" {n++} END {exit n == 0}'"
+"$bin" equilibria "$work/three.toml" --format json -o "$work/three.json"
+check "three balls json: structural zeros have condition null, the others a number" \
+  "/usr/bin/python3 -c 'import json, sys
+eq = json.load(open(sys.argv[1]))[\"equilibria\"]
+ev = [e for q in eq for e in q[\"eigenvalues\"]]
+sys.exit(0 if any(e[\"structural\"] for e in ev) and all((e[\"condition\"] is None) == e[\"structural\"] for e in ev) else 1)' '$work/three.json'"
 "$bin" sweep "$src/data/scenes/ring11.toml" --param n --from 2 --to 5 -o "$work/swn" 2>/dev/null
 check "sweep --param n on a ring: exits 0" "[ $? -eq 0 ]"
 check "sweep --param n: summary, long CSV and chart" "[ \"\$(ls '$work/swn' | tr '\n' ' ')\" = 'summary_n.csv summary_n.png sweep_n.csv ' ]"

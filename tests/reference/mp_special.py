@@ -1058,15 +1058,18 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
             try:
                 v = mpf(float(r[name]))
                 st = [mpf(float(r[k])) for k in ("q1", "q2", "beta1", "beta2")]
-                freq = float(r["frequency"])
-                lyap = float(r["lyapunov"] or 0)
+                # Empty fields are "not defined here" (frequency off HB points, lyapunov off
+                # located HB points), never a sentinel 0.
+                freq = float(r["frequency"]) if r["frequency"].strip() else None
+                lyap = float(r["lyapunov"]) if r["lyapunov"].strip() else None
                 conv = int(float(r["converged"]))
                 nb, na = int(float(r["n_unstable_before"])), int(float(r["n_unstable_after"]))
             except (ValueError, TypeError) as ex:
                 print(f"FAIL {where}: unreadable number: {ex}", file=out)
                 ok = False
                 continue
-            if not all(math.isfinite(x) for x in [float(v)] + [float(x) for x in st] + [freq, lyap]):
+            if not all(math.isfinite(x) for x in [float(v)] + [float(x) for x in st]
+                       + [x for x in (freq, lyap) if x is not None]):
                 print(f"FAIL {where}: non-finite value", file=out)
                 ok = False
                 continue
@@ -1108,13 +1111,16 @@ def compare(csv_path, p, name, lo, hi, rtol=1e-8, state_tol=STATE_TOL, out=sys.s
                 if sp.freq is None:
                     good = False
                     notes.append("reference point is not a Hopf point")
+                elif freq is None:
+                    good = False
+                    notes.append("NO FREQUENCY given on an HB row")
                 else:
                     fe = abs(mpf(freq) - sp.freq) / sp.freq
                     notes.append(f"w_H rel err {float(fe):.1e}")
                     if fe > rtol:
                         good = False
                         notes.append(f"FREQUENCY got {freq!r} ref {mp.nstr(sp.freq, 17)}")
-                if sp.lyap is not None and lyap != 0:
+                if sp.lyap is not None and lyap is not None:
                     l1, dg = sp.lyap
                     if dg >= 3 and mp.sign(l1) != mp.sign(lyap):
                         good = False

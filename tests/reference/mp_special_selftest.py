@@ -83,9 +83,14 @@ HEADER = ("branch,label,omega,q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lya
           "n_unstable_before,n_unstable_after")
 
 
-def row(br, lab, w, q1, q2, b1, b2, fam, f=0.0, l1=0.0, conv=1, nb=0, na=0):
-    return (f"{br},{lab},{w!r},{q1!r},{q2!r},{b1!r},{b2!r},{math.hypot(q1, q2)!r},{fam},{f!r},0,{f!r},"
-            f"{l1!r},{conv},{nb},{na}")
+def row(br, lab, w, q1, q2, b1, b2, fam, f=None, l1=None, conv=1, nb=0, na=0):
+    # None: an empty field, as the program writes where a value is not defined (frequency
+    # and lyapunov off HB points; re, im, converged on MX rows).
+    def cell(x):
+        return "" if x is None else repr(x)
+    return (f"{br},{lab},{w!r},{q1!r},{q2!r},{b1!r},{b2!r},{math.hypot(q1, q2)!r},{fam},{cell(f)},"
+            f"{'' if conv is None else 0},{cell(f if f is not None else (None if conv is None else 0.0))},"
+            f"{cell(l1)},{cell(conv)},{nb},{na}")
 
 
 def compare_checks():
@@ -125,7 +130,7 @@ def compare_checks():
                                           "FAMILY together"),
         "wrong counts": ([r.replace(f",{l1!r},1,2,0", f",{l1!r},1,2,1") for r in base], False, "N_UNSTABLE"),
         "wrong l1 sign": ([r.replace(f",{l1!r},", f",{-l1!r},") for r in base], False, "LYAPUNOV SIGN"),
-        "MX row": (base + [row(7, "MX", 300.0, 0.0, 0.0, 1.0, 1.0, "together", conv=0)], False, "MX (continuation failed)"),
+        "MX row": (base + [row(7, "MX", 300.0, 0.0, 0.0, 1.0, 1.0, "together", conv=None)], False, "MX (continuation failed)"),
         "not converged": (base[:4] + [row(3, "LP", float(lps[0].v), *st(lps[0]), "together", conv=0, nb=0, na=1)]
                           + base[5:], False, "NOT CONVERGED"),
     }

@@ -20,12 +20,15 @@
 #include <limits>
 #include <string_view>
 
+#include "abu/core/status.hpp"
+
 namespace abu::arclength {
 
 /// How a solve ended: converged; not converged (out of iterations, stalled above the
 /// tolerance, residual too large); or a numerical issue (a non-finite or diverging step).
-enum class Status { converged, not_converged, numerical_issue };
-std::string_view to_string(Status s);
+/// The library's one outcome type (core/status.hpp); its to_string is abu::to_string.
+using Status = abu::Outcome;
+using abu::to_string;
 
 /// Newton's stopping rules. A run stops at a step of max-norm <= step_tolerance, or, from
 /// the third step on, at one that did not halve (the rounding level reached): converged

@@ -31,6 +31,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "abu/core/status.hpp"
 #include "abu/model/model.hpp"
 
 namespace abu {
@@ -70,6 +71,8 @@ struct EquilibriumT {
   double residual = 0.0;  ///< max_i |b_i| / static_force_scale_i at the reported double state
   int newton_iterations = 0;
   bool converged = false;  ///< Newton reached the rounding level of long double
+  /// The polish's outcome, with the reason if not converged (`converged` is status.ok()).
+  Status status{Outcome::not_converged, "not polished"};
   bool is_set = false;     ///< representative of a circle of equilibria (U = 0)
   /// A point of the balanced set of n >= 3 balls (model.md §13.4): its tangent
   /// directions are structural zero eigenvalues, its stability the normal stability.

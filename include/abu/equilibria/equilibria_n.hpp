@@ -39,8 +39,11 @@ namespace abu {
 /// How the balanced set is sampled. G = max(2, round(samples_per_sheet^(1/(n-2))))
 /// values per free angle, so a sheet has G^(n-2) grid points: for the default 64, G = 64
 /// (n = 3), 8 (4), 4 (5), 3 (6), and 2 from n = 7 on (2^(n-2) points, 1024 at n = 12).
+/// Default 64 per sheet (the CLI's --set-samples): enough to see stability vary along
+/// the set at n = 3 (64 angles 0.1 rad apart) while n = 12 stays at the floor G = 2,
+/// 1024 grid points per sheet; options_violation() gives the range.
 struct BalancedSampling {
-  int samples_per_sheet = 64;  ///< 1 .. 100000
+  int samples_per_sheet = 64;  ///< S, default 64; 1 .. 100000
 };
 /// The rule broken by the options, if any.
 std::optional<std::string> options_violation(const BalancedSampling& s);

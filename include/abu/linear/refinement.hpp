@@ -30,6 +30,18 @@ namespace abu {
 template <int N>
 using QepVector = Eigen::Matrix<std::complex<double>, dof_size<N>, 1, Eigen::ColMajor, dof_capacity<N>, 1>;
 
+/// The stopping rules of refine_eigenpair (defaults are what the analyzer uses; the
+/// spectrum's error estimates and the 1e-8 accuracy claim of README rest on them).
+struct RefinementTolerances {
+  /// Newton steps at most: from a QR start it takes 2-4; 16 leaves room for the slow
+  /// linear convergence at a nearly multiple eigenvalue without looping on a stall.
+  int max_iterations = 16;
+  /// Converged only with componentwise backward error <= this: ~sqrt(eps_double), which
+  /// admits multiple eigenvalues (eta ~ 1e-11 at merging equilibria in long double).
+  long double backward_error = 1e-8L;
+};
+inline constexpr RefinementTolerances kRefinementTolerances{};
+
 template <int N>
 struct RefinedEigenpair {
   std::complex<long double> value;

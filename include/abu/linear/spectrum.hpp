@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 
+#include "abu/core/status.hpp"
 #include "abu/linear/refinement.hpp"
 #include "abu/model/model.hpp"
 
@@ -84,6 +85,10 @@ struct SpectrumT {
   /// are rounded to double: the inputs themselves do not determine it to 8 digits.
   bool ill_conditioned = false;
   bool converged = true;  ///< every Newton refinement converged (refined method)
+  /// converged (every eigenvalue refined to its tolerance), not converged (some kept
+  /// their QR value: `converged` is false), or a numerical issue (a non-finite matrix, a
+  /// QR or GSL's balancing failed: the values are not to be trusted), with the reason.
+  Status status{};
 };
 using Spectrum = SpectrumT<2>;
 using SpectrumN = SpectrumT<any_balls>;

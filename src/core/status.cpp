@@ -1,0 +1,14 @@
+#include "abu/core/status.hpp"
+
+namespace abu {
+
+std::string_view to_string(Outcome o) {
+  switch (o) {
+    case Outcome::converged: return "converged";
+    case Outcome::not_converged: return "not converged";
+    case Outcome::numerical_issue: return "numerical issue";
+  }
+  return "?";
+}
+
+}  // namespace abu
