@@ -3,6 +3,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 
+#include "abu/core/gsl_errors.hpp"
+
 #include <Eigen/SVD>
 #include <cmath>
 
@@ -109,8 +111,10 @@ std::optional<Vec5> BranchTracer::root_on_branch(const Bracket& br, bool fold_te
     const Vec5 t = arclength::tangent(on.jacobian, c->t);
     return c->fold_test ? double(t(4)) : double(arclength::bordered_determinant(on.jacobian, t));
   };
+  quiet_gsl_errors();  // GSL returns its errors (core/gsl_errors.hpp)
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   double lo = 0, hi = double(length), root = 0.5 * hi;
+  if (!solver) return std::nullopt;
   bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
   for (int it = 0; ok && it < 200; ++it) {
     if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {

@@ -3,6 +3,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 
+#include "abu/core/gsl_errors.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -200,8 +202,10 @@ class Tracer : public S {
       c->last = on.u;
       return (*c->f)(on);
     };
+    quiet_gsl_errors();  // GSL returns its errors (core/gsl_errors.hpp)
     gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     double lo = 0, hi = double(length), root = 0.5 * hi;
+    if (!solver) return {};
     bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
     for (int it = 0; ok && it < 200 && !ctx.failed; ++it) {
       if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
