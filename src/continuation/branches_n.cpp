@@ -92,7 +92,20 @@ class Tracer : public S {
     ts_.push_back(t);
   }
 
-  ld distance(const Vec& a, const Vec& b) const { return angle_distance(a, b); }
+  // The engine ends a branch as closed when it comes back within one step of its start:
+  // measured in the step's own (Euclidean) norm, angles modulo 2 pi. (The max norm would
+  // be up to sqrt(n + 3) times smaller than the arclength travelled: with 11 balls it
+  // ended branches after six steps.)
+  ld distance(const Vec& a, const Vec& b) const {
+    ld sum = 0;
+    const Eigen::Index last = a.size() - 1;
+    for (Eigen::Index k = 0; k <= last; ++k) {
+      ld x = a(k) - b(k);
+      if (k >= 2 && k < last) x = std::remainder(x, 2 * std::numbers::pi_v<ld>);
+      sum += x * x;
+    }
+    return std::sqrt(sum);
+  }
 
   void locate(unsigned changed, const arclength::Segment<Vec>& between) {
     const BranchPointN& a = points.back();
@@ -402,9 +415,11 @@ BalancedEnvelope envelope_of(const std::vector<BranchN>& branches, ld from, ld t
   BalancedEnvelope env;
   std::vector<ld> cuts{std::min(from, to), std::max(from, to)};
   std::vector<std::vector<Part>> parts;
+  std::vector<int> weights;  // samples each branch stands for
   for (const auto& b : branches) {
     if (b.family != Family::balanced || b.points.empty()) continue;
-    ++env.samples;
+    const int weight = 1 + b.images;
+    env.samples += weight;
     bool hopf = false;
     std::vector<Part>& mine = parts.emplace_back();
     std::size_t next = 0;  // the next special along the branch
@@ -426,7 +441,8 @@ BalancedEnvelope envelope_of(const std::vector<BranchN>& branches, ld from, ld t
       part.lo = std::min(part.lo, pt.parameter), part.hi = std::max(part.hi, pt.parameter);
       part.stable = part.stable && stable;
     }
-    env.samples_with_hopf += hopf;
+    env.samples_with_hopf += hopf ? weight : 0;
+    weights.push_back(weight);
     cuts.push_back(b.points.front().parameter), cuts.push_back(b.points.back().parameter);
   }
   std::sort(cuts.begin(), cuts.end());
@@ -435,16 +451,69 @@ BalancedEnvelope envelope_of(const std::vector<BranchN>& branches, ld from, ld t
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     BalancedEnvelope::Interval iv{cuts[k], cuts[k + 1], 0, 0};
     const ld mid = (iv.from + iv.to) / 2;
-    for (const auto& mine : parts) {
+    for (std::size_t b = 0; b < parts.size(); ++b) {
       bool covered = false, stable = true;
-      for (const Part& part : mine)
+      for (const Part& part : parts[b])
         if (part.lo <= mid && mid <= part.hi) covered = true, stable = stable && part.stable;
-      iv.samples += covered;
-      iv.stable += covered && stable;
+      iv.samples += covered ? weights[b] : 0;
+      iv.stable += covered && stable ? weights[b] : 0;
     }
     env.intervals.push_back(iv);
   }
   return env;
+}
+
+// Balls with bit-identical parameters are interchangeable: the equations of model.md §3
+// are invariant under permuting them, so a permuted equilibrium is an equilibrium with
+// the same spectrum along the same parameter values (§13.7). class_of[i]: the first ball
+// equal to ball i.
+std::vector<int> ball_classes(const ParamsN& p) {
+  const auto same = [](const BallT<double>& a, const BallT<double>& b) {
+    return a.mass == b.mass && a.race_radius == b.race_radius && a.radius == b.radius &&
+           a.inertia_factor == b.inertia_factor && a.mu == b.mu && a.d == b.d && a.mu_c == b.mu_c &&
+           a.mu_s == b.mu_s && a.v_s == b.v_s;
+  };
+  std::vector<int> class_of(std::size_t(p.n_balls()));
+  for (int i = 0; i < p.n_balls(); ++i) {
+    class_of[std::size_t(i)] = i;
+    for (int j = 0; j < i; ++j)
+      if (same(p.balls[std::size_t(j)], p.balls[std::size_t(i)])) {
+        class_of[std::size_t(i)] = j;
+        break;
+      }
+  }
+  return class_of;
+}
+
+// The canonical image of s: among balls first_ball.., the angles of each class of
+// interchangeable balls sorted by wrapped value (ascending), the rest unchanged.
+Coordinates<ld, any_balls> canonical(const Coordinates<ld, any_balls>& s, const std::vector<int>& class_of,
+                                     int first_ball) {
+  Coordinates<ld, any_balls> out = s;
+  const int n = int(class_of.size());
+  for (int c = 0; c < n; ++c) {
+    std::array<int, max_balls> members{};
+    std::array<ld, max_balls> angles{};
+    int k = 0;
+    for (int i = first_ball; i < n; ++i)
+      if (class_of[std::size_t(i)] == c) members[std::size_t(k)] = i, angles[std::size_t(k++)] = wrap_angle(s(2 + i));
+    // Insertion sort (k <= 12; std::sort on a prefix of the array trips GCC 12's
+    // -Warray-bounds with a false positive).
+    for (int a = 1; a < k; ++a)
+      for (int b = a; b > 0 && angles[std::size_t(b)] < angles[std::size_t(b - 1)]; --b)
+        std::swap(angles[std::size_t(b)], angles[std::size_t(b - 1)]);
+    for (int j = 0; j < k; ++j) out(2 + members[std::size_t(j)]) = angles[std::size_t(j)];
+  }
+  return out;
+}
+
+// The sign pattern of an aligned configuration, ball 1 taken '+' (equilibria.hpp).
+unsigned pattern_of(const Coordinates<ld, any_balls>& s) {
+  unsigned bits = 0;
+  for (Eigen::Index i = 1; i + 2 < s.size(); ++i)
+    if (std::abs(std::remainder(s(2 + i) - s(2), 2 * std::numbers::pi_v<ld>)) > std::numbers::pi_v<ld> / 2)
+      bits |= 1u << unsigned(i);
+  return bits;
 }
 
 }  // namespace
@@ -467,14 +536,28 @@ ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, 
   const EquilibriumSetN there = find_equilibria(far, sampling);
   run.balanced_set = here.balanced_set;
 
+  // Interchangeable balls (equal parameters): only one of every set of images is traced,
+  // the others are counted on its branch (BranchN::images) and named in the notes.
+  const std::vector<int> class_of = ball_classes(p);
+
   // Balanced samples, free angles held: from the start value, or from the far end if
-  // the set exists only there.
+  // the set exists only there. Images permute free angles among interchangeable free
+  // balls (balls 1 and 2 close the polygon and stay).
   const bool samples_here = here.balanced_set.samples > 0;
   const auto& sample_source = samples_here ? here : there;
+  const ld sample_parameter = samples_here ? ld(run.from) : ld(to);
   for (const auto& e : sample_source.points()) {
     if (e.family != Family::balanced) continue;
-    const ld parameter = samples_here ? ld(run.from) : ld(to);
-    const HeldSystem system{eq, eq.scaled(e.position, parameter)};
+    const Coordinates<ld, any_balls> s = canonical(e.position, class_of, 2);
+    const Unknowns z = eq.scaled(s, sample_parameter);
+    BranchN* image_of = nullptr;
+    for (auto& b : run.branches)
+      if (passes_through(eq, b, z)) image_of = &b;
+    if (image_of) {
+      ++image_of->images;
+      continue;
+    }
+    const HeldSystem system{eq, z};
     BranchN b = trace_branch(system, system.frame, samples_here ? 0 : 1, options, run.stats);
     b.family = Family::balanced;
     b.member = e.member;
@@ -496,12 +579,18 @@ ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, 
                                           pattern_string(e.pattern, run.n_balls), e.member, e.structural_zeros));
         continue;
       }
-      const Unknowns z = eq.scaled(e.position, parameter);
-      const BranchN* on = nullptr;
-      for (const auto& b : run.branches)
+      const Coordinates<ld, any_balls> s = canonical(e.position, class_of, 0);
+      const Unknowns z = eq.scaled(s, parameter);
+      BranchN* on = nullptr;
+      for (auto& b : run.branches)
         if (b.family != Family::balanced && passes_through(eq, b, z)) on = &b;
       if (on) {
-        if (side == 0)
+        // An image of another equilibrium, or the canonical image of the branch's own
+        // start (traced from a permuted one); else a point the branch reached (a fold).
+        const bool image = canonical(e.position, class_of, 0) != e.position ||
+                           (on->pattern == pattern_of(s) && on->member == e.member);
+        if (side == 0 && image) ++on->images;
+        if (side == 0 && !image)
           run.notes.push_back(fmt::format("aligned {} {} lies on the branch of {} {}; not traced again",
                                           pattern_string(e.pattern, run.n_balls), e.member,
                                           pattern_string(on->pattern, run.n_balls), on->member));
@@ -509,11 +598,20 @@ ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, 
       }
       BranchN b = trace_branch(aligned, z, side, options, run.stats);
       b.family = Family::aligned;
-      b.pattern = e.pattern;
+      b.pattern = pattern_of(s);
       b.member = e.member;
       run.branches.push_back(std::move(b));
     }
   }
+  for (std::size_t k = 0; k < run.branches.size(); ++k)
+    if (run.branches[k].images > 0)
+      run.notes.push_back(fmt::format(
+          "branch {} ({} {}) also stands for {} {} under permutations of equal balls (same spectra at every "
+          "parameter value; not traced again)",
+          k + 1, run.branches[k].family == Family::balanced ? "balanced sample" : "aligned",
+          run.branches[k].family == Family::balanced ? std::to_string(run.branches[k].member)
+                                                     : pattern_string(run.branches[k].pattern, run.n_balls),
+          run.branches[k].images, run.branches[k].family == Family::balanced ? "other samples" : "other equilibria"));
   run.envelope = envelope_of(run.branches, run.from, to);
   return run;
 }

@@ -75,6 +75,11 @@ struct BranchN {
   Family family = Family::aligned;  ///< aligned, or balanced (a sample, free angles held)
   unsigned pattern = 0;             ///< aligned: the sign pattern (equilibria.hpp)
   int member = 1;                   ///< aligned: the root; balanced: the sample (1-based)
+  /// Equilibria at the start the branch also stands for: images under a permutation of
+  /// balls with equal parameters (same spectra at the same parameter values; not traced
+  /// again, see ContinuationRunN::notes). Balanced samples count with 1 + images in the
+  /// envelope.
+  int images = 0;
   std::vector<BranchPointN> points;
   std::vector<SpecialPointN> specials;  ///< ordered along the branch
   std::array<StopReason, 2> stop{StopReason::end_of_range, StopReason::end_of_range};
@@ -107,7 +112,8 @@ struct ContinuationRunN {
 };
 
 /// Continues every aligned equilibrium and every balanced sample of `p` (n >= 3, at its
-/// value of `param`) to `to`; aligned equilibria at `to` that no branch reached start
+/// value of `param`) to `to`, one of each set of images under permutations of equal
+/// balls (traced from its canonical image: each class's angles in ascending order); aligned equilibria at `to` that no branch reached start
 /// branches too. Throws InputError for n < 3 (continuation.hpp is the two-ball path) and
 /// for an end value outside the parameter's range.
 ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, const ContinuationOptions& options,
