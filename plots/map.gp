@@ -159,7 +159,7 @@ do for [ax in "x y"] {
 set tics out nomirror front
 set xlabel (strlen(xunit) > 0 ? sprintf('%s [%s]', xname, xunit) : xname) noenhanced
 set ylabel (strlen(yunit) > 0 ? sprintf('%s [%s]', yname, yunit) : yname) noenhanced
-set lmargin at screen 0.07
+set lmargin at screen 0.095
 set rmargin at screen 0.66
 set bmargin at screen 0.09
 set tmargin at screen 0.90

@@ -216,9 +216,12 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     if (const auto run = map_boundaries(job)) {
       curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run, job.provenance));
       report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    } else if (const auto run_n = map_boundaries_n(job)) {
+      curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run_n, job.provenance));
+      report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     } else {
-      report.boundary_note = "no fold/Hopf boundaries: continuation follows two balls (this map has n != 2 or the "
-                             "ball count as an axis)";
+      report.boundary_note = "no fold/Hopf boundaries: the ball count is an axis of this map (continuation needs "
+                             "one ball count)";
     }
   }
   if (output.chart) {

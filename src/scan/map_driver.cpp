@@ -513,4 +513,27 @@ std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
   return all;
 }
 
+std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job) {
+  if (!job.any_balls || job.x.ball_count || job.y.ball_count || job.params_n.n_balls() < 3) return std::nullopt;
+  BoundaryRunN all;
+  all.param = job.x.param;
+  all.param2 = job.y.param;
+  all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
+  all.n_balls = job.params_n.n_balls();
+  ContinuationOptions options;
+  for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
+    ParamsN p = job.params_n;
+    set(p, job.x.param, job.x.from);
+    set(p, job.y.param, at);
+    const ContinuationRunN run = continue_branches(p, job.x.param, job.x.to, options, job.sampling);
+    BoundaryRunN part = continue_boundaries(p, run, job.y.param, to, options);
+    for (auto& c : part.curves) all.curves.push_back(std::move(c));
+    for (auto& n : part.notes) all.notes.push_back(std::move(n));
+  }
+  all.notes.push_back(
+      "curves found from the fold and Hopf points on the bottom and top edges of the map; a closed curve "
+      "inside the map touching neither edge is not drawn");
+  return all;
+}
+
 }  // namespace abu

@@ -25,6 +25,7 @@
 
 #include "abu/continuation/boundaries.hpp"
 
+#include "abu/continuation/boundaries_n.hpp"
 #include "abu/scan/map.hpp"
 
 namespace abu {
@@ -157,9 +158,13 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
 /// The fold and Hopf curves in the map's plane (two balls): every fold and Hopf point of
 /// a continuation in x along the bottom and the top edge, continued in y across the map.
 /// A curve that meets neither edge is not found (a note of the run says so). nullopt
-/// where there are none to find: n != 2 balls or a ball-count axis (continuation follows
-/// two balls).
+/// for maps of n != 2 balls (map_boundaries_n) and ball-count axes.
 std::optional<BoundaryRun> map_boundaries(const MapJob& job);
+/// The same for a map of n >= 3 balls (neither axis the ball count): the n-ball branches
+/// (branches_n.hpp) along the bottom and top edges, their folds and the Hopf points of
+/// their aligned branches and balanced samples continued across (boundaries_n.hpp).
+/// Empty for two-ball jobs and ball-count axes.
+std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job);
 
 /// Writes the two CSVs: headers, then every tile's rows in tile order.
 void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv);
