@@ -10,6 +10,8 @@
 
 #include "abu/continuation/branches_n.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/scan/map.hpp"
+#include "abu/scan/scan.hpp"
 
 using namespace abu;
 
@@ -143,5 +145,34 @@ TEST_CASE("images under permutations of equal balls are traced once, and counted
         for (const auto& sq : other.specials)
           if (sq.label == Label::HB) best = std::min(best, std::abs(double(sq.parameter - sp.parameter)));
       CHECK(best < 1e-9 * double(sp.parameter));
+    }
+}
+
+TEST_CASE("an n-ball map cell is the analysis at the cell's parameters", "[n-balls][map]") {
+  // CellAnalyzerN (map.hpp) against analyze (scan.hpp) run afresh at the cell's
+  // parameters: the same algorithm on the same doubles, so counts and verdicts agree
+  // exactly and |q| to rounding (1e-12 relative). Keeps the map cell path under the
+  // sanitizers (the CLI map contract is too slow there).
+  const ParamsN p = unequal_ring(3);
+  Axis x{ParamRef{Quantity::omega, -1}, 150.0, 900.0, 3, false};
+  Axis y{ParamRef{Quantity::d, -1}, 1e-5, 1e-3, 2, true};
+  CellAnalyzerN cells(p, {}, x, y, BalancedSampling{8});
+  MapCellN cell;
+  for (int ix = 0; ix < 3; ++ix)
+    for (int iy = 0; iy < 2; ++iy) {
+      cells.analyze(ix, iy, cell);
+      const AnalysisN a = analyze(cells.cell_params(ix, iy), BalancedSampling{8});
+      REQUIRE(cell.equilibria.size() == a.equilibria.list.size());
+      int aligned = 0, stable = 0;
+      for (std::size_t k = 0; k < a.equilibria.list.size(); ++k) {
+        const auto& e = a.equilibria.list[k];
+        aligned += e.family == Family::aligned;
+        stable += e.family == Family::aligned && a.spectra[k].stability == Stability::stable;
+        CHECK(cell.equilibria[k].stable == (a.spectra[k].stability == Stability::stable));
+        CHECK(cell.equilibria[k].q_abs ==
+              Approx(std::hypot(double(e.position(0)), double(e.position(1)))).epsilon(1e-12).margin(1e-300));
+      }
+      CHECK(cell.aligned == aligned);
+      CHECK(cell.aligned_stable == stable);
     }
 }
