@@ -323,7 +323,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   }
   r.method = o.method;
   if (o.method == IntegrationMethod::automatic)
-    r.method = r.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bdf : IntegrationMethod::rk8pd;
+    r.method = r.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bsimp : IntegrationMethod::rk8pd;
 
   OdeContext<N> ctx;
   ctx.p = p;

@@ -20,7 +20,7 @@ check "csv header is the documented one" \
 check "501 samples (t = 0 .. 0.05 every 1e-4)" "[ \$(grep -v '^#' '$work/run/simulation.csv' | tail -n +2 | wc -l) -eq 501 ]"
 check "no nan or inf in the csv" "! grep -v '^#' '$work/run/simulation.csv' | grep -qiE 'nan|inf'"
 check "steps and evaluations reported" "grep -q '^# steps [0-9]*, rejected [0-9]*, rhs evaluations [0-9]*, jacobian evaluations' '$work/run/simulation.csv'"
-check "stiff coulomb scene takes the implicit method" "grep -q '^# method: bdf' '$work/run/simulation.csv'"
+check "stiff coulomb scene takes the implicit method" "grep -q '^# method: bsimp' '$work/run/simulation.csv'"
 check "the chart is written" "[ -s '$work/run/simulation.png' ]"
 check "summary json has the documented keys" "/usr/bin/python3 -c \"
 import json, sys

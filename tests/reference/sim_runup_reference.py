@@ -8,7 +8,7 @@ The run: the default rotor with two viscous balls (non-stiff, so that a fixed-st
 method is exact enough), omega from 150 to 350 rad/s at 2000 rad/s^2 (through
 omega_n = 249.93 rad/s at t = 0.05 s), held to t = 0.15 s; balls at rest at 2 and 4 rad.
 
-Checks `stability-scan simulate` (rtol 1e-11, bdf and rk8pd) against it: every component
+Checks `stability-scan simulate` (rtol 1e-11, bsimp, rk8pd and bdf) against it: every component
 of the end state in the scaled norm of model.md §15.1 (q / L, angles in rad, q' / (L w),
 beta' / w) within 1e-7 (the reference's own Richardson error estimate is printed and
 must be below 1e-8).
@@ -132,7 +132,7 @@ def main():
         scene = os.path.join(tmp, "viscous.toml")
         with open(scene, "w") as fh:
             fh.write(text)
-        for method in ("bdf", "rk8pd"):
+        for method in ("bsimp", "rk8pd", "bdf"):
             js = os.path.join(tmp, f"{method}.json")
             cmd = [binary, "simulate", scene, "--ramp", f"{W0}:{W1}:{ALPHA}", "--t-end", str(T_END), "--balls",
                    ",".join(str(b) for b in BETA0), "--rtol", "1e-11", "--method", method, "--every", "0.001",
