@@ -17,11 +17,29 @@
 #     wrong in a third of the cells: the differing cells checked at 40 digits;
 #  8. us per equilibrium against the number of balls (ring scene, n = 2 .. 12): the whole
 #     analysis, the refined spectrum, a plain dense QR and numpy.linalg.eigvals on the same
-#     Jacobians, numpy's worst error and wrong verdicts against the analyzer.
+#     Jacobians, numpy's worst error and wrong verdicts against the analyzer;
+#  9. `simulate`'s integrators against scipy's Radau, BDF, LSODA and DOP853 on the same
+#     problems (coulomb kappa = 1e3 and 1e6, 1 s from a perturbed balanced state; a run-up
+#     through omega_n): time to reach 1e-6 and 1e-9 error (`bench_simulate`,
+#     tests/benchmarks/bench_simulate_scipy.py). `scripts/bench.sh 9` runs this section only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+section9() {
+  cmake --build build -j"$(nproc)" --target bench_simulate >/dev/null
+  echo "## 9. simulate against scipy.integrate.solve_ivp (same problems, same reference, one core)"
+  local res
+  res=$(mktemp --suffix=.json)
+  build/tests/benchmarks/bench_simulate data/scenes/default.toml --repeat 3 --json "$res"
+  OPENBLAS_NUM_THREADS=1 /usr/bin/python3 tests/benchmarks/bench_simulate_scipy.py "$res" --timeout 60
+  rm -f "$res"
+}
+if [ "${1:-}" = 9 ]; then
+  echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); build: Release, $(c++ --version | head -1)"
+  section9
+  exit 0
+fi
 cmake --build build -j"$(nproc)" --target bench_equilibria bench_continuation bench_map stability-scan >/dev/null
 bench=build/tests/benchmarks/bench_equilibria
 echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); build: Release, $(c++ --version | head -1)"
@@ -84,3 +102,4 @@ build/tests/benchmarks/bench_n data/scenes/ring11.toml "$nbin" "$ncsv" --repeat 
 env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 \
   /usr/bin/python3 tests/benchmarks/bench_n_numpy.py "$nbin" "$ncsv" --repeat 5
 rm -f "$nbin" "$ncsv"
+section9
