@@ -22,11 +22,29 @@
 #     the same cell's Jacobians, one core each;
 #  9. why the map's characteristic-polynomial path stays two balls: how far the roots of
 #     the exact degree-(2n+4) polynomial move when its coefficients are rounded to long
-#     double (model.md §13.7).
+#     double (model.md §13.8);
+# 10. `simulate`'s integrators against scipy's Radau, BDF, LSODA and DOP853 on the same
+#     problems (coulomb kappa = 1e3 and 1e6, 1 s from a perturbed balanced state; a run-up
+#     through omega_n): time to reach 1e-6 and 1e-9 error (`bench_simulate`,
+#     tests/benchmarks/bench_simulate_scipy.py). `scripts/bench.sh 10` runs this section only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+section10() {
+  cmake --build build -j"$(nproc)" --target bench_simulate >/dev/null
+  echo "## 10. simulate against scipy.integrate.solve_ivp (same problems, same reference, one core)"
+  local res
+  res=$(mktemp --suffix=.json)
+  build/tests/benchmarks/bench_simulate data/scenes/default.toml --repeat 3 --json "$res"
+  OPENBLAS_NUM_THREADS=1 /usr/bin/python3 tests/benchmarks/bench_simulate_scipy.py "$res" --timeout 60
+  rm -f "$res"
+}
+if [ "${1:-}" = 10 ]; then
+  echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); build: Release, $(c++ --version | head -1)"
+  section10
+  exit 0
+fi
 cmake --build build -j"$(nproc)" --target bench_equilibria bench_continuation bench_map stability-scan >/dev/null
 bench=build/tests/benchmarks/bench_equilibria
 echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); build: Release, $(c++ --version | head -1)"
@@ -91,3 +109,4 @@ env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 \
 rm -f "$nbin" "$ncsv"
 echo "## 9. degree-(2n+4) polynomial: root sensitivity to one long-double rounding of the coefficients"
 /usr/bin/python3 tests/benchmarks/polynomial_conditioning.py build/stability-scan data/scenes/ring11.toml --counts 2,3,4,6,12
+section10

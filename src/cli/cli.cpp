@@ -38,7 +38,8 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("stability-scan ") + ABU_VERSION);
   std::vector<std::pair<CLI::App*, Action>> commands;
-  for (auto add : {add_equilibria_command, add_sweep_command, add_continue_command, add_map_command}) {
+  for (auto add : {add_equilibria_command, add_sweep_command, add_continue_command, add_map_command,
+                    add_simulate_command}) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
   }

@@ -51,10 +51,14 @@ struct Kinematics {
   std::array<T, ball_capacity<N>> sin_b, cos_b, ml;  // sin beta_i, cos beta_i, m_i l_i
   int n;                                              // number of balls
   T w, w2;                                            // omega, omega^2
-  // P1, P2: q1'' - P1 and q2'' - P2 are the rotating-frame accelerations a1, a2 (§3).
+  T wd;                                               // angular acceleration omega' (model.md §9)
+  bool accelerating;                                  // wd != 0: the Euler terms of §9 are present
+  // P1, P2: q1'' - P1 and q2'' - P2 are the rotating-frame accelerations a1, a2 (§3; with
+  // omega' != 0 they include the Euler terms -omega' q2, +omega' q1 of (9.1)).
   T p1, p2;
 
-  Kinematics(const ParamsT<T, N>& p, const State<T, N>& x) : n(ball_count(p)), w(p.omega), w2(p.omega * p.omega) {
+  Kinematics(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot = T(0))
+      : n(ball_count(p)), w(p.omega), w2(p.omega * p.omega), wd(omega_dot), accelerating(omega_dot != T(0)) {
     for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
       sin_cos(x(2 + i), sin_b[k], cos_b[k]);
@@ -62,6 +66,10 @@ struct Kinematics {
     }
     p1 = T(2) * w * x(n + 3) + w2 * x(0);
     p2 = T(-2) * w * x(n + 2) + w2 * x(1);
+    if (accelerating) {  // (9.1): a1 = q1'' - 2 w q2' - w' q2 - w^2 q1, a2 = q2'' + 2 w q1' + w' q1 - w^2 q2
+      p1 += wd * x(1);
+      p2 -= wd * x(0);
+    }
   }
   int dofs() const { return n + 2; }
 };
@@ -126,6 +134,19 @@ Coordinates<T, N> forces(const ParamsT<T, N>& p, const State<T, N>& x, const Kin
     b(2 + i) = p.balls[j].race_radius * friction_force(p, i, x(n + 4 + i)) +
                kin.ml[j] * (-kin.p1 * kin.sin_b[j] + kin.p2 * kin.cos_b[j]);
   }
+  if (kin.accelerating) {
+    // Run-up (model.md §9): the Euler terms of (9.2)-(9.4) beyond those inside P1, P2. The
+    // balls' tangential inertia (beta'' + omega') gives omega' sum a_i (sin, -cos); the
+    // unbalance -i omega' U; ball i lags by m_i omega' (l_i - (j_i - 1) r_i), times l_i.
+    b(1) -= kin.wd * p.rotor.unbalance;
+    for (int i = 0; i < n; ++i) {
+      const auto j = std::size_t(i);
+      const auto& ball = p.balls[j];
+      b(0) += kin.wd * kin.ml[j] * kin.sin_b[j];
+      b(1) -= kin.wd * kin.ml[j] * kin.cos_b[j];
+      b(2 + i) -= kin.wd * kin.ml[j] * (ball.race_radius - (ball.inertia_factor - T(1)) * ball.radius);
+    }
+  }
   return b;
 }
 
@@ -167,7 +188,12 @@ Coordinates<T, N> generalized_forces(const ParamsT<T, N>& p, const State<T, N>& 
 
 template <class T, int N>
 State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x) {
-  const Kinematics<T, N> kin(p, x);
+  return vector_field(p, x, T(0));
+}
+
+template <class T, int N>
+State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
+  const Kinematics<T, N> kin(p, x, omega_dot);
   const int d = kin.dofs();
   State<T, N> f(2 * d);
   f.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
@@ -177,7 +203,12 @@ State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x) {
 
 template <class T, int N>
 Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
-  const Kinematics<T, N> kin(p, x);
+  return linearize(p, x, T(0));
+}
+
+template <class T, int N>
+Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
+  const Kinematics<T, N> kin(p, x, omega_dot);
   const T M = p.total_mass();
   const T c = p.rotor.damping;
   const T k = p.rotor.stiffness;
@@ -215,6 +246,19 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
     K(2 + i, 2 + i) = ml * (kin.p1 * co + kin.p2 * s);
     // Friction: the only dissipation on the balls (model.md §4).
     C(2 + i, 2 + i) = -p.balls[j].race_radius * friction_slope(p, i, x(n + 4 + i));
+    if (kin.accelerating) {
+      // Run-up (model.md §9): -d/ds of the Euler terms: omega' a_i (sin, -cos) in the rotor
+      // rows, and the omega' q parts of P1, P2 in the ball rows.
+      K(0, 2 + i) -= kin.wd * ml * co;
+      K(1, 2 + i) -= kin.wd * ml * s;
+      K(2 + i, 0) += kin.wd * ml * co;
+      K(2 + i, 1) += kin.wd * ml * s;
+      // (the ball diagonal ml (P1 cos + P2 sin) above already carries omega' through P1, P2)
+    }
+  }
+  if (kin.accelerating) {  // M omega' q2 in b_1, -M omega' q1 in b_2
+    K(0, 1) -= kin.wd * M;
+    K(1, 0) += kin.wd * M;
   }
   // Off equilibrium A depends on beta while s'' != 0: K += (dA/ds) s'' (model.md §6).
   const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
@@ -242,10 +286,15 @@ StateMatrix<T, N> jacobian(const Linearization<T, N>& lin) {
 
 template <class T, int N>
 StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x) {
+  return jacobian(p, x, T(0));
+}
+
+template <class T, int N>
+StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
   constexpr int n_ = dof_size<N>;
-  const Kinematics<T, N> kin(p, x);
+  const Kinematics<T, N> kin(p, x, omega_dot);
   const int d = kin.dofs();
-  const Linearization<T, N> lin = linearize(p, x);
+  const Linearization<T, N> lin = linearize(p, x, omega_dot);
   StateMatrix<T, N> J = StateMatrix<T, N>::Zero(2 * d, 2 * d);
   J.template block<n_, n_>(0, d, d, d).setIdentity();
   LowerRows<T, N> rhs(d, 2 * d);
@@ -371,6 +420,27 @@ Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const Sta
 }
 
 template <class T, int N>
+State<T, N> angular_acceleration_derivative(const ParamsT<T, N>& p, const State<T, N>& x) {
+  // b is affine in omega' (model.md §9) and A does not depend on it: df/domega' = (0, A^-1 db/domega').
+  const Kinematics<T, N> kin(p, x);
+  const int n = kin.n, d = kin.dofs();
+  Coordinates<T, N> db(d);
+  db(0) = p.total_mass() * x(1);
+  db(1) = -p.total_mass() * x(0) - p.rotor.unbalance;
+  for (int i = 0; i < n; ++i) {
+    const auto j = std::size_t(i);
+    const auto& ball = p.balls[j];
+    db(0) += kin.ml[j] * kin.sin_b[j];
+    db(1) -= kin.ml[j] * kin.cos_b[j];
+    db(2 + i) = kin.ml[j] * (-x(1) * kin.sin_b[j] - x(0) * kin.cos_b[j]) -
+                kin.ml[j] * (ball.race_radius - (ball.inertia_factor - T(1)) * ball.radius);
+  }
+  State<T, N> df = State<T, N>::Zero(2 * d);
+  df.template segment<dof_size<N>>(d, d) = solve_mass(p, kin, db);
+  return df;
+}
+
+template <class T, int N>
 T displacement_scale(const ParamsT<T, N>& p) {
   T capacity = p.rotor.unbalance;
   for (const auto& b : p.balls) capacity += b.mass * b.race_radius;
@@ -403,7 +473,11 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
   template DofMatrix<T, N> mass_matrix<T, N>(const ParamsT<T, N>&, const Coordinates<T, N>&);         \
   template Coordinates<T, N> generalized_forces<T, N>(const ParamsT<T, N>&, const State<T, N>&);      \
   template State<T, N> vector_field<T, N>(const ParamsT<T, N>&, const State<T, N>&);                  \
+  template State<T, N> vector_field<T, N>(const ParamsT<T, N>&, const State<T, N>&, const T&);        \
   template Linearization<T, N> linearize<T, N>(const ParamsT<T, N>&, const State<T, N>&);             \
+  template Linearization<T, N> linearize<T, N>(const ParamsT<T, N>&, const State<T, N>&, const T&);   \
+  template StateMatrix<T, N> jacobian<T, N>(const ParamsT<T, N>&, const State<T, N>&, const T&);      \
+  template State<T, N> angular_acceleration_derivative<T, N>(const ParamsT<T, N>&, const State<T, N>&); \
   template StateMatrix<T, N> jacobian<T, N>(const Linearization<T, N>&);                              \
   template StateMatrix<T, N> jacobian<T, N>(const ParamsT<T, N>&, const State<T, N>&);                \
   template State<T, N> parameter_derivative<T, N>(const ParamsT<T, N>&, const State<T, N>&, ParamRef); \

@@ -86,9 +86,18 @@ Coordinates<T, N> generalized_forces(const ParamsT<T, N>& p, const State<T, N>& 
 template <class T, int N>
 State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x);
 
+/// Run-up (model.md §9): x' = f(x; omega, omega') with the spin speed p.omega and the
+/// angular acceleration omega_dot [rad/s^2] of the rotating frame, (9.1)-(9.4). With
+/// omega_dot = 0 this is vector_field(p, x) exactly.
+template <class T, int N>
+State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot);
+
 /// Second-order linearization at any state (the off-equilibrium term included in K).
 template <class T, int N>
 Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x);
+/// The same during a run-up (model.md §9): the Euler terms' derivatives in K.
+template <class T, int N>
+Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot);
 
 /// First-order Jacobian df/dx from a linearization: [[0, I], [-A^-1 K, -A^-1 C]].
 template <class T, int N>
@@ -97,6 +106,16 @@ StateMatrix<T, N> jacobian(const Linearization<T, N>& lin);
 /// Analytic df/dx at any state (model.md §6 including -A^-1 (dA/ds) s'').
 template <class T, int N>
 StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x);
+/// Analytic df/dx during a run-up with angular acceleration omega_dot (model.md §9).
+template <class T, int N>
+StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot);
+
+/// df/d(omega') (model.md §9): f is affine in the angular acceleration, so along a
+/// prescribed speed omega(t) df/dt = omega' df/domega + omega'' df/domega'. The
+/// df/domega of parameter_derivative holds during a run-up too (the Euler terms do not
+/// contain omega).
+template <class T, int N>
+State<T, N> angular_acceleration_derivative(const ParamsT<T, N>& p, const State<T, N>& x);
 
 /// Analytic df/dp for any parameter of params.hpp (every-ball references sum over the
 /// balls): (0, A^-1 (db/dp - (dA/dp) s'')).

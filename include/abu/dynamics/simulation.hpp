@@ -1,0 +1,148 @@
+// Trajectories of the ball balancer (model.md §3 at constant speed, §9 during a run-up),
+// integrated by GSL odeiv2 with the analytic Jacobian, and what they end in
+// (model.md §15: the method choice, the outcome, settle and stall criteria).
+//
+//   abu::SimulationOptions o;  o.t_end = 2.0;  o.every = 1e-3;
+//   auto speed = abu::SpeedProfile::ramp(100, 400, 200);
+//   abu::SimulationResult<2> r = abu::simulate(p, speed, abu::start_at_rest(p, {2.0, 4.0}), o);
+//   if (r.status != abu::SimulationStatus::completed) fmt::print("{}\n", r.reason);
+//   fmt::print("{}\n", abu::to_string(r.summary.outcome));
+//
+// N = 2 (fixed-size types) and N = any_balls (bounded-dynamic, any 2 <= n <= 12); no
+// allocation per step: GSL's stepper, control and evolve objects are allocated once,
+// the callbacks work on the model's fixed or bounded storage.
+#pragma once
+
+#include <atomic>
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "abu/dynamics/speed_profile.hpp"
+#include "abu/model/model.hpp"
+
+namespace abu {
+
+/// GSL odeiv2 steppers the simulation offers (`--method`).
+enum class IntegrationMethod {
+  automatic,  ///< bsimp if the start's stiffness ratio exceeds the threshold, else rk8pd (model.md §15.1)
+  bdf,        ///< gsl msbdf: variable-order (1..5) BDF, analytic Jacobian (unreliable at kappa = 1e6, model.md §15.1)
+  rk8pd,      ///< explicit Runge-Kutta Prince-Dormand 8(9); non-stiff problems
+  rk4imp,     ///< implicit Gauss-Legendre 4th order (A-stable), analytic Jacobian
+  bsimp,      ///< semi-implicit extrapolation (Bader-Deuflhard), analytic Jacobian: the stiff default
+  rkf45,      ///< explicit Runge-Kutta-Fehlberg 4(5)
+};
+std::string_view to_string(IntegrationMethod m);
+std::optional<IntegrationMethod> integration_method_from_string(std::string_view name);
+
+struct SimulationOptions {
+  double t_end = 1.0;   ///< [s], > 0
+  double every = 0.0;   ///< output interval [s]; 0: t_end / 2000. Samples at k * every and t_end.
+  /// Local error per component <= rtol * (scale_i + |x_i|), scale_i the model's scaling:
+  /// q in the displacement scale L, q' in L omega_max, beta' in omega_max; angles
+  /// absolutely, <= rtol rad (model.md §15.1).
+  double rtol = 1e-8;
+  IntegrationMethod method = IntegrationMethod::automatic;
+  /// automatic: implicit when rho(J) / (omega_max + omega_n) exceeds this (model.md §15.1).
+  double stiffness_threshold = 300.0;
+  unsigned long max_steps = 200'000'000;  ///< then the run fails (exit 3), keeping its samples
+  double settle_tolerance = 1e-3;   ///< scaled distance for "settled" and the settle time (model.md §15.2)
+  double final_window = 0.1;        ///< fraction of the run judged for the outcome and stall (model.md §15.2)
+  bool record = true;               ///< keep the samples and summarize (the benchmark turns it off)
+  const std::atomic<bool>* interrupt = nullptr;  ///< polled after every step (Ctrl-C)
+  std::function<void(double t)> progress;        ///< called at every sample
+};
+
+enum class SimulationStatus { completed, interrupted, failed };
+std::string_view to_string(SimulationStatus s);
+
+/// What a run ended in (model.md §15.2).
+enum class Outcome { balanced, aligned, rest, periodic, not_settled };  // rest is written "stuck"
+std::string_view to_string(Outcome o);
+
+template <int N>
+struct TrajectorySample {
+  double t = 0;      ///< [s]
+  double omega = 0;  ///< omega(t) [rad/s]
+  State<double, N> x;
+};
+
+struct IntegrationStats {
+  unsigned long steps = 0;           ///< accepted steps
+  unsigned long rejected = 0;        ///< steps rejected by the error control
+  unsigned long rhs_evaluations = 0;
+  unsigned long jacobian_evaluations = 0;
+  unsigned long restarts = 0;        ///< at breakpoints of the speed profile (omega' jumps)
+  double wall_seconds = 0;
+};
+
+struct SimulationSummary {
+  Outcome outcome = Outcome::not_settled;
+  std::string pattern;              ///< aligned: "+-" etc. (ball 1 is +), else empty
+  std::string note;                 ///< why, in words
+  double t_end = 0;                 ///< the last sample's time (< the requested end if interrupted or failed)
+  std::vector<double> state_end;    ///< the 2n + 4 values at t_end
+  double max_q_abs = 0, t_max_q_abs = 0;  ///< over the samples [m], [s]
+  std::optional<double> settle_time;      ///< settled outcomes only [s]
+  double window_from = 0;           ///< start of the final window [s]
+  bool stalled = false;             ///< some ball whirls near omega_n instead of following the rotor (§15.3)
+  std::vector<int> stalled_balls;   ///< 1-based
+  std::vector<double> ball_speed_fixed;  ///< mean fixed-frame angular speed of each ball over the window [rad/s]
+  double omega_mean_window = 0;     ///< mean spin speed over the window [rad/s]
+  double omega_n = 0;               ///< sqrt(k / M) [rad/s]
+  std::vector<double> t_omega_n;    ///< times at which omega(t) = omega_n
+  std::optional<double> max_q_abs_run_up;  ///< largest |q| while omega' != 0 [m]
+  bool speed_changing_at_end = false;
+};
+
+template <int N>
+struct SimulationResult {
+  SimulationStatus status = SimulationStatus::completed;
+  std::string reason;  ///< interrupted or failed: where and why
+  IntegrationMethod method = IntegrationMethod::bsimp;  ///< the one used
+  double spectral_radius = 0;   ///< rho(J) [1/s] at the stiffness probe (model.md §15.1)
+  double stiffness_ratio = 0;   ///< rho(J) / (omega_max + omega_n)
+  double displacement_scale = 0;  ///< L [m]
+  std::vector<TrajectorySample<N>> samples;
+  IntegrationStats stats;
+  SimulationSummary summary;
+  State<double, N> x_end;       ///< the state at the last time reached
+  double t_reached = 0;
+};
+
+/// Balls at rest in the rotor frame at the given angles [rad], rotor at rest (q = q' = 0).
+template <int N>
+State<double, N> start_at_rest(const ParamsT<double, N>& p, const std::vector<double>& beta);
+
+/// The equilibrium `position` displaced by eps (in the scaled max norm: q / L, angles in
+/// rad, q' / (L |lambda|), beta' / |lambda|) along the real part of the eigenmode (v, lambda v)
+/// of eigenvalue lambda: the mode that decays slowest (or grows fastest) for the rightmost one.
+template <int N>
+using ModeVector = Eigen::Matrix<std::complex<double>, dof_size<N>, 1, Eigen::ColMajor, dof_capacity<N>, 1>;
+template <int N>
+State<double, N> perturbed_equilibrium(const ParamsT<double, N>& p, const Coordinates<double, N>& position,
+                                       std::complex<double> lambda, const ModeVector<N>& mode, double eps);
+
+/// Integrates from x0 at t = 0 to options.t_end. Never throws on numerical trouble: a
+/// step-size underflow, a non-finite right-hand side or too many steps end the run with
+/// status failed and the reason (where and why); samples up to there are kept. Throws
+/// InputError for invalid options (t_end <= 0, every <= 0 beyond t_end, rtol outside
+/// (0, 0.1), a state of the wrong length or not finite).
+template <int N>
+SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& speed, const State<double, N>& x0,
+                             const SimulationOptions& options);
+
+/// The outcome and the other figures of a recorded run (model.md §15.2, §15.3).
+template <int N>
+SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            const std::vector<TrajectorySample<N>>& samples, const SimulationOptions& options);
+
+/// The point of the balanced set W(beta) = 0 nearest to beta (minimal-norm Gauss-Newton,
+/// model.md §15.2); nullopt if the set does not exist or the projection does not converge.
+template <int N>
+std::optional<std::vector<double>> nearest_balanced_angles(const ParamsT<double, N>& p, const std::vector<double>& beta);
+
+}  // namespace abu

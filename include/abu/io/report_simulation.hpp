@@ -1,0 +1,37 @@
+// Files of `stability-scan simulate` (model.md §15): the trajectory CSV and the summary
+// JSON, and the summary in words for the terminal.
+//
+//   std::string csv = abu::simulation_csv(result, p, speed, header);
+//   std::string json = abu::simulation_json(result, p, speed, command_line, scene_file);
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "abu/dynamics/simulation.hpp"
+
+namespace abu {
+
+/// One row per sample: t,omega,q1,q2,beta1..beta<n>,dq1,dq2,dbeta1..dbeta<n>,q_abs,x_fixed,y_fixed,
+/// beta_rel1..beta_rel<n> (model.md §15.4). Angles beta are continuous (not wrapped);
+/// beta_rel_i = beta_i minus the nearest balanced configuration's angle (of the end
+/// state), wrapped to [-pi, pi], empty where no balanced state exists. `header` (the
+/// provenance block) comes first, then the run's own comment lines. Throws NumericalError
+/// for a non-finite value (none reaches the file).
+template <int N>
+std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                           std::string_view header);
+
+/// The summary as JSON: outcome, pattern, t_end, state_end (2n + 4 values), max_q_abs,
+/// t_max_q_abs, settle_time (null unless settled), stalled, stalled_balls, the status and
+/// reason of the run, the method and stiffness ratio, steps and evaluations.
+template <int N>
+std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            std::string_view command_line, std::string_view scene_file);
+
+/// A few lines for the terminal: outcome, settle time, largest |q|, omega_n passages,
+/// stall, steps and evaluations.
+template <int N>
+std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& speed);
+
+}  // namespace abu

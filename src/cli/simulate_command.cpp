@@ -1,0 +1,310 @@
+// `stability-scan simulate SCENE`: a trajectory of model.md §3 at constant speed, or of §9
+// during a run-up (--ramp, --speed-profile), from balls at rest (--balls), a given state
+// (--from-state) or a perturbed equilibrium (--from-equilibrium, --perturb); CSV, charts
+// and a summary (model.md §15).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <charconv>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/dynamics/simulation.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report_simulation.hpp"
+#include "abu/scan/scan.hpp"
+#include "commands.hpp"
+
+namespace abu::cli {
+
+namespace {
+
+struct SimulateOptions {
+  SceneOptions scene;
+  std::string ramp, profile_file;
+  std::string balls, from_state, from_equilibrium;
+  std::optional<double> perturb;
+  SimulationOptions sim;
+  std::string method = "auto";
+  std::string output = "out/simulate";
+  std::string summary;
+  bool chart = true, progress = false, quiet = false;
+};
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop(int) { g_stop = true; }
+
+class StopGuard {
+ public:
+  StopGuard() {
+    g_stop = false;
+    int_ = std::signal(SIGINT, on_stop);
+    term_ = std::signal(SIGTERM, on_stop);
+  }
+  ~StopGuard() {
+    std::signal(SIGINT, int_);
+    std::signal(SIGTERM, term_);
+  }
+  StopGuard(const StopGuard&) = delete;
+  StopGuard& operator=(const StopGuard&) = delete;
+
+ private:
+  void (*int_)(int) = SIG_DFL;
+  void (*term_)(int) = SIG_DFL;
+};
+
+std::vector<double> parse_list(const std::string& text, const std::string& option) {
+  std::vector<double> v;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string_view item(text.data() + start, comma - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    double x = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
+    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x))
+      throw InputError(option, 0, "", fmt::format("expected a comma-separated list of finite reals, got '{}'", text));
+    v.push_back(x);
+    start = comma + 1;
+  }
+  return v;
+}
+
+// --from-equilibrium F: balanced[:K] | together[:K] | opposite[:K] | aligned:PATTERN[:K].
+struct EquilibriumChoice {
+  std::string family, pattern;
+  int member = 1;
+};
+EquilibriumChoice parse_choice(const std::string& text) {
+  EquilibriumChoice c;
+  std::vector<std::string> parts;
+  for (std::size_t s = 0;;) {
+    const auto colon = text.find(':', s);
+    parts.push_back(text.substr(s, colon == std::string::npos ? std::string::npos : colon - s));
+    if (colon == std::string::npos) break;
+    s = colon + 1;
+  }
+  const auto bad = [&] {
+    return InputError("--from-equilibrium", 0, "",
+                      fmt::format("expected balanced[:K], together[:K], opposite[:K] or aligned:PATTERN[:K] (PATTERN "
+                                  "like +-+), got '{}'",
+                                  text));
+  };
+  c.family = parts[0];
+  std::size_t next = 1;
+  if (c.family == "aligned") {
+    if (parts.size() < 2 || parts[1].empty() || parts[1].find_first_not_of("+-") != std::string::npos) throw bad();
+    c.pattern = parts[1];
+    next = 2;
+  } else if (c.family != "balanced" && c.family != "together" && c.family != "opposite") {
+    throw bad();
+  }
+  if (parts.size() > next + 1) throw bad();
+  if (parts.size() == next + 1) {
+    const auto& m = parts[next];
+    const auto [end, ec] = std::from_chars(m.data(), m.data() + m.size(), c.member);
+    if (m.empty() || ec != std::errc() || end != m.data() + m.size() || c.member < 1) throw bad();
+  }
+  return c;
+}
+
+template <int N, class A>
+State<double, N> start_from_equilibrium(const ParamsT<double, N>& p, const A& analysis, const EquilibriumChoice& c,
+                                        double eps) {
+  const auto points = analysis.equilibria.points();
+  const int n = ball_count(p);
+  std::string pattern = c.pattern;
+  if (c.family == "together") pattern = std::string(std::size_t(n), '+');
+  if (c.family == "opposite") pattern = "+-";
+  std::string listed;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& e = points[i];
+    const bool balanced = e.family == Family::balanced;
+    const std::string pat = balanced ? "" : pattern_string(e.pattern, n);
+    listed += fmt::format(" {}{}:{}", balanced ? "balanced" : "aligned", balanced ? "" : ":" + pat, e.member);
+    const bool match = c.family == "balanced" ? balanced : (!balanced && pat == pattern);
+    if (!match || e.member != c.member) continue;
+    const auto& sp = analysis.spectra[i];
+    int k = 0;
+    while (k < sp.count && sp.structural[std::size_t(k)]) ++k;  // the rightmost non-structural eigenvalue
+    if (k >= sp.count) throw NumericalError("--from-equilibrium: the equilibrium has no non-structural eigenvalue");
+    ModeVector<N> mode = sp.vectors[std::size_t(k)];
+    if (mode.size() != n + 2 || mode.isZero(0))
+      throw NumericalError("--from-equilibrium: no eigenvector for the rightmost eigenvalue");
+    Coordinates<double, N> pos = e.position_si();
+    return perturbed_equilibrium(p, pos, sp.eigenvalues[std::size_t(k)], mode, eps);
+  }
+  throw InputError("--from-equilibrium", 0, "",
+                   fmt::format("no such equilibrium at omega = {} rad/s; there are:{}", p.omega, listed));
+}
+
+template <int N>
+int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProfile& speed) {
+  ParamsT<double, N> p = params_of<N>(scene);
+  const int n = ball_count(p);
+  p.omega = speed.omega(0.0);
+  State<double, N> x0;
+  const int starts = int(!o.balls.empty()) + int(!o.from_state.empty()) + int(!o.from_equilibrium.empty());
+  if (starts != 1)
+    throw InputError("simulate", 0, "", "give exactly one start: --balls, --from-state or --from-equilibrium");
+  if (o.perturb && o.from_equilibrium.empty())
+    throw InputError("--perturb", 0, "", "--perturb goes with --from-equilibrium");
+  if (!o.balls.empty()) x0 = start_at_rest(p, parse_list(o.balls, "--balls"));
+  if (!o.from_state.empty()) {
+    const auto v = parse_list(o.from_state, "--from-state");
+    if (int(v.size()) != 2 * n + 4)
+      throw InputError("--from-state", 0, "",
+                       fmt::format("a state of {} balls has 2n + 4 = {} values (q1,q2,beta1..,dq1,dq2,dbeta1..), got {}",
+                                   n, 2 * n + 4, v.size()));
+    x0 = State<double, N>::Zero(2 * n + 4);
+    for (int i = 0; i < 2 * n + 4; ++i) x0(i) = v[std::size_t(i)];
+  }
+  if (!o.from_equilibrium.empty()) {
+    const double eps = o.perturb.value_or(1e-3);
+    if (!(std::isfinite(eps) && eps >= 0 && eps <= 1))
+      throw InputError("--perturb", 0, "", fmt::format("EPS must lie in [0, 1] (scaled units), got {}", eps));
+    const EquilibriumChoice choice = parse_choice(o.from_equilibrium);
+    if constexpr (N == 2) {
+      x0 = start_from_equilibrium(p, analyze(p), choice, eps);
+    } else {
+      x0 = start_from_equilibrium(p, analyze(p), choice, eps);
+    }
+  }
+  SimulationOptions so = o.sim;
+  so.method = *integration_method_from_string(o.method);
+  // Validate before any work (nothing is written on bad input).
+  if (!(std::isfinite(so.t_end) && so.t_end > 0))
+    throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", so.t_end));
+  if (!(so.every >= 0)) throw InputError("--every", 0, "", "the output interval must be > 0 s");
+  namespace fs = std::filesystem;
+  const fs::path dir(o.output);
+  const fs::path csv_path = dir / "simulation.csv", png_path = dir / "simulation.png";
+
+  StopGuard guard;
+  so.interrupt = &g_stop;
+  const bool show = !o.quiet && (o.progress || isatty(STDERR_FILENO));
+  auto last = std::chrono::steady_clock::now();
+  const auto t0 = last;
+  if (show) {
+    so.progress = [&](double t) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(o.progress && !isatty(STDERR_FILENO) ? 5000 : 200)) return;
+      last = now;
+      const double frac = t / so.t_end, el = std::chrono::duration<double>(now - t0).count();
+      fmt::print(stderr, "\rsimulate: t = {:.4g} / {:.4g} s ({:5.1f} %), {:.0f} s elapsed, ETA {:.0f} s   ", t, so.t_end,
+                 100 * frac, el, frac > 0 ? el * (1 - frac) / frac : 0.0);
+    };
+  }
+  SimulationResult<N> r = simulate(p, speed, x0, so);
+  if (show) fmt::print(stderr, "\r{:80}\r", "");
+
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  {
+    OutputTransaction out;
+    out.stage(csv_path, simulation_csv(r, p, speed, header));
+    if (!o.summary.empty()) out.stage(o.summary, simulation_json(r, p, speed, command_line(), scene.file));
+    out.commit();
+  }
+  int code = r.status == SimulationStatus::completed ? exit_ok
+             : r.status == SimulationStatus::interrupted ? exit_interrupted
+                                                          : exit_numerical;
+  if (o.chart && r.samples.size() >= 2) {
+    // The CSV is in place already: a failing chart loses nothing else.
+    try {
+      OutputTransaction chart;
+      run_gnuplot(plots_dir() / "simulation.gp",
+                  {{"csv", csv_path.string()},
+                   {"png", chart.reserve(png_path).string()},
+                   {"n", std::to_string(n)},
+                   {"rel", [&] {
+                      std::vector<double> beta(static_cast<std::size_t>(n));
+                      for (int i = 0; i < n; ++i) beta[std::size_t(i)] = r.x_end(2 + i);
+                      return nearest_balanced_angles(p, beta) ? "1" : "0";
+                    }()},
+                   {"omega_n", fmt::format("{}", r.summary.omega_n)},
+                   {"title", fmt::format("{}: {} ({}), outcome {}", scene.file, speed.describe(), to_string(r.method),
+                                         to_string(r.summary.outcome))}});
+      chart.commit();
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "stability-scan: warning: chart not drawn ({}); the CSV is complete\n", e.what());
+      if (code == exit_ok) code = exit_failure;
+    }
+  }
+  if (!o.quiet) fmt::print(stderr, "{}", simulation_text(r, speed));
+  if (r.status == SimulationStatus::failed) fmt::print(stderr, "stability-scan: numerical failure: {}\n", r.reason);
+  if (r.status == SimulationStatus::interrupted) fmt::print(stderr, "stability-scan: {}; kept what was computed\n", r.reason);
+  if (!o.quiet)
+    fmt::print(stderr, "wrote {}{}{}\n", csv_path.string(), o.summary.empty() ? "" : " and " + o.summary,
+               o.chart && fs::exists(png_path) ? " and " + png_path.string() : "");
+  return code;
+}
+
+}  // namespace
+
+Action add_simulate_command(CLI::App& app) {
+  auto o = std::make_shared<SimulateOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "simulate",
+      "Trajectory of the rotor and balls (model.md §3 at constant speed, §9 during a run-up) by GSL odeiv2 with the "
+      "analytic Jacobian: CSV, chart, outcome (balanced / aligned / periodic / not settled), settle time, stall "
+      "(model.md §15).");
+  add_scene_options(*sub, o->scene);
+  sub->add_option("--t-end", o->sim.t_end, "End time [s]")->capture_default_str();
+  auto* ramp = sub->add_option("--ramp", o->ramp,
+                               "Run-up: OMEGA0:OMEGA1:ALPHA, linear from OMEGA0 to OMEGA1 [rad/s] at |ALPHA| [rad/s^2], "
+                               "then held (model.md §9)")
+                   ->type_name("W0:W1:ALPHA");
+  auto* prof = sub->add_option("--speed-profile", o->profile_file,
+                               "Speed profile FILE: lines `t, omega` [s, rad/s] from t = 0, piecewise linear, held after "
+                               "the last")
+                   ->type_name("FILE");
+  ramp->excludes(prof);
+  sub->add_option("--balls", o->balls, "Start: balls at rest in the rotor frame at these angles [rad], rotor at rest")
+      ->type_name("B1,B2,...");
+  sub->add_option("--from-state", o->from_state, "Start: the 2n + 4 values q1,q2,beta1..,dq1,dq2,dbeta1.. (model.md §2)")
+      ->type_name("X1,X2,...");
+  sub->add_option("--from-equilibrium", o->from_equilibrium,
+                  "Start: an equilibrium at omega(0), balanced[:K] | together[:K] | opposite[:K] | aligned:PATTERN[:K], "
+                  "displaced along its rightmost eigenmode by --perturb")
+      ->type_name("F");
+  sub->add_option("--perturb", o->perturb, "Displacement of --from-equilibrium (scaled: q / L, rad; default 1e-3)")
+      ->type_name("EPS");
+  sub->add_option("--method", o->method, "Integrator (auto: by the stiffness ratio, model.md §15.1)")
+      ->check(CLI::IsMember({"auto", "bdf", "rk8pd", "rk4imp", "bsimp", "rkf45"}))
+      ->capture_default_str();
+  sub->add_option("--rtol", o->sim.rtol, "Tolerance per component in the model's scaling (model.md §15.1)")
+      ->capture_default_str();
+  sub->add_option("--every", o->sim.every, "Output interval [s] (default t_end / 2000)")->type_name("DT");
+  sub->add_option("--max-steps", o->sim.max_steps, "Fail (exit 3, keeping the samples) after this many steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--settle-tol", o->sim.settle_tolerance, "Scaled distance for 'settled' (model.md §15.2)")
+      ->capture_default_str();
+  sub->add_option("-o,--output", o->output, "Output directory: simulation.csv, simulation.png")->capture_default_str();
+  sub->add_option("--summary", o->summary, "Also write the summary as JSON to FILE")->type_name("FILE");
+  sub->add_flag("--no-chart", [o](std::int64_t) { o->chart = false; }, "Do not draw the chart");
+  auto* progress = sub->add_flag("--progress", o->progress, "Progress on stderr even if not a terminal");
+  auto* quiet = sub->add_flag("--quiet", o->quiet, "No progress and no summary on stderr");
+  progress->excludes(quiet);
+  return [o]() -> int {
+    Scene scene = load(o->scene);
+    if (!(o->sim.settle_tolerance > 0 && o->sim.settle_tolerance < 1))
+      throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
+    const SpeedProfile speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)
+                               : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
+                                                          : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+    if (scene.balls.size() == 2) return run_simulation<2>(scene, *o, speed);
+    return run_simulation<any_balls>(scene, *o, speed);
+  };
+}
+
+}  // namespace abu::cli

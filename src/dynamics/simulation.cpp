@@ -1,0 +1,569 @@
+// Trajectories of model.md §3 / §9 with GSL odeiv2 (see simulation.hpp, model.md §15).
+#include "abu/dynamics/simulation.hpp"
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+
+#include "abu/core/errors.hpp"
+
+namespace abu {
+
+std::string_view to_string(IntegrationMethod m) {
+  switch (m) {
+    case IntegrationMethod::automatic: return "auto";
+    case IntegrationMethod::bdf: return "bdf";
+    case IntegrationMethod::rk8pd: return "rk8pd";
+    case IntegrationMethod::rk4imp: return "rk4imp";
+    case IntegrationMethod::bsimp: return "bsimp";
+    case IntegrationMethod::rkf45: return "rkf45";
+  }
+  return "?";
+}
+
+std::optional<IntegrationMethod> integration_method_from_string(std::string_view name) {
+  for (auto m : {IntegrationMethod::automatic, IntegrationMethod::bdf, IntegrationMethod::rk8pd, IntegrationMethod::rk4imp,
+                 IntegrationMethod::bsimp, IntegrationMethod::rkf45})
+    if (to_string(m) == name) return m;
+  return std::nullopt;
+}
+
+std::string_view to_string(SimulationStatus s) {
+  switch (s) {
+    case SimulationStatus::completed: return "completed";
+    case SimulationStatus::interrupted: return "interrupted";
+    case SimulationStatus::failed: return "failed";
+  }
+  return "?";
+}
+
+std::string_view to_string(Outcome o) {
+  switch (o) {
+    case Outcome::balanced: return "balanced";
+    case Outcome::aligned: return "aligned";
+    case Outcome::rest: return "stuck";
+    case Outcome::periodic: return "periodic";
+    case Outcome::not_settled: return "not_settled";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// GSL's default handler aborts; this module reports every return code instead.
+void gsl_handler_off_once() {
+  static std::once_flag flag;
+  std::call_once(flag, [] { gsl_set_error_handler_off(); });
+}
+
+double natural_frequency(double k, double M) { return std::sqrt(k / M); }
+
+// ---- error control in the model's scaling (model.md §15.1) -------------------------------
+// D_i = rtol (scale_i + relative_i |y_i|); a step is accepted when max_i |err_i| / D_i <= 1.1,
+// the step adjusted as GSL's standard control does (safety 0.9, factors in [0.2, 5]).
+struct ScaledControlState {
+  double rtol = 1e-8;
+  std::size_t dim = 0;
+  double scale[2 * max_balls + 4] = {};
+  bool relative[2 * max_balls + 4] = {};
+};
+
+void* scaled_alloc() { return new (std::nothrow) ScaledControlState; }
+int scaled_init(void* vs, double eps_abs, double, double, double) {
+  static_cast<ScaledControlState*>(vs)->rtol = eps_abs;
+  return GSL_SUCCESS;
+}
+double tolerance_of(const ScaledControlState& s, std::size_t i, double y) {
+  return s.rtol * (s.scale[i] + (s.relative[i] ? std::abs(y) : 0.0));
+}
+int scaled_hadjust(void* vs, std::size_t dim, unsigned int ord, const double y[], const double yerr[], const double*,
+                   double* h) {
+  const auto& s = *static_cast<ScaledControlState*>(vs);
+  double rmax = std::numeric_limits<double>::min();
+  for (std::size_t i = 0; i < dim; ++i) rmax = std::max(rmax, std::abs(yerr[i]) / tolerance_of(s, i, y[i]));
+  if (!std::isfinite(rmax)) rmax = 1e300;  // a non-finite error estimate: shrink as far as allowed
+  const double h_old = *h;
+  if (rmax > 1.1) {
+    *h = h_old * std::max(0.9 * std::pow(rmax, -1.0 / ord), 0.2);
+    return GSL_ODEIV_HADJ_DEC;
+  }
+  if (rmax < 0.5) {
+    *h = h_old * std::clamp(0.9 * std::pow(rmax, -1.0 / (ord + 1.0)), 1.0, 5.0);
+    return GSL_ODEIV_HADJ_INC;
+  }
+  return GSL_ODEIV_HADJ_NIL;
+}
+int scaled_errlevel(void* vs, const double y, const double, const double, const std::size_t ind, double* errlev) {
+  const auto& s = *static_cast<ScaledControlState*>(vs);
+  *errlev = tolerance_of(s, ind, y);
+  return *errlev > 0 ? GSL_SUCCESS : GSL_EINVAL;
+}
+int scaled_set_driver(void*, const gsl_odeiv2_driver*) { return GSL_SUCCESS; }
+void scaled_free(void* vs) { delete static_cast<ScaledControlState*>(vs); }
+const gsl_odeiv2_control_type kScaledControl = {"model-scaled", &scaled_alloc, &scaled_init, &scaled_hadjust,
+                                                &scaled_errlevel, &scaled_set_driver, &scaled_free};
+
+// ---- the ODE system -------------------------------------------------------------------------
+template <int N>
+struct OdeContext {
+  ParamsT<double, N> p;  // p.omega follows the profile
+  double segment_t0 = 0, segment_omega0 = 0, omega_dot = 0;  // omega(t) = omega0 + omega_dot (t - t0)
+  int dim = 0;
+  unsigned long rhs = 0, jac = 0;
+  ParamRef omega_ref{Quantity::omega, -1};
+  void set_time(double t) { p.omega = segment_omega0 + omega_dot * (t - segment_t0); }
+};
+
+template <int N>
+State<double, N> load_state(const double y[], int dim) {
+  State<double, N> x(dim);
+  for (int i = 0; i < dim; ++i) x(i) = y[i];
+  return x;
+}
+
+template <int N>
+int ode_rhs(double t, const double y[], double dydt[], void* params) {
+  auto& c = *static_cast<OdeContext<N>*>(params);
+  ++c.rhs;
+  c.set_time(t);
+  const State<double, N> x = load_state<N>(y, c.dim);
+  // model.md §3 at constant speed; §9 (Euler terms) while omega' != 0.
+  const State<double, N> f = c.omega_dot == 0 ? vector_field(c.p, x) : vector_field(c.p, x, c.omega_dot);
+  for (int i = 0; i < c.dim; ++i) {
+    if (!std::isfinite(f(i))) return GSL_EBADFUNC;
+    dydt[i] = f(i);
+  }
+  return GSL_SUCCESS;
+}
+
+template <int N>
+int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
+  auto& c = *static_cast<OdeContext<N>*>(params);
+  ++c.jac;
+  c.set_time(t);
+  const State<double, N> x = load_state<N>(y, c.dim);
+  const StateMatrix<double, N> J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
+  for (int i = 0; i < c.dim; ++i)
+    for (int j = 0; j < c.dim; ++j) {
+      if (!std::isfinite(J(i, j))) return GSL_EBADFUNC;
+      dfdy[i * c.dim + j] = J(i, j);  // GSL: row-major
+    }
+  // df/dt = omega' df/domega (+ omega'' df/domega', zero inside a segment of the profile).
+  if (c.omega_dot != 0) {
+    const State<double, N> dfw = parameter_derivative(c.p, x, c.omega_ref);
+    for (int i = 0; i < c.dim; ++i) dfdt[i] = c.omega_dot * dfw(i);
+  } else {
+    for (int i = 0; i < c.dim; ++i) dfdt[i] = 0.0;
+  }
+  return GSL_SUCCESS;
+}
+
+const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
+  switch (m) {
+    case IntegrationMethod::rk8pd: return gsl_odeiv2_step_rk8pd;
+    case IntegrationMethod::rk4imp: return gsl_odeiv2_step_rk4imp;
+    case IntegrationMethod::bsimp: return gsl_odeiv2_step_bsimp;
+    case IntegrationMethod::rkf45: return gsl_odeiv2_step_rkf45;
+    default: return gsl_odeiv2_step_msbdf;
+  }
+}
+
+struct DriverDeleter {
+  void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
+};
+
+double scaled_distance_q_beta(const double* a, const double* b, int n, double L) {
+  double d = std::max(std::abs(a[0] - b[0]), std::abs(a[1] - b[1])) / L;
+  for (int i = 0; i < n; ++i) d = std::max(d, std::abs(std::remainder(a[2 + i] - b[2 + i], 2 * kPi)));
+  return d;
+}
+
+}  // namespace
+
+template <int N>
+State<double, N> start_at_rest(const ParamsT<double, N>& p, const std::vector<double>& beta) {
+  const int n = ball_count(p);
+  if (int(beta.size()) != n)
+    throw InputError("--balls", 0, "", fmt::format("expected {} ball angles (one per ball), got {}", n, beta.size()));
+  State<double, N> x = State<double, N>::Zero(2 * n + 4);
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(beta[std::size_t(i)])) throw InputError("--balls", 0, "", "ball angles must be finite");
+    x(2 + i) = beta[std::size_t(i)];
+  }
+  return x;
+}
+
+template <int N>
+State<double, N> perturbed_equilibrium(const ParamsT<double, N>& p, const Coordinates<double, N>& position,
+                                       std::complex<double> lambda, const ModeVector<N>& mode, double eps) {
+  const int d = int(position.size());
+  const double L = displacement_scale(p);
+  const double rate = std::max(std::abs(lambda), 1e-300);
+  State<double, N> dir(2 * d);
+  for (int i = 0; i < d; ++i) {
+    dir(i) = mode(i).real();
+    dir(d + i) = (lambda * mode(i)).real();
+  }
+  if (dir.head(d).isZero(0)) {  // a purely imaginary mode shape: take its imaginary part
+    for (int i = 0; i < d; ++i) {
+      dir(i) = mode(i).imag();
+      dir(d + i) = (lambda * mode(i)).imag();
+    }
+  }
+  double size = 0;
+  for (int i = 0; i < d; ++i) {
+    const double s = i < 2 ? L : 1.0;
+    size = std::max({size, std::abs(dir(i)) / s, std::abs(dir(d + i)) / (s * rate)});
+  }
+  if (!(size > 0)) throw NumericalError("perturbed_equilibrium: the eigenmode is zero");
+  State<double, N> x = at_rest<double, N>(position);
+  x += (eps / size) * dir;
+  return x;
+}
+
+template <int N>
+std::optional<std::vector<double>> nearest_balanced_angles(const ParamsT<double, N>& p, const std::vector<double>& beta) {
+  const int n = ball_count(p);
+  double capacity = 0, largest = p.rotor.unbalance;
+  for (const auto& b : p.balls) {
+    capacity += b.mass * b.race_radius;
+    largest = std::max(largest, b.mass * b.race_radius);
+  }
+  // The polygon inequality (model.md §13.4): the set exists iff max(U, a_i) <= (U + sum a)/2.
+  if (largest > 0.5 * (capacity + p.rotor.unbalance) * (1 + 1e-12)) return std::nullopt;
+  std::vector<double> b = beta;
+  const double scale = capacity + p.rotor.unbalance;
+  for (int iter = 0; iter < 60; ++iter) {
+    // W = U + sum a_j e^{i beta_j}; G = dW/dbeta (2 x n); minimal-norm step -G^T (G G^T)^-1 W.
+    double w1 = p.rotor.unbalance, w2 = 0, g11 = 0, g12 = 0, g22 = 0;
+    for (int j = 0; j < n; ++j) {
+      const double a = p.balls[std::size_t(j)].mass * p.balls[std::size_t(j)].race_radius;
+      w1 += a * std::cos(b[std::size_t(j)]);
+      w2 += a * std::sin(b[std::size_t(j)]);
+      const double gx = -a * std::sin(b[std::size_t(j)]), gy = a * std::cos(b[std::size_t(j)]);
+      g11 += gx * gx;
+      g12 += gx * gy;
+      g22 += gy * gy;
+    }
+    if (std::hypot(w1, w2) <= 1e-14 * scale) {
+      for (auto& v : b) v = std::remainder(v, 2 * kPi);
+      return b;
+    }
+    // Levenberg-Marquardt damping keeps the step finite where G is rank-deficient (collinear balls).
+    const double mu = 1e-10 * (g11 + g22);
+    const double a11 = g11 + mu, a22 = g22 + mu, det = a11 * a22 - g12 * g12;
+    if (!(det > 0)) return std::nullopt;
+    const double y1 = (a22 * w1 - g12 * w2) / det, y2 = (a11 * w2 - g12 * w1) / det;
+    for (int j = 0; j < n; ++j) {
+      const double a = p.balls[std::size_t(j)].mass * p.balls[std::size_t(j)].race_radius;
+      const double gx = -a * std::sin(b[std::size_t(j)]), gy = a * std::cos(b[std::size_t(j)]);
+      double step = -(gx * y1 + gy * y2);
+      step = std::clamp(step, -0.5, 0.5);  // at most half a radian per iteration
+      b[std::size_t(j)] += step;
+    }
+  }
+  return std::nullopt;
+}
+
+template <int N>
+SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& speed, const State<double, N>& x0,
+                             const SimulationOptions& o) {
+  gsl_handler_off_once();
+  const int n = ball_count(p), dim = 2 * n + 4;
+  if (!(std::isfinite(o.t_end) && o.t_end > 0))
+    throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", o.t_end));
+  if (!(o.every >= 0 && std::isfinite(o.every)))
+    throw InputError("--every", 0, "", fmt::format("the output interval must be > 0 s (got {})", o.every));
+  const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
+  if (o.record && o.t_end / every > 2e7)
+    throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
+  if (!(o.rtol > 0 && o.rtol < 0.1))
+    throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in (0, 0.1) (got {})", o.rtol));
+  if (x0.size() != dim)
+    throw InputError("--from-state", 0, "", fmt::format("a state has 2n + 4 = {} values, got {}", dim, x0.size()));
+  for (int i = 0; i < dim; ++i)
+    if (!std::isfinite(x0(i))) throw InputError("--from-state", 0, "", "the initial state must be finite");
+
+  SimulationResult<N> r;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double L = displacement_scale(p);
+  const double w_max = speed.max_omega();
+  const double w_n = natural_frequency(p.rotor.stiffness, p.total_mass());
+  r.displacement_scale = L;
+
+  // Stiffness probe (model.md §15.1): J at the start with the balls at rest relative to the
+  // rotor (the friction slope is largest at beta' = 0) and omega = omega_max (N_i largest).
+  {
+    ParamsT<double, N> pp = p;
+    pp.omega = w_max;
+    State<double, N> xs = x0;
+    xs.tail(n).setZero();
+    const StateMatrix<double, N> J = jacobian(pp, xs);
+    Eigen::EigenSolver<StateMatrix<double, N>> es(J, false);
+    double rho = 0;
+    if (es.info() == Eigen::Success) {
+      rho = es.eigenvalues().cwiseAbs().maxCoeff();
+    } else {
+      rho = J.cwiseAbs().rowwise().sum().maxCoeff();  // the infinity norm bounds it
+    }
+    r.spectral_radius = rho;
+    r.stiffness_ratio = rho / (w_max + w_n);
+  }
+  r.method = o.method;
+  if (o.method == IntegrationMethod::automatic)
+    r.method = r.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bsimp : IntegrationMethod::rk8pd;
+
+  OdeContext<N> ctx;
+  ctx.p = p;
+  ctx.dim = dim;
+  gsl_odeiv2_system sys{&ode_rhs<N>, &ode_jacobian<N>, std::size_t(dim), &ctx};
+  const double h0 = std::min(1e-3 / (w_max + w_n), 1e-2 * o.t_end);
+  // The driver allocates the stepper, a control and the evolve object once; its control is
+  // replaced by the model-scaled one.
+  std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> drv(
+      gsl_odeiv2_driver_alloc_y_new(&sys, step_type(r.method), h0, o.rtol, o.rtol));
+  if (!drv) throw NumericalError("simulate: GSL could not allocate the integrator");
+  gsl_odeiv2_control_free(drv->c);
+  drv->c = gsl_odeiv2_control_alloc(&kScaledControl);
+  if (!drv->c) throw NumericalError("simulate: GSL could not allocate the error control");
+  auto* cs = static_cast<ScaledControlState*>(drv->c->state);
+  cs->dim = std::size_t(dim);
+  for (int i = 0; i < dim; ++i) {
+    const bool angle = i >= 2 && i < n + 2;
+    const bool velocity = i >= n + 2;
+    const bool rotor = i < 2 || (i >= n + 2 && i < n + 4);
+    cs->scale[i] = angle ? 1.0 : (rotor ? L : 1.0) * (velocity ? w_max : 1.0);
+    cs->relative[i] = !angle;
+  }
+  if (int st = gsl_odeiv2_control_init(drv->c, o.rtol, o.rtol, 1.0, 0.0); st != GSL_SUCCESS)
+    throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
+  if (int st = gsl_odeiv2_control_set_driver(drv->c, drv.get()); st != GSL_SUCCESS)
+    throw NumericalError(fmt::format("simulate: GSL control: {}", gsl_strerror(st)));
+
+  double y[2 * max_balls + 4];
+  for (int i = 0; i < dim; ++i) y[i] = x0(i);
+  double t = 0, h = h0;
+  const auto record = [&](double time) {
+    if (!o.record) return;
+    TrajectorySample<N> s;
+    s.t = time;
+    s.omega = speed.omega(time);
+    s.x = load_state<N>(y, dim);
+    r.samples.push_back(s);
+    if (o.progress) o.progress(time);
+  };
+  if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
+  record(0.0);
+
+  std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
+  breaks.push_back(o.t_end);
+  std::size_t next_break = 0;
+  const auto begin_segment = [&](double at) {
+    ctx.segment_t0 = at;
+    ctx.segment_omega0 = speed.omega(at);
+    ctx.omega_dot = speed.omega_dot(at);
+  };
+  begin_segment(0.0);
+  unsigned long long k_out = 1;
+  const auto accumulate = [&] {
+    r.stats.steps += drv->e->count;
+    r.stats.rejected += drv->e->failed_steps;
+  };
+  bool stop = false;
+  while (!stop && t < o.t_end) {
+    // Without recording, only the breakpoints and t_end stop the stepper.
+    const double t_out = o.record ? std::min(double(k_out) * every, o.t_end) : o.t_end;
+    const double target = std::min(t_out, breaks[next_break]);
+    while (t < target) {
+      const double h_before = h;
+      const int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, target, &h, y);
+      if (st != GSL_SUCCESS) {
+        r.status = SimulationStatus::failed;
+        const char* why = st == GSL_EBADFUNC ? "the right-hand side or Jacobian is not finite"
+                          : st == GSL_FAILURE ? "the step size fell below the rounding level of t (the tolerance cannot be met)"
+                                              : gsl_strerror(st);
+        r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s, step {:.3g} s, {} steps): {} [GSL {}: {}]", t,
+                               speed.omega(t), h, r.stats.steps + drv->e->count, why, st, gsl_strerror(st));
+        stop = true;
+        break;
+      }
+      if (r.stats.steps + drv->e->count > o.max_steps) {
+        r.status = SimulationStatus::failed;
+        r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
+                               o.max_steps);
+        stop = true;
+        break;
+      }
+      if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
+        r.status = SimulationStatus::interrupted;
+        r.reason = fmt::format("interrupted at t = {:.9g} s", t);
+        stop = true;
+        break;
+      }
+      // A step clamped to reach the target returns a small proposal; keep the previous one.
+      if (t == target && h < h_before) h = h_before;
+    }
+    if (stop) {
+      if (o.record && r.samples.back().t < t) record(t);
+      break;
+    }
+    if (t == t_out) {
+      record(t);
+      ++k_out;
+    }
+    if (t == breaks[next_break] && next_break + 1 < breaks.size()) {
+      // omega' jumps here (model.md §9): restart the multistep history on the new segment.
+      accumulate();
+      if (int st = gsl_odeiv2_driver_reset(drv.get()); st != GSL_SUCCESS)
+        throw NumericalError(fmt::format("simulate: GSL reset at t = {}: {}", t, gsl_strerror(st)));
+      ++r.stats.restarts;
+      ++next_break;
+      begin_segment(t);
+    }
+  }
+  accumulate();
+  r.stats.rhs_evaluations = ctx.rhs;
+  r.stats.jacobian_evaluations = ctx.jac;
+  r.x_end = load_state<N>(y, dim);
+  r.t_reached = t;
+  r.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (o.record) r.summary = summarize(p, speed, r.samples, o);
+  return r;
+}
+
+template <int N>
+SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            const std::vector<TrajectorySample<N>>& samples, const SimulationOptions& o) {
+  SimulationSummary s;
+  if (samples.empty()) return s;
+  const int n = ball_count(p), d = n + 2;
+  const double L = displacement_scale(p);
+  s.omega_n = natural_frequency(p.rotor.stiffness, p.total_mass());
+  const auto& last = samples.back();
+  s.t_end = last.t;
+  s.state_end.assign(last.x.data(), last.x.data() + last.x.size());
+  for (const auto& smp : samples) {
+    const double qa = std::hypot(smp.x(0), smp.x(1));
+    if (qa > s.max_q_abs) s.max_q_abs = qa, s.t_max_q_abs = smp.t;
+    if (speed.omega_dot(smp.t) != 0 || (smp.t > 0 && speed.omega_dot(std::nextafter(smp.t, 0.0)) != 0))
+      s.max_q_abs_run_up = std::max(s.max_q_abs_run_up.value_or(0.0), qa);
+  }
+  s.t_omega_n = speed.crossings(s.omega_n, s.t_end);
+  s.speed_changing_at_end = s.t_end > 0 && speed.omega_dot(std::nextafter(s.t_end, 0.0)) != 0;
+
+  // Final window (model.md §15.2): the last `final_window` of the run, at least 3 samples.
+  s.window_from = s.t_end * (1 - o.final_window);
+  std::size_t w0 = samples.size() - 1;
+  while (w0 > 0 && samples[w0 - 1].t >= s.window_from) --w0;
+  if (samples.size() - w0 < 3) w0 = samples.size() >= 3 ? samples.size() - 3 : 0;
+  s.window_from = samples[w0].t;
+  const double span = s.t_end - s.window_from;
+  const double w_bar = span > 0 ? (speed.angle(s.t_end) - speed.angle(s.window_from)) / span : last.omega;
+  s.omega_mean_window = w_bar;
+
+  // Stall (model.md §15.3): ball i slips against the rotor by more than 5 % of the spin speed
+  // on average while its mean fixed-frame speed lies within 15 % of omega_n.
+  s.ball_speed_fixed.resize(std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const double rel = span > 0 ? (last.x(2 + i) - samples[w0].x(2 + i)) / span : last.x(d + 2 + i);
+    const double fixed = w_bar + rel;
+    s.ball_speed_fixed[std::size_t(i)] = fixed;
+    if (std::abs(rel) > 0.05 * w_bar && std::abs(fixed - s.omega_n) <= 0.15 * s.omega_n) s.stalled_balls.push_back(i + 1);
+  }
+  s.stalled = !s.stalled_balls.empty();
+
+  // Settled: every sample of the window within settle_tolerance of the end state in the
+  // scaled distance (q / L, angles in rad, q' / (L omega), beta' / omega).
+  const auto distance = [&](const State<double, N>& a, const State<double, N>& b, double w) {
+    double dist = scaled_distance_q_beta(a.data(), b.data(), n, L);
+    dist = std::max(dist, std::max(std::abs(a(d) - b(d)), std::abs(a(d + 1) - b(d + 1))) / (L * w));
+    for (int i = 0; i < n; ++i) dist = std::max(dist, std::abs(a(d + 2 + i) - b(d + 2 + i)) / w);
+    return dist;
+  };
+  bool settled = !s.speed_changing_at_end;
+  double speed_at_end = 0;
+  for (int i = 0; i < d; ++i) speed_at_end = std::max(speed_at_end, std::abs(last.x(d + i)) / (i < 2 ? L * last.omega : last.omega));
+  if (speed_at_end > o.settle_tolerance) settled = false;
+  for (std::size_t k = w0; settled && k < samples.size(); ++k)
+    if (distance(samples[k].x, last.x, last.omega) > o.settle_tolerance) settled = false;
+  const double q_abs = std::hypot(last.x(0), last.x(1));
+  if (settled) {
+    std::size_t k = samples.size();
+    while (k > 0 && distance(samples[k - 1].x, last.x, last.omega) <= o.settle_tolerance) --k;
+    s.settle_time = samples[k < samples.size() ? k : samples.size() - 1].t;
+    double capacity = p.rotor.unbalance, w1 = p.rotor.unbalance, w2 = 0;
+    for (int i = 0; i < n; ++i) {
+      const double a = p.balls[std::size_t(i)].mass * p.balls[std::size_t(i)].race_radius;
+      capacity += a;
+      w1 += a * std::cos(last.x(2 + i));
+      w2 += a * std::sin(last.x(2 + i));
+    }
+    const double phi = std::atan2(last.x(1), last.x(0));
+    bool on_line = q_abs > 0;
+    for (int i = 0; i < n; ++i) on_line = on_line && std::abs(std::sin(last.x(2 + i) - phi)) <= 1e-2;
+    if (q_abs <= 1e-2 * L && std::hypot(w1, w2) <= 1e-2 * capacity) {
+      s.outcome = Outcome::balanced;
+      s.note = fmt::format("at rest with |q| = {:.3g} L and residual unbalance |W| = {:.3g} of U + sum m l", q_abs / L,
+                           std::hypot(w1, w2) / capacity);
+    } else if (on_line) {
+      s.outcome = Outcome::aligned;
+      const double ref = std::cos(last.x(2) - phi);
+      for (int i = 0; i < n; ++i) s.pattern += std::cos(last.x(2 + i) - phi) * ref >= 0 ? '+' : '-';
+      s.note = fmt::format("at rest with every ball on the line of q (|q| = {:.4g} m), pattern {}", q_abs, s.pattern);
+    } else {
+      s.outcome = Outcome::rest;
+      s.note = "at rest off every equilibrium: the balls creep too slowly to move within the window (dry friction; the stick set of model.md (5.10))";
+    }
+    return s;
+  }
+  // Periodic (a steady oscillation, not a verified periodic orbit): the two halves of the
+  // window have the same range of |q| to 2 % of its largest value, and something moves.
+  const std::size_t mid = w0 + (samples.size() - w0) / 2;
+  double lo[2] = {1e300, 1e300}, hi[2] = {0, 0};
+  for (std::size_t k = w0; k < samples.size(); ++k) {
+    const int half = k < mid ? 0 : 1;
+    const double qa = std::hypot(samples[k].x(0), samples[k].x(1));
+    lo[half] = std::min(lo[half], qa);
+    hi[half] = std::max(hi[half], qa);
+  }
+  const double top = std::max(hi[0], hi[1]);
+  if (!s.speed_changing_at_end && samples.size() - w0 >= 8 && top > 0 && std::abs(hi[0] - hi[1]) <= 0.02 * top &&
+      std::abs(lo[0] - lo[1]) <= 0.02 * top) {
+    s.outcome = Outcome::periodic;
+    s.note = fmt::format("steady oscillation: |q| in [{:.4g}, {:.4g}] m in both halves of the final window{}", lo[1],
+                         hi[1], s.stalled ? " (stalled balls)" : "");
+  } else {
+    s.outcome = Outcome::not_settled;
+    s.note = s.speed_changing_at_end ? "the speed is still changing at the end of the run"
+                                     : "still moving at the end of the run (neither at rest nor a steady oscillation)";
+  }
+  return s;
+}
+
+#define ABU_INSTANTIATE_SIMULATION(N)                                                                               \
+  template State<double, N> start_at_rest<N>(const ParamsT<double, N>&, const std::vector<double>&);                  \
+  template State<double, N> perturbed_equilibrium<N>(const ParamsT<double, N>&, const Coordinates<double, N>&,       \
+                                                     std::complex<double>, const ModeVector<N>&, double);            \
+  template std::optional<std::vector<double>> nearest_balanced_angles<N>(const ParamsT<double, N>&,                 \
+                                                                         const std::vector<double>&);               \
+  template SimulationResult<N> simulate<N>(const ParamsT<double, N>&, const SpeedProfile&, const State<double, N>&, \
+                                           const SimulationOptions&);                                                \
+  template SimulationSummary summarize<N>(const ParamsT<double, N>&, const SpeedProfile&,                            \
+                                          const std::vector<TrajectorySample<N>>&, const SimulationOptions&);
+ABU_INSTANTIATE_SIMULATION(2)
+ABU_INSTANTIATE_SIMULATION(any_balls)
+#undef ABU_INSTANTIATE_SIMULATION
+
+}  // namespace abu

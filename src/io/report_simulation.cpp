@@ -1,0 +1,178 @@
+// Trajectory CSV and summary JSON of a simulation (report_simulation.hpp, model.md §15).
+#include "abu/io/report_simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "abu/io/io.hpp"
+
+namespace abu {
+
+namespace {
+
+std::string json_quoted(std::string_view s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", int(c));
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string number_list(const std::vector<double>& v, std::string_view what) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + format_number(v[i], what);
+  return out + "]";
+}
+
+std::string optional_number(const std::optional<double>& v, std::string_view what) {
+  return v ? format_number(*v, what) : std::string("null");
+}
+
+template <int N>
+std::vector<double> end_angles(const SimulationResult<N>& r, int n) {
+  std::vector<double> beta(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) beta[std::size_t(i)] = r.x_end(2 + i);
+  return beta;
+}
+
+}  // namespace
+
+template <int N>
+std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                           std::string_view header) {
+  const int n = ball_count(p), d = n + 2;
+  const auto balanced = nearest_balanced_angles(p, end_angles(r, n));
+  std::string out(header);
+  out += fmt::format("# speed: {}\n", speed.describe());
+  out += fmt::format("# method: {} (stiffness ratio rho(J)/(omega_max + omega_n) = {:.4g}, rho = {:.4g} 1/s; model.md §15.1)\n",
+                     to_string(r.method), r.stiffness_ratio, r.spectral_radius);
+  out += fmt::format("# status: {}{}\n", to_string(r.status), r.reason.empty() ? "" : ": " + r.reason);
+  out += fmt::format("# steps {}, rejected {}, rhs evaluations {}, jacobian evaluations {}, restarts {}\n",
+                     r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.jacobian_evaluations,
+                     r.stats.restarts);
+  out += "# columns: t [s], omega [rad/s], q1 q2 [m] rotor centre in the rotating frame, beta_i [rad] from the\n"
+         "# unbalance, continuous (not wrapped), dq [m/s], dbeta [rad/s], q_abs = |q| [m], x_fixed y_fixed [m] the\n"
+         "# rotor centre in the fixed frame R(theta(t)) q (theta the spin angle), beta_rel_i [rad] = beta_i minus the\n"
+         "# nearest balanced configuration's angle (to the end state), in [-pi, pi]; empty if no balanced state exists\n";
+  if (balanced) {
+    out += "# balanced reference angles:";
+    for (double b : *balanced) {
+      out += ' ';
+      out += format_number(b, "balanced angle");
+    }
+    out += "\n";
+  }
+  out += "t,omega,q1,q2";
+  for (int i = 1; i <= n; ++i) out += fmt::format(",beta{}", i);
+  out += ",dq1,dq2";
+  for (int i = 1; i <= n; ++i) out += fmt::format(",dbeta{}", i);
+  out += ",q_abs,x_fixed,y_fixed";
+  for (int i = 1; i <= n; ++i) out += fmt::format(",beta_rel{}", i);
+  out += "\n";
+  out.reserve(out.size() + r.samples.size() * std::size_t(60 + 45 * n));
+  for (const auto& s : r.samples) {
+    out += format_number(s.t, "t");
+    out += ',';
+    out += format_number(s.omega, "omega");
+    for (int i = 0; i < 2 * d; ++i) {
+      out += ',';
+      out += format_number(s.x(i), "state");
+    }
+    const double theta = speed.angle(s.t), c = std::cos(theta), sn = std::sin(theta);
+    for (double v : {std::hypot(s.x(0), s.x(1)), c * s.x(0) - sn * s.x(1), sn * s.x(0) + c * s.x(1)}) {
+      out += ',';
+      out += format_number(v, "q_abs / fixed-frame position");
+    }
+    for (int i = 0; i < n; ++i) {
+      out += ',';
+      if (balanced) out += format_number(std::remainder(s.x(2 + i) - (*balanced)[std::size_t(i)], 2 * std::numbers::pi), "beta_rel");
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+template <int N>
+std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            std::string_view command_line, std::string_view scene_file) {
+  const auto& s = r.summary;
+  std::vector<int> stalled = s.stalled_balls;
+  std::string balls = "[";
+  for (std::size_t i = 0; i < stalled.size(); ++i) balls += (i ? ", " : "") + std::to_string(stalled[i]);
+  balls += "]";
+  std::string out = "{\n";
+  out += fmt::format("  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n", ABU_VERSION,
+                     json_quoted(command_line), json_quoted(scene_file));
+  out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"speed\": {},\n", json_quoted(describe_parameters(p)),
+                     ball_count(p), json_quoted(speed.describe()));
+  out += fmt::format("  \"status\": {},\n  \"reason\": {},\n", json_quoted(to_string(r.status)), json_quoted(r.reason));
+  out += fmt::format("  \"outcome\": {},\n  \"pattern\": {},\n  \"note\": {},\n", json_quoted(to_string(s.outcome)),
+                     json_quoted(s.pattern), json_quoted(s.note));
+  out += fmt::format("  \"t_end\": {},\n  \"state_end\": {},\n", format_number(s.t_end, "t_end"),
+                     number_list(s.state_end, "state_end"));
+  out += fmt::format("  \"max_q_abs\": {},\n  \"t_max_q_abs\": {},\n", format_number(s.max_q_abs, "max_q_abs"),
+                     format_number(s.t_max_q_abs, "t_max_q_abs"));
+  out += fmt::format("  \"max_q_abs_run_up\": {},\n", optional_number(s.max_q_abs_run_up, "max_q_abs_run_up"));
+  out += fmt::format("  \"settle_time\": {},\n", optional_number(s.settle_time, "settle_time"));
+  out += fmt::format("  \"stalled\": {},\n  \"stalled_balls\": {},\n", s.stalled ? "true" : "false", balls);
+  out += fmt::format("  \"ball_speed_fixed\": {},\n  \"omega_mean_window\": {},\n  \"window_from\": {},\n",
+                     number_list(s.ball_speed_fixed, "ball speed"), format_number(s.omega_mean_window, "omega"),
+                     format_number(s.window_from, "window"));
+  out += fmt::format("  \"omega_n\": {},\n  \"t_omega_n\": {},\n", format_number(s.omega_n, "omega_n"),
+                     number_list(s.t_omega_n, "t_omega_n"));
+  out += fmt::format("  \"method\": {},\n  \"stiffness_ratio\": {},\n  \"spectral_radius\": {},\n",
+                     json_quoted(to_string(r.method)), format_number(r.stiffness_ratio, "stiffness"),
+                     format_number(r.spectral_radius, "spectral radius"));
+  out += fmt::format("  \"displacement_scale\": {},\n", format_number(r.displacement_scale, "L"));
+  out += fmt::format(
+      "  \"stats\": {{\"steps\": {}, \"rejected\": {}, \"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, "
+      "\"restarts\": {}, \"wall_seconds\": {}}},\n",
+      r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.jacobian_evaluations, r.stats.restarts,
+      format_number(r.stats.wall_seconds, "wall"));
+  out += fmt::format("  \"units\": {}\n}}\n",
+                     json_quoted("t [s], q [m], beta [rad], omega and ball speeds [rad/s] (fixed frame for ball_speed_fixed), "
+                            "state order (q1, q2, beta_1..beta_n, dq1, dq2, dbeta_1..dbeta_n), model.md §2"));
+  return out;
+}
+
+template <int N>
+std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& speed) {
+  const auto& s = r.summary;
+  std::string out;
+  out += fmt::format("simulate: {} to t = {:.6g} s ({}), method {} (stiffness ratio {:.3g})\n", to_string(r.status),
+                     s.t_end, speed.describe(), to_string(r.method), r.stiffness_ratio);
+  out += fmt::format("  outcome: {}{} — {}\n", to_string(s.outcome), s.pattern.empty() ? "" : " " + s.pattern, s.note);
+  if (s.settle_time) out += fmt::format("  settle time: {:.6g} s\n", *s.settle_time);
+  out += fmt::format("  largest |q|: {:.6g} m at t = {:.6g} s\n", s.max_q_abs, s.t_max_q_abs);
+  for (double t : s.t_omega_n) out += fmt::format("  passes omega_n = {:.6g} rad/s at t = {:.6g} s\n", s.omega_n, t);
+  out += fmt::format("  stalled: {}", s.stalled ? "yes, balls" : "no");
+  for (int b : s.stalled_balls) out += fmt::format(" {}", b);
+  out += "\n";
+  out += fmt::format("  steps {} (rejected {}), rhs evaluations {}, jacobian evaluations {}, {:.3g} s\n", r.stats.steps,
+                     r.stats.rejected, r.stats.rhs_evaluations, r.stats.jacobian_evaluations, r.stats.wall_seconds);
+  return out;
+}
+
+template std::string simulation_csv<2>(const SimulationResult<2>&, const ParamsT<double, 2>&, const SpeedProfile&,
+                                       std::string_view);
+template std::string simulation_csv<any_balls>(const SimulationResult<any_balls>&, const ParamsT<double, any_balls>&,
+                                               const SpeedProfile&, std::string_view);
+template std::string simulation_json<2>(const SimulationResult<2>&, const ParamsT<double, 2>&, const SpeedProfile&,
+                                        std::string_view, std::string_view);
+template std::string simulation_json<any_balls>(const SimulationResult<any_balls>&, const ParamsT<double, any_balls>&,
+                                                const SpeedProfile&, std::string_view, std::string_view);
+template std::string simulation_text<2>(const SimulationResult<2>&, const SpeedProfile&);
+template std::string simulation_text<any_balls>(const SimulationResult<any_balls>&, const SpeedProfile&);
+
+}  // namespace abu

@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# The command-line contract of `stability-scan simulate` (issue 14, model.md §15): the CSV's
+# columns, no NaN, the summary JSON's keys, the chart, bad input (exit 2, one message,
+# nothing written), Ctrl-C keeps what was computed (exit 130), any n.
+#   check_simulate.sh BINARY SOURCE_DIR
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+scene=$src/data/scenes/default.toml
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+. "$(dirname "$0")/../contract.sh"
+
+# --- a constant-speed run from balls at rest ------------------------------------------------
+"$bin" simulate "$scene" --balls 2,4 --t-end 0.05 --every 1e-4 -o "$work/run" --summary "$work/run/summary.json" 2>"$work/run.err"
+check "simulate exits 0" "[ $? -eq 0 ]"
+header=$(grep -v '^#' "$work/run/simulation.csv" | head -1)
+check "csv header is the documented one" \
+  "[ '$header' = 't,omega,q1,q2,beta1,beta2,dq1,dq2,dbeta1,dbeta2,q_abs,x_fixed,y_fixed,beta_rel1,beta_rel2' ]"
+check "501 samples (t = 0 .. 0.05 every 1e-4)" "[ \$(grep -v '^#' '$work/run/simulation.csv' | tail -n +2 | wc -l) -eq 501 ]"
+check "no nan or inf in the csv" "! grep -v '^#' '$work/run/simulation.csv' | grep -qiE 'nan|inf'"
+check "steps and evaluations reported" "grep -q '^# steps [0-9]*, rejected [0-9]*, rhs evaluations [0-9]*, jacobian evaluations' '$work/run/simulation.csv'"
+check "stiff coulomb scene takes the implicit method" "grep -q '^# method: bsimp' '$work/run/simulation.csv'"
+check "the chart is written" "[ -s '$work/run/simulation.png' ]"
+check "summary json has the documented keys" "/usr/bin/python3 -c \"
+import json, sys
+s = json.load(open('$work/run/summary.json'))
+need = ['outcome', 't_end', 'state_end', 'max_q_abs', 't_max_q_abs', 'settle_time', 'stalled']
+sys.exit(0 if all(k in s for k in need) and len(s['state_end']) == 8 and s['t_end'] == 0.05 else 1)\""
+check "no temporaries left" "[ -z \"\$(ls -A '$work/run' | grep tmp)\" ]"
+
+# --- run-up through omega_n, 3 balls, from a perturbed equilibrium ---------------------------
+"$bin" simulate "$scene" --ramp 200:300:1000 --t-end 0.12 --balls 2,4 --no-chart -o "$work/ramp" \
+  --summary "$work/ramp.json" 2>"$work/ramp.err"
+check "ramp exits 0" "[ $? -eq 0 ]"
+check "ramp passes omega_n once" "/usr/bin/python3 -c \"
+import json, sys
+s = json.load(open('$work/ramp.json'))
+sys.exit(0 if len(s['t_omega_n']) == 1 and abs(s['t_omega_n'][0] - (s['omega_n'] - 200) / 1000) < 1e-12 else 1)\""
+sed 's/^count = 11/count = 3/' "$src/data/scenes/ring11.toml" >"$work/ring3.toml"
+"$bin" simulate "$work/ring3.toml" --from-equilibrium balanced:1 --perturb 1e-3 --t-end 0.01 \
+  --no-chart -o "$work/n3" --summary "$work/n3.json" 2>"$work/n3.err"
+check "3 balls from a perturbed balanced sample exits 0" "[ $? -eq 0 ] && [ -s '$work/n3.json' ]"
+"$bin" simulate "$scene" --from-equilibrium together:1 --t-end 0.01 --no-chart -o "$work/tog" 2>"$work/tog.err"
+check "two balls from a perturbed equilibrium exits 0" "[ $? -eq 0 ]"
+printf 't,omega\n0,100\n0.01,150\n0.02,150\n' >"$work/profile.csv"
+"$bin" simulate "$src/data/scenes/ring11.toml" --speed-profile "$work/profile.csv" --t-end 0.02 \
+  --balls 0,0.5,1,1.5,2,2.5,3,3.5,4,4.5,5 --no-chart -o "$work/n11" 2>"$work/n11.err"
+check "11 balls with a speed profile" "[ \$(grep -v '^#' '$work/n11/simulation.csv' | head -1 | tr ',' '\n' | wc -l) -eq 42 ]"
+
+# --- bad input: exit 2, one message, nothing written -----------------------------------------
+bad() {  # name, then the arguments; -o inside an empty directory
+  local name=$1
+  shift
+  local dir=$work/bad.$RANDOM
+  mkdir -p "$dir"
+  (cd "$dir" && "$bin" simulate "$@" -o out --summary s.json >"$work/out" 2>"$work/err")
+  local code=$?
+  if [ $code -ne 2 ]; then fail "$name: exit $code, expected 2 ($(head -c 200 "$work/err"))"; return; fi
+  if [ -n "$(ls -A "$dir")" ]; then fail "$name: wrote $(ls -A "$dir")"; return; fi
+  if ! head -1 "$work/err" | grep -q '^stability-scan: '; then fail "$name: no message: $(cat "$work/err")"; return; fi
+  pass "$name: exit 2 ($(head -1 "$work/err" | cut -c1-100))"
+}
+printf '0,100\n0.5,200\n0.4,300\n' >"$work/decreasing.csv"
+printf '0,100\n0.5,-20\n' >"$work/negative.csv"
+bad "negative t-end"              "$scene" --balls 2,4 --t-end -1
+bad "zero t-end"                  "$scene" --balls 2,4 --t-end 0
+bad "ramp through omega <= 0"     "$scene" --balls 2,4 --ramp 100:-5:10
+bad "ramp from omega = 0"         "$scene" --balls 2,4 --ramp 0:100:10
+bad "ramp with zero acceleration" "$scene" --balls 2,4 --ramp 100:200:0
+bad "malformed ramp"              "$scene" --balls 2,4 --ramp 100:200
+bad "state of the wrong length"   "$scene" --from-state 0,0,1,2,0,0,0
+bad "non-numeric state"           "$scene" --from-state 0,0,1,2,0,0,0,x
+bad "ball angles of the wrong count" "$scene" --balls 1,2,3
+bad "profile not increasing in t" "$scene" --balls 2,4 --speed-profile "$work/decreasing.csv"
+bad "profile with omega <= 0"     "$scene" --balls 2,4 --speed-profile "$work/negative.csv"
+bad "missing profile file"        "$scene" --balls 2,4 --speed-profile "$work/nosuch.csv"
+bad "no start"                    "$scene"
+bad "two starts"                  "$scene" --balls 2,4 --from-equilibrium balanced
+bad "unknown equilibrium"         "$scene" --from-equilibrium sideways
+bad "perturb without equilibrium" "$scene" --balls 2,4 --perturb 1e-3
+bad "unknown method"              "$scene" --balls 2,4 --method euler
+bad "rtol out of range"           "$scene" --balls 2,4 --rtol 0
+bad "negative every"              "$scene" --balls 2,4 --every -1
+
+# --- Ctrl-C keeps what was computed ----------------------------------------------------------
+"$bin" simulate "$scene" --set mu=0 --method rk8pd --balls 2,4 --t-end 1e4 --every 0.1 --no-chart --quiet -o "$work/int" \
+  --summary "$work/int.json" 2>"$work/int.err" &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid
+code=$?
+check "SIGINT exits 130" "[ $code -eq 130 ]"
+check "SIGINT keeps the CSV" "[ \$(grep -v '^#' '$work/int/simulation.csv' | tail -n +2 | wc -l) -gt 1 ]"
+check "SIGINT keeps the summary, status interrupted" "grep -q '\"status\": \"interrupted\"' '$work/int.json'"
+
+# --- a run that cannot finish: exit 3, where and why, samples kept ---------------------------
+"$bin" simulate "$scene" --balls 2,4 --t-end 0.01 --max-steps 100 --no-chart --quiet -o "$work/fail" 2>"$work/fail.err"
+code=$?
+if [ $code -eq 3 ]; then
+  pass "step budget exceeded exits 3 ($(grep -m1 'numerical failure' "$work/fail.err" | cut -c1-120))"
+  check "failed run keeps its CSV" "[ -s '$work/fail/simulation.csv' ]"
+else
+  fail "step budget exceeded: exit $code, expected 3"
+fi
+finish
