@@ -47,13 +47,13 @@ std::string_view to_string(SimulationStatus s) {
   return "?";
 }
 
-std::string_view to_string(Outcome o) {
+std::string_view to_string(SimulationOutcome o) {
   switch (o) {
-    case Outcome::balanced: return "balanced";
-    case Outcome::aligned: return "aligned";
-    case Outcome::rest: return "stuck";
-    case Outcome::periodic: return "periodic";
-    case Outcome::not_settled: return "not_settled";
+    case SimulationOutcome::balanced: return "balanced";
+    case SimulationOutcome::aligned: return "aligned";
+    case SimulationOutcome::rest: return "stuck";
+    case SimulationOutcome::periodic: return "periodic";
+    case SimulationOutcome::not_settled: return "not_settled";
   }
   return "?";
 }
@@ -514,16 +514,16 @@ SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& spe
     bool on_line = q_abs > 0;
     for (int i = 0; i < n; ++i) on_line = on_line && std::abs(std::sin(last.x(2 + i) - phi)) <= 1e-2;
     if (q_abs <= 1e-2 * L && std::hypot(w1, w2) <= 1e-2 * capacity) {
-      s.outcome = Outcome::balanced;
+      s.outcome = SimulationOutcome::balanced;
       s.note = fmt::format("at rest with |q| = {:.3g} L and residual unbalance |W| = {:.3g} of U + sum m l", q_abs / L,
                            std::hypot(w1, w2) / capacity);
     } else if (on_line) {
-      s.outcome = Outcome::aligned;
+      s.outcome = SimulationOutcome::aligned;
       const double ref = std::cos(last.x(2) - phi);
       for (int i = 0; i < n; ++i) s.pattern += std::cos(last.x(2 + i) - phi) * ref >= 0 ? '+' : '-';
       s.note = fmt::format("at rest with every ball on the line of q (|q| = {:.4g} m), pattern {}", q_abs, s.pattern);
     } else {
-      s.outcome = Outcome::rest;
+      s.outcome = SimulationOutcome::rest;
       s.note = "at rest off every equilibrium: the balls creep too slowly to move within the window (dry friction; the stick set of model.md (5.10))";
     }
     return s;
@@ -541,11 +541,11 @@ SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& spe
   const double top = std::max(hi[0], hi[1]);
   if (!s.speed_changing_at_end && samples.size() - w0 >= 8 && top > 0 && std::abs(hi[0] - hi[1]) <= 0.02 * top &&
       std::abs(lo[0] - lo[1]) <= 0.02 * top) {
-    s.outcome = Outcome::periodic;
+    s.outcome = SimulationOutcome::periodic;
     s.note = fmt::format("steady oscillation: |q| in [{:.4g}, {:.4g}] m in both halves of the final window{}", lo[1],
                          hi[1], s.stalled ? " (stalled balls)" : "");
   } else {
-    s.outcome = Outcome::not_settled;
+    s.outcome = SimulationOutcome::not_settled;
     s.note = s.speed_changing_at_end ? "the speed is still changing at the end of the run"
                                      : "still moving at the end of the run (neither at rest nor a steady oscillation)";
   }

@@ -60,8 +60,8 @@ enum class SimulationStatus { completed, interrupted, failed };
 std::string_view to_string(SimulationStatus s);
 
 /// What a run ended in (model.md §15.2).
-enum class Outcome { balanced, aligned, rest, periodic, not_settled };  // rest is written "stuck"
-std::string_view to_string(Outcome o);
+enum class SimulationOutcome { balanced, aligned, rest, periodic, not_settled };  // rest is written "stuck"
+std::string_view to_string(SimulationOutcome o);
 
 template <int N>
 struct TrajectorySample {
@@ -80,7 +80,7 @@ struct IntegrationStats {
 };
 
 struct SimulationSummary {
-  Outcome outcome = Outcome::not_settled;
+  SimulationOutcome outcome = SimulationOutcome::not_settled;
   std::string pattern;              ///< aligned: "+-" etc. (ball 1 is +), else empty
   std::string note;                 ///< why, in words
   double t_end = 0;                 ///< the last sample's time (< the requested end if interrupted or failed)
