@@ -46,40 +46,82 @@ Coordinates<long double, 2> parse_state(const std::string& text) {
   if (n != 4) throw InputError("--from-state", 0, text, "expected four finite numbers q1,q2,beta1,beta2 (SI)");
   return s;
 }
+// A continuation parameter given by `option` (--param, --param2): a known symbol (not the
+// ball radius, unless `radius_allowed`), its end value `to` (option `to_option`) inside the
+// parameter's range by the scene's own rules.
+ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
+                       const std::string& to_option, double to, bool radius_allowed = false) {
+  const auto ref = parse_param(symbol, int(scene.balls.size()));
+  if (!ref) throw InputError(option, 0, symbol, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+  if (!radius_allowed && ref->quantity == Quantity::ball_radius)
+    throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
+  Scene probe = scene;
+  set_checked(probe, *ref, to, to_option);
+  return *ref;
+}
+
+// The end value must move the parameter away from the scene's value.
+template <class P>
+void check_moves(const P& p, ParamRef ref, double to, const std::string& to_option, const std::string& symbol) {
+  if (to == get(p, ref))
+    throw InputError(to_option, 0, symbol, fmt::format("must differ from the start value {}", get(p, ref)));
+}
+
+// The two-parameter curves' CSV and chart staged in `out`, their failures warned about.
+template <class BoundaryRunT>
+void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, const std::filesystem::path& dir,
+                      const std::string& header, bool chart, const char* script, const std::string& title) {
+  const std::string name = to_string(boundaries.param), name2 = to_string(boundaries.param2);
+  const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
+  if (chart)
+    run_gnuplot(plots_dir() / script,
+                {{"curves", curves.string()},
+                 {"png", out.reserve(dir / fmt::format("boundary_{}_{}.png", name, name2)).string()},
+                 {"param", name},
+                 {"unit", std::string(unit(boundaries.param.quantity))},
+                 {"param2", name2},
+                 {"unit2", std::string(unit(boundaries.param2.quantity))},
+                 {"title", title}});
+  for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
+    for (int end = 0; end < 2; ++end)
+      if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
+        fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
+  fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
+}
+
+// The run's one-line account (`what`: "N branches" and more), and its exit code: a
+// branch that ended in a step underflow is a numerical failure.
+template <class RunT>
+int finish(const RunT& run, const std::string& what, const std::filesystem::path& dir) {
+  std::size_t points = 0, specials_count = 0;
+  for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
+  fmt::print(stderr, "{}, {} points, {} special points -> {}\n", what, points, specials_count, dir.string());
+  for (const auto& b : run.branches)
+    for (int end = 0; end < 2; ++end)
+      if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
+  return exit_ok;
+}
+
 // Three or more balls (branches_n.hpp): every aligned branch and every balanced sample
 // (free angles held), LP/BP/HB located, the balanced set's Hopf envelope.
 int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   const int n_balls = int(scene.balls.size());
-  const auto ref = parse_param(o.param, n_balls);
-  if (!ref) throw InputError("--param", 0, o.param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
-  if (ref->quantity == Quantity::ball_radius)
-    throw InputError("--param", 0, o.param, "the ball radius does not enter the equations of motion (model.md §3)");
-  {
-    Scene probe = scene;
-    set_checked(probe, *ref, o.to, "--to");
-  }
+  const ParamRef param = checked_param(scene, "--param", o.param, "--to", o.to);
   if (const auto rule = options_violation(o.numerics)) throw InputError("options", 0, "", *rule);
   if (!o.family.empty() || !o.state.empty())
     throw NotSupportedError(fmt::format("--from-equilibrium / --from-state with {} balls (every aligned equilibrium "
                                         "and balanced sample is continued)", n_balls));
   const ParamsN p = params_of<any_balls>(scene);
-  if (o.to == get(p, *ref))
-    throw InputError("--to", 0, o.param, fmt::format("must differ from the start value {}", get(p, *ref)));
+  check_moves(p, param, o.to, "--to", o.param);
   std::optional<ParamRef> ref2;
   if (!o.param2.empty()) {
-    ref2 = parse_param(o.param2, n_balls);
-    if (!ref2) throw InputError("--param2", 0, o.param2, fmt::format("unknown parameter; known: {}", param_symbols_help()));
-    if (*ref2 == *ref) throw InputError("--param2", 0, o.param2, "must differ from --param");
-    if (ref2->quantity == Quantity::ball_radius)
-      throw InputError("--param2", 0, o.param2, "the ball radius does not enter the equations of motion (model.md §3)");
-    Scene probe = scene;
-    set_checked(probe, *ref2, o.to2, "--to2");
-    if (o.to2 == get(p, *ref2))
-      throw InputError("--to2", 0, o.param2, fmt::format("must differ from the start value {}", get(p, *ref2)));
+    ref2 = checked_param(scene, "--param2", o.param2, "--to2", o.to2);
+    if (*ref2 == param) throw InputError("--param2", 0, o.param2, "must differ from --param");
+    check_moves(p, *ref2, o.to2, "--to2", o.param2);
   }
-  const ContinuationRunN run = continue_branches(p, *ref, o.to, o.numerics, o.sampling);
+  const ContinuationRunN run = continue_branches(p, param, o.to, o.numerics, o.sampling);
   fmt::print(stderr, "{}", continuation_warnings(run));
-  const std::string name = to_string(*ref);
+  const std::string name = to_string(param);
   const std::filesystem::path dir(o.output_dir);
   const std::string header = provenance_header(command_line(), scene.file, p);
   OutputTransaction out;
@@ -93,37 +135,14 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
                  {"envelope", envelope.string()},
                  {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                  {"param", name},
-                 {"unit", std::string(unit(ref->quantity))},
+                 {"unit", std::string(unit(param.quantity))},
                  {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)}});
-  if (ref2) {
-    const BoundaryRunN boundaries = continue_boundaries(p, run, *ref2, o.to2, o.numerics);
-    const std::string name2 = to_string(*ref2);
-    const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
-    if (o.chart)
-      run_gnuplot(plots_dir() / "boundary_n.gp",
-                  {{"curves", curves.string()},
-                   {"png", out.reserve(dir / fmt::format("boundary_{}_{}.png", name, name2)).string()},
-                   {"param", name},
-                   {"unit", std::string(unit(ref->quantity))},
-                   {"param2", name2},
-                   {"unit2", std::string(unit(ref2->quantity))},
-                   {"title", fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
-                                         name2)}});
-    for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
-      for (int end = 0; end < 2; ++end)
-        if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
-          fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
-    fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
-  }
+  if (ref2)
+    stage_boundaries(out, continue_boundaries(p, run, *ref2, o.to2, o.numerics), dir, header, o.chart, "boundary_n.gp",
+                     fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
+                                 to_string(*ref2)));
   out.commit();
-  std::size_t points = 0, specials_count = 0;
-  for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
-  fmt::print(stderr, "{} branches ({} balanced samples), {} points, {} special points -> {}\n", run.branches.size(),
-             run.envelope.samples, points, specials_count, dir.string());
-  for (const auto& b : run.branches)
-    for (int end = 0; end < 2; ++end)
-      if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
-  return exit_ok;
+  return finish(run, fmt::format("{} branches ({} balanced samples)", run.branches.size(), run.envelope.samples), dir);
 }
 }  // namespace
 
@@ -159,18 +178,10 @@ Action add_continue_command(CLI::App& app) {
   return [o]() -> int {
     Scene scene = load(o->scene);
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
-    const auto ref = parse_param(o->param, int(scene.balls.size()));
-    if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
-    if (ref->quantity == Quantity::ball_radius)
-      throw InputError("--param", 0, o->param, "the ball radius does not enter the equations of motion (model.md §3)");
-    {
-      Scene probe = scene;
-      set_checked(probe, *ref, o->to, "--to");
-    }
+    const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
     const Params p = params_of<2>(scene);
-    if (o->to == get(p, *ref))
-      throw InputError("--to", 0, o->param, fmt::format("must differ from the start value {}", get(p, *ref)));
+    check_moves(p, param, o->to, "--to", o->param);
     StartSelection start;
     if (!o->family.empty()) start.family = o->family == "balanced" ? Family::balanced
                                            : o->family == "together" ? Family::together
@@ -178,19 +189,14 @@ Action add_continue_command(CLI::App& app) {
     if (!o->state.empty()) start.state = parse_state(o->state);
     std::optional<ParamRef> ref2;
     if (!o->param2.empty()) {
-      ref2 = parse_param(o->param2, int(scene.balls.size()));
-      if (!ref2)
-        throw InputError("--param2", 0, o->param2, fmt::format("unknown parameter; known: {}", param_symbols_help()));
-      if (*ref2 == *ref) throw InputError("--param2", 0, o->param2, "must differ from --param");
-      Scene probe = scene;
-      set_checked(probe, *ref2, o->to2, "--to2");
-      if (o->to2 == get(p, *ref2))
-        throw InputError("--to2", 0, o->param2, fmt::format("must differ from the start value {}", get(p, *ref2)));
+      ref2 = checked_param(scene, "--param2", o->param2, "--to2", o->to2, /*radius_allowed=*/true);
+      if (*ref2 == param) throw InputError("--param2", 0, o->param2, "must differ from --param");
+      check_moves(p, *ref2, o->to2, "--to2", o->param2);
     }
 
-    const ContinuationRun run = continue_branches(p, *ref, o->to, o->numerics, start);
+    const ContinuationRun run = continue_branches(p, param, o->to, o->numerics, start);
     fmt::print(stderr, "{}", continuation_warnings(run));
-    const std::string name = to_string(*ref);
+    const std::string name = to_string(param);
     const std::filesystem::path dir(o->output_dir);
     const std::string header = provenance_header(command_line(), scene.file, p);
     OutputTransaction out;
@@ -202,36 +208,14 @@ Action add_continue_command(CLI::App& app) {
                    {"specials", specials.string()},
                    {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                    {"param", name},
-                   {"unit", std::string(unit(ref->quantity))},
+                   {"unit", std::string(unit(param.quantity))},
                    {"title", fmt::format("{}: continuation in {}", scene.file, name)}});
-    if (ref2) {
-      const BoundaryRun boundaries = continue_boundaries(p, run, *ref2, o->to2, o->numerics);
-      const std::string name2 = to_string(*ref2);
-      const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
-      if (o->chart)
-        run_gnuplot(plots_dir() / "boundary.gp",
-                    {{"curves", curves.string()},
-                     {"png", out.reserve(dir / fmt::format("boundary_{}_{}.png", name, name2)).string()},
-                     {"param", name},
-                     {"unit", std::string(unit(ref->quantity))},
-                     {"param2", name2},
-                     {"unit2", std::string(unit(ref2->quantity))},
-                     {"title", fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, name2)}});
-      for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
-        for (int end = 0; end < 2; ++end)
-          if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
-            fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
-      fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
-    }
+    if (ref2)
+      stage_boundaries(out, continue_boundaries(p, run, *ref2, o->to2, o->numerics), dir, header, o->chart,
+                       "boundary.gp",
+                       fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)));
     out.commit();
-    std::size_t points = 0, specials_count = 0;
-    for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
-    fmt::print(stderr, "{} branches, {} points, {} special points -> {}\n", run.branches.size(), points,
-               specials_count, dir.string());
-    for (const auto& b : run.branches)
-      for (int end = 0; end < 2; ++end)
-        if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
-    return exit_ok;
+    return finish(run, fmt::format("{} branches", run.branches.size()), dir);
   };
 }
 

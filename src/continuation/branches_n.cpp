@@ -16,6 +16,9 @@
 #include "abu/continuation/bifurcation.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/static_equations.hpp"
+#include "branch_ends.hpp"
+#include "balanced_envelope.hpp"
+#include "ball_symmetry.hpp"
 #include "branch_systems_n.hpp"
 
 namespace abu {
@@ -85,11 +88,10 @@ class Tracer : public S {
     return e;
   }
 
-  void commit(Vec& u, Vec& t, arclength::Stage stage) {
+  void commit(Vec& u, Vec& /*t*/, arclength::Stage stage) {
     points.push_back(std::move(pending_));
     if (stage == arclength::Stage::edge) points.back().label = Label::EP;
     us_.push_back(u);
-    ts_.push_back(t);
   }
 
   // The engine ends a branch as closed when it comes back within one step of its start:
@@ -322,28 +324,16 @@ class Tracer : public S {
   }
 
   BranchPointN pending_;
-  std::vector<Vec> us_, ts_;
+  std::vector<Vec> us_;  // the committed points, for the midpoint check
 };
 
-// How one direction of a branch ended, in the terms of continuation.hpp.
+// How one direction of a branch ended (branch_ends.hpp).
 template <class P>
 std::pair<StopReason, std::string> stop_of(const StaticEquationsN& eq, const P& problem,
                                            const arclength::Result<P>& r, const ContinuationOptions& options) {
-  const auto at = [&](const typename P::Vec& u) {
+  return stop_of(r, options, [&](const typename P::Vec& u) {
     return fmt::format("{}={:.17g}", to_string(eq.param()), double(eq.parameter(problem.full(u))));
-  };
-  switch (r.end) {
-    case arclength::End::end_of_interval: return {StopReason::end_of_range, {}};
-    case arclength::End::edge_not_reached:
-      return {StopReason::step_underflow, fmt::format("no equilibrium found at the end value {}", at(r.beyond))};
-    case arclength::End::left_domain: return {StopReason::invalid_parameter, r.reason};
-    case arclength::End::closed_loop: return {StopReason::closed_loop, {}};
-    case arclength::End::max_steps:
-      return {StopReason::max_steps, fmt::format("stopped after {} steps at {}", options.max_steps, at(r.last))};
-    case arclength::End::step_underflow:
-      return {StopReason::step_underflow, fmt::format("{} with step {:.3g} at {}", r.reason, double(r.ds), at(r.last))};
-  }
-  return {StopReason::step_underflow, r.reason};
+  });
 }
 
 // Traces the branch of `system` through z0 (scaled parameter `end`: 0 the start value,
@@ -400,120 +390,6 @@ bool passes_through(const StaticEquationsN& eq, const BranchN& b, const Unknowns
   for (const auto& pt : b.points)
     if (angle_distance(eq.scaled(pt.position, pt.parameter), z) < 1e-8L) return true;
   return false;
-}
-
-// The envelope of the Hopf points of all samples: the parameter interval cut at every
-// located HB and LP of any sample (and at the ends of every sample's branch); in each
-// piece a sample counts as normally stable if every part of its branch over the piece
-// is (a part: the points between two consecutive special points, all of one stability,
-// as no test function changed sign between them).
-BalancedEnvelope envelope_of(const std::vector<BranchN>& branches, ld from, ld to) {
-  struct Part {
-    ld lo, hi;
-    bool stable;
-  };
-  BalancedEnvelope env;
-  std::vector<ld> cuts{std::min(from, to), std::max(from, to)};
-  std::vector<std::vector<Part>> parts;
-  std::vector<int> weights;  // samples each branch stands for
-  for (const auto& b : branches) {
-    if (b.family != Family::balanced || b.points.empty()) continue;
-    const int weight = 1 + b.images;
-    env.samples += weight;
-    bool hopf = false;
-    std::vector<Part>& mine = parts.emplace_back();
-    std::size_t next = 0;  // the next special along the branch
-    for (std::size_t k = 0; k < b.points.size(); ++k) {
-      const BranchPointN& pt = b.points[k];
-      const bool stable = pt.spectrum.stability == Stability::stable;
-      bool fresh = mine.empty();
-      while (next < b.specials.size() && b.specials[next].next_point <= int(k)) {
-        const SpecialPointN& sp = b.specials[next++];
-        if (sp.label != Label::HB && sp.label != Label::LP) continue;
-        hopf = hopf || sp.label == Label::HB;
-        cuts.push_back(sp.parameter);
-        if (!mine.empty()) mine.back().lo = std::min(mine.back().lo, sp.parameter), mine.back().hi = std::max(mine.back().hi, sp.parameter);
-        mine.push_back({sp.parameter, sp.parameter, stable});
-        fresh = false;
-      }
-      if (fresh) mine.push_back({pt.parameter, pt.parameter, stable});
-      Part& part = mine.back();
-      part.lo = std::min(part.lo, pt.parameter), part.hi = std::max(part.hi, pt.parameter);
-      part.stable = part.stable && stable;
-    }
-    env.samples_with_hopf += hopf ? weight : 0;
-    weights.push_back(weight);
-    cuts.push_back(b.points.front().parameter), cuts.push_back(b.points.back().parameter);
-  }
-  std::sort(cuts.begin(), cuts.end());
-  const auto same = [](ld x, ld y) { return std::abs(x - y) <= 1e-12L * std::max(std::abs(x), std::abs(y)); };
-  cuts.erase(std::unique(cuts.begin(), cuts.end(), same), cuts.end());
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    BalancedEnvelope::Interval iv{cuts[k], cuts[k + 1], 0, 0};
-    const ld mid = (iv.from + iv.to) / 2;
-    for (std::size_t b = 0; b < parts.size(); ++b) {
-      bool covered = false, stable = true;
-      for (const Part& part : parts[b])
-        if (part.lo <= mid && mid <= part.hi) covered = true, stable = stable && part.stable;
-      iv.samples += covered ? weights[b] : 0;
-      iv.stable += covered && stable ? weights[b] : 0;
-    }
-    env.intervals.push_back(iv);
-  }
-  return env;
-}
-
-// Balls with bit-identical parameters are interchangeable: the equations of model.md §3
-// are invariant under permuting them, so a permuted equilibrium is an equilibrium with
-// the same spectrum along the same parameter values (§13.7). class_of[i]: the first ball
-// equal to ball i.
-std::vector<int> ball_classes(const ParamsN& p) {
-  const auto same = [](const BallT<double>& a, const BallT<double>& b) {
-    return a.mass == b.mass && a.race_radius == b.race_radius && a.radius == b.radius &&
-           a.inertia_factor == b.inertia_factor && a.mu == b.mu && a.d == b.d && a.mu_c == b.mu_c &&
-           a.mu_s == b.mu_s && a.v_s == b.v_s;
-  };
-  std::vector<int> class_of(std::size_t(p.n_balls()));
-  for (int i = 0; i < p.n_balls(); ++i) {
-    class_of[std::size_t(i)] = i;
-    for (int j = 0; j < i; ++j)
-      if (same(p.balls[std::size_t(j)], p.balls[std::size_t(i)])) {
-        class_of[std::size_t(i)] = j;
-        break;
-      }
-  }
-  return class_of;
-}
-
-// The canonical image of s: among balls first_ball.., the angles of each class of
-// interchangeable balls sorted by wrapped value (ascending), the rest unchanged.
-Coordinates<ld, any_balls> canonical(const Coordinates<ld, any_balls>& s, const std::vector<int>& class_of,
-                                     int first_ball) {
-  Coordinates<ld, any_balls> out = s;
-  const int n = int(class_of.size());
-  for (int c = 0; c < n; ++c) {
-    std::array<int, max_balls> members{};
-    std::array<ld, max_balls> angles{};
-    int k = 0;
-    for (int i = first_ball; i < n; ++i)
-      if (class_of[std::size_t(i)] == c) members[std::size_t(k)] = i, angles[std::size_t(k++)] = wrap_angle(s(2 + i));
-    // Insertion sort (k <= 12; std::sort on a prefix of the array trips GCC 12's
-    // -Warray-bounds with a false positive).
-    for (int a = 1; a < k; ++a)
-      for (int b = a; b > 0 && angles[std::size_t(b)] < angles[std::size_t(b - 1)]; --b)
-        std::swap(angles[std::size_t(b)], angles[std::size_t(b - 1)]);
-    for (int j = 0; j < k; ++j) out(2 + members[std::size_t(j)]) = angles[std::size_t(j)];
-  }
-  return out;
-}
-
-// The sign pattern of an aligned configuration, ball 1 taken '+' (equilibria.hpp).
-unsigned pattern_of(const Coordinates<ld, any_balls>& s) {
-  unsigned bits = 0;
-  for (Eigen::Index i = 1; i + 2 < s.size(); ++i)
-    if (std::abs(std::remainder(s(2 + i) - s(2), 2 * std::numbers::pi_v<ld>)) > std::numbers::pi_v<ld> / 2)
-      bits |= 1u << unsigned(i);
-  return bits;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "abu/continuation/corrector.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/static_equations.hpp"
+#include "branch_ends.hpp"
 #include "branch_tracer.hpp"
 
 namespace abu {
@@ -82,21 +83,11 @@ Family classify(const Params& p, const Coordinates<long double, 2>& s) {
 }
 
 namespace {
-// How one direction of a branch ended, in the terms of continuation.hpp.
+// How one direction of a branch ended (branch_ends.hpp).
 std::pair<StopReason, std::string> stop_of(const StaticEquations& eq, const arclength::Result<BranchTracer>& r,
                                            const ContinuationOptions& options) {
-  const auto at = [&](const Vec5& z) { return fmt::format("{}={:.17g}", to_string(eq.param()), double(eq.parameter(z))); };
-  switch (r.end) {
-    case arclength::End::end_of_interval: return {StopReason::end_of_range, {}};
-    case arclength::End::edge_not_reached:
-      return {StopReason::step_underflow, fmt::format("no equilibrium found at the end value {}", at(r.beyond))};
-    case arclength::End::left_domain: return {StopReason::invalid_parameter, r.reason};
-    case arclength::End::closed_loop: return {StopReason::closed_loop, {}};
-    case arclength::End::max_steps: return {StopReason::max_steps, fmt::format("stopped after {} steps at {}", options.max_steps, at(r.last))};
-    case arclength::End::step_underflow:
-      return {StopReason::step_underflow, fmt::format("{} with step {:.3g} at {}", r.reason, double(r.ds), at(r.last))};
-  }
-  return {StopReason::step_underflow, r.reason};
+  return stop_of(r, options,
+                 [&](const Vec5& z) { return fmt::format("{}={:.17g}", to_string(eq.param()), double(eq.parameter(z))); });
 }
 
 // Traces the branch through `e` at scaled parameter z4 = end (0: the start value, 1 the

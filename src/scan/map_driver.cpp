@@ -491,19 +491,20 @@ void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, 
   for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv);
 }
 
-std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
-  if (job.any_balls) return std::nullopt;
-  BoundaryRun all;
+namespace {
+// The fold and Hopf curves of the map's plane from the continuations in x along its bottom
+// and top edges (`trace(p, to2)`: the branches at p, their points continued in y to to2).
+template <class BoundaryRunT, class P, class Trace>
+BoundaryRunT along_edges(const MapJob& job, const P& base, Trace trace) {
+  BoundaryRunT all;
   all.param = job.x.param;
   all.param2 = job.y.param;
   all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
-  ContinuationOptions options;
   for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
-    Params p = job.params;
+    P p = base;
     set(p, job.x.param, job.x.from);
     set(p, job.y.param, at);
-    const ContinuationRun run = continue_branches(p, job.x.param, job.x.to, options, StartSelection{});
-    BoundaryRun part = continue_boundaries(p, run, job.y.param, to, options);
+    BoundaryRunT part = trace(p, to);
     for (auto& c : part.curves) all.curves.push_back(std::move(c));
     for (auto& n : part.notes) all.notes.push_back(std::move(n));
   }
@@ -512,27 +513,25 @@ std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
       "inside the map touching neither edge is not drawn");
   return all;
 }
+}  // namespace
+
+std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
+  if (job.any_balls) return std::nullopt;
+  const ContinuationOptions options;
+  return along_edges<BoundaryRun>(job, job.params, [&](const Params& p, double to2) {
+    const ContinuationRun run = continue_branches(p, job.x.param, job.x.to, options, StartSelection{});
+    return continue_boundaries(p, run, job.y.param, to2, options);
+  });
+}
 
 std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job) {
   if (!job.any_balls || job.x.ball_count || job.y.ball_count || job.params_n.n_balls() < 3) return std::nullopt;
-  BoundaryRunN all;
-  all.param = job.x.param;
-  all.param2 = job.y.param;
-  all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
-  all.n_balls = job.params_n.n_balls();
-  ContinuationOptions options;
-  for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
-    ParamsN p = job.params_n;
-    set(p, job.x.param, job.x.from);
-    set(p, job.y.param, at);
+  const ContinuationOptions options;
+  BoundaryRunN all = along_edges<BoundaryRunN>(job, job.params_n, [&](const ParamsN& p, double to2) {
     const ContinuationRunN run = continue_branches(p, job.x.param, job.x.to, options, job.sampling);
-    BoundaryRunN part = continue_boundaries(p, run, job.y.param, to, options);
-    for (auto& c : part.curves) all.curves.push_back(std::move(c));
-    for (auto& n : part.notes) all.notes.push_back(std::move(n));
-  }
-  all.notes.push_back(
-      "curves found from the fold and Hopf points on the bottom and top edges of the map; a closed curve "
-      "inside the map touching neither edge is not drawn");
+    return continue_boundaries(p, run, job.y.param, to2, options);
+  });
+  all.n_balls = job.params_n.n_balls();
   return all;
 }
 
