@@ -56,6 +56,8 @@ class CurveTracer : public CurveSystem<N> {
     return e;
   }
   void locate(unsigned changed, const arclength::Segment<Vec>& between);
+  // The generalized Hopf point between two points of a Hopf curve where l1 changes sign.
+  void locate_generalized_hopf(const Vec& ya, const Vec& yb, ld la, ld lb);
   void commit(Vec& y, Vec& t, Stage stage) {
     previous_ = pending_;
     if (stage == Stage::step) this->rescale_frequency(y, t);
@@ -97,6 +99,7 @@ BoundaryPoint CurveTracer<N>::point(const Vec& y, Label label) const {
   p.parameter2 = this->parameter2(y);
   p.position = eq.position(z);
   p.frequency = this->omega(y);
+  if constexpr (Sys::hopf) p.lyapunov = first_lyapunov_coefficient(eq.params(z), p.position, p.frequency);
   p.family = classify(this->base(), p.position);
   p.label = label;
   return p;
@@ -114,7 +117,7 @@ void CurveTracer<N>::locate(unsigned changed, const arclength::Segment<Vec>& bet
   };
   if constexpr (Sys::hopf) {
     flag(1u << 0, Label::ZH, previous_.static_det, pending_.static_det);
-    flag(1u << 1, Label::GH, previous_.lyapunov, pending_.lyapunov);
+    if (changed & (1u << 1)) locate_generalized_hopf(ya, yb, previous_.lyapunov, pending_.lyapunov);
   } else {
     flag(1u << 0, Label::CP, previous_.fold.cusp, pending_.fold.cusp);
     flag(1u << 1, Label::BT, previous_.fold.bogdanov_takens, pending_.fold.bogdanov_takens);
@@ -123,6 +126,59 @@ void CurveTracer<N>::locate(unsigned changed, const arclength::Segment<Vec>& bet
     if ((changed & (1u << 2)) && std::abs(previous_.n_unstable - pending_.n_unstable) == 2)
       points.push_back(point((ya + yb) / 2, Label::ZH));
   }
+}
+
+template <int N>
+void CurveTracer<N>::locate_generalized_hopf(const Vec& ya, const Vec& yb, ld la, ld lb) {
+  // l1 is exact to long-double rounding (Taylor coefficients, bifurcation.cpp), so its zero
+  // along the curve is located, not interpolated: the point at chord fraction theta is
+  // corrected onto the curve in the hyperplane normal to the chord (the engine's
+  // corrector), and theta is found by the Illinois variant of regula falsi on l1 there
+  // (superlinear, never leaves the bracket). Linear interpolation of l1 between the two
+  // curve points, what this replaces, put the default scene's GH at mu = 3.24e-3, 3.14e-3
+  // or 3.12e-3 depending on where the steps fell.
+  const Vec chord = yb - ya;
+  Vec y = ya;
+  const auto l1_at = [&](ld theta, bool& ok) -> ld {
+    const auto c = arclength::correct(*this, Vec(ya + theta * chord), chord);
+    ok = c.converged();
+    if (!ok) return 0;
+    y = c.u;
+    const StaticEquations eq = this->at(y);
+    return first_lyapunov_coefficient(eq.params(Sys::z(y)), eq.position(Sys::z(y)), this->omega(y));
+  };
+  ld a = 0, b = 1, fa = la, fb = lb;
+  int side = 0;
+  bool located = false;
+  for (int it = 0; it < 100 && !located; ++it) {
+    const ld theta = (a * fb - b * fa) / (fb - fa);
+    bool ok = false;
+    const ld f = l1_at(theta, ok);
+    if (!ok) break;
+    // Stop when the bracket is below 1e-13 of the chord (the corrector's own accuracy is
+    // ~1e-14 in the scaled unknowns) or l1 is zero to its rounding.
+    if (f == 0 || b - a < 1e-13L) {
+      located = true;
+      break;
+    }
+    if ((f > 0) == (fb > 0)) {
+      b = theta, fb = f;
+      if (side == -1) fa /= 2;
+      side = -1;
+    } else {
+      a = theta, fa = f;
+      if (side == 1) fb /= 2;
+      side = 1;
+    }
+    if (b - a < 1e-13L) located = true;
+  }
+  if (!located) {  // the corrector failed inside the segment: the interpolated point, said so
+    y = ya + (la / (la - lb)) * chord;
+  }
+  BoundaryPoint p = point(y, Label::GH);
+  p.lyapunov = 0;
+  p.located = located;
+  points.push_back(p);
 }
 
 // How one direction of a curve ended; the points of a curve that ended on a

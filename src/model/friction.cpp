@@ -1,5 +1,7 @@
 #include "abu/model/friction.hpp"
 
+#include "abu/core/taylor.hpp"
+
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -15,6 +17,10 @@ struct RealOf {
 };
 template <class T>
 struct RealOf<std::complex<T>> {
+  using type = T;
+};
+template <class T, int K>
+struct RealOf<Taylor<T, K>> {
   using type = T;
 };
 
@@ -149,5 +155,7 @@ ABU_INSTANTIATE_FRICTION(double, any_balls)
 ABU_INSTANTIATE_FRICTION(long double, any_balls)
 ABU_INSTANTIATE_FRICTION(std::complex<double>, any_balls)
 #undef ABU_INSTANTIATE_FRICTION
+template Taylor<long double, 3> friction_force<Taylor<long double, 3>, 2>(const ParamsT<Taylor<long double, 3>, 2>&, int,
+                                                                         const Taylor<long double, 3>&);
 
 }  // namespace abu

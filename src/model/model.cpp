@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 
+#include "abu/core/taylor.hpp"
 #include "abu/model/friction.hpp"
 
 namespace abu {
@@ -492,6 +493,12 @@ ABU_INSTANTIATE_MODEL(double, any_balls)
 ABU_INSTANTIATE_MODEL(long double, any_balls)
 ABU_INSTANTIATE_MODEL(std::complex<double>, any_balls)
 #undef ABU_INSTANTIATE_MODEL
+// Exact second and third derivatives along a direction (the first Lyapunov coefficient,
+// model.md §6.3): the vector field alone, in truncated Taylor series.
+template State<Taylor<long double, 3>, 2> vector_field<Taylor<long double, 3>, 2>(
+    const ParamsT<Taylor<long double, 3>, 2>&, const State<Taylor<long double, 3>, 2>&);
+template State<Taylor<long double, 3>, 2> vector_field<Taylor<long double, 3>, 2>(
+    const ParamsT<Taylor<long double, 3>, 2>&, const State<Taylor<long double, 3>, 2>&, const Taylor<long double, 3>&);
 template Coordinates<double, 2> static_force_scale<double, 2>(const ParamsT<double, 2>&, const Coordinates<double, 2>&);
 template Coordinates<long double, 2> static_force_scale<long double, 2>(const ParamsT<long double, 2>&,
                                                                         const Coordinates<long double, 2>&);

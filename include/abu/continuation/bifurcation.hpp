@@ -106,8 +106,8 @@ Located locate_hopf(const StaticEquations& eq, const StaticEquations::Vec5& z_gu
 /// bifurcation theory", eq. 3.20): l1 < 0 supercritical (a stable cycle is born),
 /// l1 > 0 subcritical. Computed on the first-order field f of model.md §3 in SI state
 /// coordinates with the critical eigenvector q normalized to <q, q> = 1; its sign is
-/// coordinate-free. The second and third derivatives of f are Richardson-extrapolated
-/// central differences in long double of the analytic field (relative accuracy ~1e-5).
+/// coordinate-free. The second and third derivatives of f are exact: Taylor coefficients
+/// of f along each direction in long double (model.md (6.8)-(6.10)), no step size.
 double first_lyapunov_coefficient(const Params& p, const Coordinates<long double, 2>& s, long double omega);
 
 }  // namespace abu

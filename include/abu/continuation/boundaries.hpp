@@ -26,6 +26,12 @@ struct BoundaryPoint {
   long double parameter = 0, parameter2 = 0;
   Coordinates<long double, 2> position = Coordinates<long double, 2>::Zero();
   long double frequency = 0;  ///< Hopf curves: omega_H [rad/s]
+  /// Hopf curves: the first Lyapunov coefficient l1 there (< 0 supercritical, > 0
+  /// subcritical; model.md (6.8)-(6.10)); 0 on fold curves and at the zero of a GH point.
+  long double lyapunov = 0;
+  /// GH points: located by a converged solve (false: interpolated, the corrector failed
+  /// inside the segment; the CSV says so).
+  bool located = true;
   Family family = Family::balanced;
   Label label = Label::none;  ///< EP at the ends, codimension-two labels where located
 };
