@@ -3,8 +3,9 @@
 //
 //   abu_consumer SCENE.toml [NAME=VALUE ...]
 //
-// Prints one CSV line per equilibrium, in the order and with the columns of
-// `stability-scan equilibria SCENE --format csv` (a subset of them):
+// Prints a comment line (the library's version and the scene), then one CSV line per
+// equilibrium, in the order and with the columns of `stability-scan equilibria SCENE
+// --format csv` (a subset of them):
 //   family,member,q1,q2,beta1,beta2,residual,spectral_abscissa,stable,re1,im1,...,re8,im8
 // q [m] and beta [rad] (rotating frame), eigenvalues [1/s] (rotating frame); numbers in
 // shortest round-trip form. Exit 2 on a bad scene (the library's message), 1 otherwise.
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     const abu::Params p = abu::params_of<2>(scene);  // throws NotSupportedError unless two balls
     const abu::Analysis a = abu::analyze(p);
     const auto points = a.equilibria.points();
+    std::printf("# abu %s, %s\n", ABU_VERSION, argv[1]);  // ABU_VERSION: defined by abu::abu
     std::printf("family,member,q1,q2,beta1,beta2,residual,spectral_abscissa,stable");
     for (int k = 1; k <= 8; ++k) std::printf(",re%d,im%d", k, k);
     std::printf("\n");

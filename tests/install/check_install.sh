@@ -73,6 +73,8 @@ cmake --build "$work/consumer" >>"$work/consumer.log" 2>&1
 check "consumer builds and links against libabu.a" "[ $? -eq 0 ]" || tail -30 "$work/consumer.log"
 "$work/consumer/abu_consumer" "$scene" >"$work/consumer.csv" 2>"$work/consumer.err"
 check "consumer runs" "[ $? -eq 0 ]"
+check "... and knows the library's version (ABU_VERSION from abu::abu)" \
+  "head -1 '$work/consumer.csv' | grep -qF \"# abu \$('$p/bin/stability-scan' --version | awk '{print \$2}'),\""
 "$p/bin/stability-scan" equilibria "$scene" --format csv >"$work/cli.csv"
 check "the consumer's equilibria are the CLI's, every number" \
   "/usr/bin/python3 '$(dirname "$0")/compare_equilibria.py' '$work/consumer.csv' '$work/cli.csv'"
