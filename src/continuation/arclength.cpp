@@ -28,5 +28,9 @@ std::string_view to_string(End e) {
   return "?";
 }
 
+std::string turning_reason(long double max_turning) {
+  return fmt::format("the tangent turned by more than {:g} rad", double(max_turning));
+}
+
 }  // namespace arclength
 }  // namespace abu

@@ -63,13 +63,33 @@ OutputTransaction::~OutputTransaction() {
   for (const auto& dir : created_dirs_) fs::remove(dir, ec);  // only if empty
 }
 
+// The one place that decides where the gnuplot scripts are (docs/install.md):
+//   1. $ABU_PLOTS_DIR, if set and not empty (taken as given: an explicit choice);
+//   2. next to the running program as installed: <dir of /proc/self/exe>/ABU_PLOTS_FROM_BINDIR
+//      (../share/abu/plots under GNUInstallDirs), so an installed tree can be moved;
+//   3. the source tree's plots/ (the build tree's binary, and programs linked against a
+//      library built from a tree that still exists);
+//   4. the configured install prefix's copy (a program linked against the installed
+//      library, run from anywhere).
+// If none exists, the source tree's path is returned and run_gnuplot says it is missing.
 fs::path plots_dir() {
   if (const char* env = std::getenv("ABU_PLOTS_DIR"); env && *env) return env;
-  return fs::path(ABU_SOURCE_PLOTS_DIR);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = (exe.parent_path() / ABU_PLOTS_FROM_BINDIR).lexically_normal();
+    if (fs::is_directory(installed, ec)) return installed;
+  }
+  const fs::path source(ABU_SOURCE_PLOTS_DIR);
+  if (fs::is_directory(source, ec)) return source;
+  const fs::path prefix(ABU_INSTALL_PLOTS_DIR);
+  if (fs::is_directory(prefix, ec)) return prefix;
+  return source;
 }
 
 void run_gnuplot(const fs::path& script, const std::vector<std::pair<std::string, std::string>>& variables) {
-  if (!fs::exists(script)) throw std::runtime_error(fmt::format("gnuplot script {} not found", script.string()));
+  if (!fs::exists(script)) throw std::runtime_error(
+        fmt::format("gnuplot script {} not found (set ABU_PLOTS_DIR to the directory of the scripts)", script.string()));
   std::string assignments;
   for (const auto& [name, value] : variables) {
     if (value.find('\'') != std::string::npos)

@@ -50,8 +50,6 @@
 #include <string_view>
 #include <utility>
 
-#include <fmt/format.h>
-
 #include "abu/continuation/bordered.hpp"
 
 namespace abu {
@@ -145,6 +143,9 @@ enum class End {
   step_underflow,    ///< a step failed at ds < ds_min
 };
 std::string_view to_string(End e);
+/// "the tangent turned by more than X rad" (X as printf %g): the engine's reason for a
+/// step refused on turning (kept out of the header so that it needs no formatting library).
+std::string turning_reason(long double max_turning);
 
 struct Stats {
   long steps = 0;              ///< accepted points (start and edge points not counted)
@@ -280,14 +281,14 @@ Result<P> trace(P& p, const typename P::Vec& u0, const typename P::Vec& t0, cons
     if (!c.converged() || !(moved <= ds)) {
       const auto why = [&]() -> std::string {
         return c.converged() ? std::string("the corrector converged farther than one step from the predictor")
-                             : fmt::format("the corrector did not converge ({})", c.reason);
+                             : "the corrector did not converge (" + std::string(c.reason) + ")";
       };
       if (!shrink(c.converged() ? Status::not_converged : c.status, why)) break;
       continue;
     }
     const Vec t_new = tangent(detail::tangent_jacobian(p, c), t);
     if (!(t_new.dot(t) > min_cos)) {
-      const auto why = [&] { return fmt::format("the tangent turned by more than {:g} rad", double(rules.max_turning)); };
+      const auto why = [&] { return turning_reason(rules.max_turning); };
       if (!shrink(Status::not_converged, why)) break;
       continue;
     }

@@ -45,7 +45,9 @@ class OutputTransaction {
   bool committed_ = false;
 };
 
-/// Directory of the gnuplot scripts: $ABU_PLOTS_DIR, else the source tree's plots/.
+/// Directory of the gnuplot scripts: $ABU_PLOTS_DIR; else ../share/abu/plots next to the
+/// running program (an installed tree); else the source tree's plots/; else the configured
+/// install prefix's share/abu/plots (docs/install.md).
 std::filesystem::path plots_dir();
 
 /// Runs `gnuplot -e "name='value';..." script`; throws std::runtime_error if gnuplot is
