@@ -85,3 +85,24 @@ def test_bad_continuation_parameter(default_scene):
             assert e.key == key
         else:
             raise AssertionError(f"{param} -> {to} accepted")
+
+
+def test_one_family_equals_cli_from_equilibrium(run_cli, default_scene, tmp_path):
+    run_cli("continue", default_scene, "--param", "omega", "--to", "200", "--from-equilibrium", "balanced", "-o",
+            tmp_path, "--no-chart")
+    run = abu.continue_branches(abu.load_scene(default_scene), "omega", 200, family="balanced")
+    assert {b.family for b in run.branches} == {"balanced"}
+    compare_specials(run, read_csv(tmp_path / "special_omega.csv"))
+    points = read_csv(tmp_path / "branch_omega.csv")
+    flat = np.concatenate([b.q_abs for b in run.branches])
+    assert len(flat) == len(points) and all(same(a, number(r["q_abs"])) for a, r in zip(flat, points))
+
+
+def test_start_selection_is_two_ball_only(source):
+    ring3 = abu.load_scene(source / "tests" / "scenes" / "continuation_n" / "ring3_coulomb.toml")
+    try:
+        abu.continue_branches(ring3, "omega", 400, family="balanced")
+    except abu.NotSupportedError as e:
+        assert "3 balls" in str(e)
+    else:
+        raise AssertionError("a start family was accepted for 3 balls")
