@@ -71,7 +71,7 @@ def load_scene(path, overrides=()):
     the CLI's message (file, line, key, rule) on any invalid input.
     """
     scene = _abu.load_scene(_os.fspath(path))
-    for assignment in overrides:
+    for assignment in [overrides] if isinstance(overrides, str) else overrides:
         scene.set(assignment)
     return scene
 
@@ -160,7 +160,7 @@ def scene_from_dict(data, overrides=(), name="<dict>"):
     and the rule. overrides: `NAME=VALUE` strings, as load_scene's.
     """
     scene = _abu.parse_scene(scene_toml(data), name)
-    for assignment in overrides:
+    for assignment in [overrides] if isinstance(overrides, str) else overrides:
         scene.set(assignment)
     return scene
 
