@@ -1,0 +1,59 @@
+// Shared by the two translation units of the compiled part of the Python module, abu._abu
+// (module.cpp: errors, scenes, equilibria, maps; runs.cpp: continuation, simulation).
+// These functions return plain dicts of numpy arrays and lists; python/abu/__init__.py
+// wraps them in the documented result classes. Long computations run with the GIL
+// released: results are computed into C++ values first and converted afterwards.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <complex>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "abu/core/status.hpp"
+
+namespace abu::python {
+
+namespace py = pybind11;
+
+/// Registers continue_branches and simulate (runs.cpp).
+void bind_runs(py::module_& m);
+
+/// A new C-ordered array of the given shape, zero-filled.
+template <class T>
+py::array_t<T> zeros(std::vector<py::ssize_t> shape) {
+  py::array_t<T> a(shape);
+  std::fill(a.mutable_data(), a.mutable_data() + a.size(), T{});
+  return a;
+}
+
+/// A 1-D array holding `values`.
+template <class T>
+py::array_t<T> array_of(const std::vector<T>& values) {
+  py::array_t<T> a(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), a.mutable_data());
+  return a;
+}
+/// std::vector<bool> has no data(): a bool array element by element.
+inline py::array_t<bool> bool_array_of(const std::vector<bool>& values) {
+  py::array_t<bool> a(static_cast<py::ssize_t>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) a.mutable_data()[i] = values[i];
+  return a;
+}
+
+/// "converged", "not converged", "numerical issue".
+inline std::string outcome_name(const Status& s) { return std::string(to_string(s.outcome)); }
+
+/// Polls Python's signal handlers (Ctrl-C) from a thread that does not hold the GIL;
+/// true if one raised (the exception stays set for the caller to rethrow).
+inline bool python_signal_pending() {
+  py::gil_scoped_acquire gil;
+  return PyErr_CheckSignals() != 0;
+}
+
+}  // namespace abu::python
