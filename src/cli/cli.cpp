@@ -32,7 +32,7 @@ std::string g_interrupt_note;
 
 // How long a computation may take to notice a stop request before the signal thread
 // removes the temporaries itself and ends the process (docs/robustness.md "Signals").
-constexpr auto kStopGrace = std::chrono::milliseconds(2000);
+constexpr auto kStopGrace = std::chrono::milliseconds(1000);
 
 void write_stderr(const std::string& text) noexcept {
   std::size_t done = 0;
@@ -59,6 +59,7 @@ void signal_thread(sigset_t set) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (sigpending(&pending) == 0 && (sigismember(&pending, SIGINT) || sigismember(&pending, SIGTERM))) break;
   }
+  hold_output_commits();  // a commit under way finishes; none starts
   const int removed = remove_registered_temporaries();
   std::string note;
   {

@@ -270,6 +270,8 @@ fs::path plots_dir() {
 
 int chart_failures() { return g_chart_failures.load(); }
 
+void hold_output_commits() noexcept { g_commit_mutex.lock(); }  // never released: the process ends
+
 void kill_running_chart() noexcept {
   if (const pid_t pid = g_chart_pid.load(); pid > 0) ::kill(pid, SIGTERM);
 }

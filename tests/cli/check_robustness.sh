@@ -107,6 +107,13 @@ for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300; do
   fi
 done
 
+# A failed eigenvalue refinement (kappa = 1e12: spectra over 26 decades) classifies by the
+# error it has: the balanced states, stable by a 40-digit computation (abscissa -3.6e-15),
+# are stable or marginal, never unstable.
+"$bin" equilibria "$scene" --set kappa=1e12 --set omega=400 --set mu=0.1 --format json 2>/dev/null >"$work/k.json"
+check "kappa=1e12: no balanced state called unstable after a failed refinement" \
+  "/usr/bin/python3 -c \"import json,sys; d=json.load(open('$work/k.json')); sys.exit(any(e['family']=='balanced' and e['stability']=='unstable' for e in d['equilibria']))\""
+
 # --- 5. exit codes, escapes, integers, overlaps, --set order -------------------------------
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/mx" 2>/dev/null
 check "a branch ending in MX exits 3" "[ $? -eq 3 ] && grep -q ',MX,' '$work/mx/special_omega.csv'"

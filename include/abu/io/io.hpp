@@ -78,6 +78,10 @@ std::filesystem::path plots_dir();
 /// (a warning, not a failure). Returns true if the script's own chart was drawn.
 bool run_gnuplot(const std::filesystem::path& script,
                  const std::vector<std::pair<std::string, std::string>>& variables);
+/// Waits for a commit under way and blocks every later one (the signal thread, before it
+/// removes the temporaries and ends the process: no commit is cut in the middle).
+void hold_output_commits() noexcept;
+
 /// Charts that could not be drawn in this process (exit code 4, docs/robustness.md).
 int chart_failures();
 /// Kills a running gnuplot (the signal thread).
