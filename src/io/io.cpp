@@ -341,13 +341,15 @@ int spawn_gnuplot(const fs::path& gnuplot, std::vector<std::string> args, std::s
 
 // gnuplot's message, shortened to its last lines and escaped for one terminal line each.
 std::string gnuplot_cause(const std::string& messages) {
-  std::vector<std::string> lines;
+  std::vector<std::string> lines, located;  // located: gnuplot's `"script" line N: ...` messages
   for (std::size_t start = 0; start < messages.size();) {
     const std::size_t end = std::min(messages.find('\n', start), messages.size());
     const std::string line = messages.substr(start, end - start);
     if (line.find_first_not_of(" \t^") != std::string::npos) lines.push_back(line);
+    if (line.rfind("\"", 0) == 0 && line.find("\" line ") != std::string::npos) located.push_back(line);
     start = end + 1;
   }
+  if (!located.empty()) lines = located;  // not the echoed command
   std::string cause;
   const std::size_t from = lines.size() > 3 ? lines.size() - 3 : 0;
   for (std::size_t i = from; i < lines.size(); ++i) cause += (cause.empty() ? "" : " | ") + escaped(lines[i]);
@@ -373,15 +375,38 @@ std::string gnuplot_string(const std::string& text) {
   return out;
 }
 
-// An empty chart carrying `note`, in the format of `output`'s target (png or svg).
-bool draw_note_chart(const fs::path& gnuplot, const std::string& output, const std::string& note) {
+// gnuplot's messages without the script's path and line ("warning: No valid data points
+// found in file"), one per line, for a note on a chart.
+std::vector<std::string> plain_messages(const std::string& messages) {
+  std::vector<std::string> out;
+  for (std::size_t start = 0; start < messages.size();) {
+    const std::size_t end = std::min(messages.find('\n', start), messages.size());
+    std::string line = messages.substr(start, end - start);
+    start = end + 1;
+    const bool is_located = line.rfind("\"", 0) == 0 && line.find("\" line ") != std::string::npos;
+    if (!is_located && messages.find("\" line ") != std::string::npos) continue;  // the echoed command
+    if (const auto colon = line.find(": "); is_located && colon != std::string::npos) line = line.substr(colon + 2);
+    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
+    if (std::find(out.begin(), out.end(), line) == out.end()) out.push_back(line.substr(0, 90));
+  }
+  if (out.size() > 3) out.resize(3);
+  return out;
+}
+
+// An empty chart carrying `title` and the note "no data to draw" with gnuplot's reasons,
+// in the format of `output`'s target (png or svg).
+bool draw_note_chart(const fs::path& gnuplot, const std::string& output, const std::string& title,
+                     const std::string& messages) {
   const bool svg = output.find(".svg.") != std::string::npos;
+  std::string text = "no data to draw";
+  for (const auto& m : plain_messages(messages)) text += "\\n(" + gnuplot_string(m) + ")";
   std::string script = fmt::format(
       "set terminal {} size 900,600; set output '{}'; unset border; unset xtics; unset ytics; unset key; "
-      "set label 1 \"{}\" at graph 0.5, 0.5 center font ',14'; plot [0:1][0:1] NaN notitle",
-      svg ? "svg" : "pngcairo", output, gnuplot_string(note));
-  std::string messages;
-  return spawn_gnuplot(gnuplot, {"gnuplot", "-e", script}, messages) == 0;
+      "set title \"{}\" noenhanced; set label 1 \"{}\" at graph 0.5, 0.55 center font ',14' noenhanced; "
+      "plot [0:1][0:1] NaN notitle",
+      svg ? "svg" : "pngcairo", output, gnuplot_string(title), text);
+  std::string ignored;
+  return spawn_gnuplot(gnuplot, {"gnuplot", "-e", script}, ignored) == 0;
 }
 }  // namespace
 
@@ -429,7 +454,10 @@ bool run_gnuplot(const fs::path& script, const std::vector<std::pair<std::string
                  : fmt::format("gnuplot exited with status {}: {}", status, gnuplot_cause(messages));
   if (status > 0 && degenerate_data(messages)) {
     bool drawn = !outputs.empty();
-    for (const auto& o : outputs) drawn = drawn && draw_note_chart(*gnuplot, o, "no data to draw: " + gnuplot_cause(messages));
+    std::string title = chart;
+    for (const auto& [name, value] : variables)
+      if (name == "title") title = value;
+    for (const auto& o : outputs) drawn = drawn && draw_note_chart(*gnuplot, o, title, messages);
     if (drawn) {
       fmt::print(stderr, "stability-scan: warning: chart '{}' has no drawable data ({}); drawn empty with that note\n",
                  chart, gnuplot_cause(messages));

@@ -71,6 +71,10 @@ done
 check "no boundary curve: exit 0, CSVs and a chart" \
   "[ $? -eq 0 ] && [ -s '$work/deg/boundary_omega_mu.csv' ] && [ -s '$work/deg/branch_omega.csv' ] && [ -s '$work/deg/boundary_omega_mu.png' ]"
 
+"$bin" sweep "$scene" --set U=0 --param omega --from 100 --to 1000 --steps 20 -o "$work/u0" 2>"$work/u0.err"
+check "U = 0 sweep (nothing on the log axis): exit 0, CSV and an empty chart with the note" \
+  "[ $? -eq 0 ] && [ -s '$work/u0/sweep_omega.csv' ] && [ -s '$work/u0/sweep_omega.png' ] && grep -q 'drawn empty with that note' '$work/u0.err'"
+
 # --- 2. signals ----------------------------------------------------------------------------
 # $1: signal; the rest: the command. Runs it, signals it after 0.7 s, prints "CODE SECONDS".
 stop_after() {
