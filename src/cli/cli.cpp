@@ -1,25 +1,162 @@
 #include <fmt/format.h>
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <exception>
+#include <algorithm>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
 
 #include "cli.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/params.hpp"
+#include "abu/core/temp_files.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/ranges.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {
 
 namespace {
 std::string g_command_line;
+std::mutex g_note_mutex;
+std::string g_interrupt_note;
+
+// How long a computation may take to notice a stop request before the signal thread
+// removes the temporaries itself and ends the process (docs/robustness.md "Signals").
+constexpr auto kStopGrace = std::chrono::milliseconds(1000);
+
+void write_stderr(const std::string& text) noexcept {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(STDERR_FILENO, text.data() + done, text.size() - done);
+    if (n <= 0) return;
+    done += std::size_t(n);
+  }
+}
+
+// SIGINT and SIGTERM are blocked in every thread (the mask is inherited) and taken here
+// by sigwait: the stop flag is set, a running gnuplot is ended, and if the command has
+// not finished within kStopGrace (a computation that does not poll the flag), the
+// temporaries are removed and the process ends with 128 + signal. A second signal ends
+// it at once the same way.
+void signal_thread(sigset_t set) {
+  int signal = 0;
+  if (sigwait(&set, &signal) != 0) return;
+  request_stop(signal);
+  kill_running_chart();
+  const auto deadline = std::chrono::steady_clock::now() + kStopGrace;
+  sigset_t pending;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (sigpending(&pending) == 0 && (sigismember(&pending, SIGINT) || sigismember(&pending, SIGTERM))) break;
+  }
+  hold_output_commits();  // a commit under way finishes; none starts
+  const int removed = remove_registered_temporaries();
+  std::string note;
+  {
+    std::lock_guard lock(g_note_mutex);
+    note = g_interrupt_note;
+  }
+  write_stderr(fmt::format("stability-scan: stopped by {} ({} temporar{} removed){}{}\n",
+                           signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal", removed,
+                           removed == 1 ? "y" : "ies", note.empty() ? "" : "; ", note));
+  ::_exit(128 + signal);
+}
+
+void start_signal_thread() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;
+  std::thread(signal_thread, set).detach();
+}
+
+// Standard output flushed and checked: a full disk or a closed pipe is an I/O failure.
+int checked_stdout(int code) {
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    fmt::print(stderr, "stability-scan: failed: cannot write standard output: {}\n",
+               errno ? std::strerror(errno) : "write error");
+    return code == exit_ok || code == exit_chart_failed ? exit_failure : code;
+  }
+  return code;
+}
+}  // namespace
+
+int interrupted_exit_code() { return 128 + (stop_signal() > 0 ? stop_signal() : SIGINT); }
+
+void set_interrupt_note(std::string note) {
+  std::lock_guard lock(g_note_mutex);
+  g_interrupt_note = std::move(note);
 }
 
 const std::string& command_line() { return g_command_line; }
 
+// The overrides do not depend on their order for being accepted: a rule between two
+// values (r < l) is judged on the final scene. They are applied in the given order; one
+// refused only because of a value a later override changes is applied again after the
+// others; at the end every override is checked once more against the final scene.
 Scene load(const SceneOptions& options) {
   Scene scene = load_scene(options.scene);
+  std::vector<std::string> pending = options.overrides;
+  while (!pending.empty()) {
+    std::vector<std::string> refused;
+    std::optional<InputError> first;
+    for (const auto& assignment : pending) {
+      try {
+        apply_override(scene, assignment);
+      } catch (const InputError& e) {
+        if (!first) first = e;
+        refused.push_back(assignment);
+      }
+    }
+    if (refused.size() == pending.size()) throw *first;
+    pending = std::move(refused);
+  }
   for (const auto& assignment : options.overrides) apply_override(scene, assignment);
+  check_numerical_range(scene, options.overrides.empty() ? scene.file : "--set");
   return scene;
 }
+
+namespace {
+// Integers on the command line are decimal: CLI11 reads "010" as octal 8 (strtoll base 0,
+// also inside its range checks). An option's value of digits with leading zeros ("--steps
+// 010", "--threads=007") loses the zeros before parsing: it is the decimal number.
+std::string decimal(std::string text) {
+  const std::size_t sign = (!text.empty() && (text[0] == '-' || text[0] == '+')) ? 1 : 0;
+  if (text.size() < sign + 2 || text[sign] != '0' ||
+      text.find_first_not_of("0123456789", sign) != std::string::npos)
+    return text;
+  const std::size_t first = std::min(text.find_first_not_of('0', sign), text.size() - 1);
+  return text.substr(0, sign) + text.substr(first);
+}
+bool integer_option(std::string_view name) {
+  for (const char* o : {"--steps", "--threads", "--max-steps", "--set-samples"})
+    if (name == o) return true;
+  return false;
+}
+std::vector<std::string> decimal_arguments(int argc, char** argv) {
+  std::vector<std::string> args(argv, argv + argc);
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    std::string& a = args[i];
+    if (const auto eq = a.find('='); eq != std::string::npos && integer_option(std::string_view(a).substr(0, eq)))
+      a = a.substr(0, eq + 1) + decimal(a.substr(eq + 1));
+    else if (integer_option(args[i - 1]))
+      a = decimal(a);
+  }
+  return args;
+}
+}  // namespace
 
 void add_scene_options(CLI::App& sub, SceneOptions& options) {
   sub.add_option("scene", options.scene, "Scene file (TOML, SI units), e.g. data/scenes/default.toml")->required();
@@ -30,8 +167,16 @@ void add_scene_options(CLI::App& sub, SceneOptions& options) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
+int run_command(int argc, char** argv);
+
 int run(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
+  start_signal_thread();
+  const int code = run_command(argc, argv);
+  return checked_stdout(code == exit_ok && chart_failures() > 0 ? int(exit_chart_failed) : code);
+}
+
+int run_command(int argc, char** argv) {
 
   CLI::App app{"stability-scan: linear stability of the automatic ball balancer (model: docs model.md)"};
   app.name("stability-scan");
@@ -43,8 +188,11 @@ int run(int argc, char** argv) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
   }
+  std::vector<std::string> args = decimal_arguments(argc, argv);
+  std::vector<char*> arg_pointers;
+  for (auto& a : args) arg_pointers.push_back(a.data());
   try {
-    app.parse(argc, argv);
+    app.parse(int(arg_pointers.size()), arg_pointers.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -52,24 +200,27 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "stability-scan: {}\nRun with --help for usage.\n", e.what());
+    fmt::print(stderr, "stability-scan: {}\nRun with --help for usage.\n", escaped(e.what()));
     return exit_bad_input;
   }
   try {
     for (auto& [sub, action] : commands)
       if (sub->parsed()) return action();
     return exit_bad_input;
+  } catch (const Interrupted& e) {
+    fmt::print(stderr, "stability-scan: {}; no output written\n", escaped(e.what()));
+    return interrupted_exit_code();
   } catch (const InputError& e) {
-    fmt::print(stderr, "stability-scan: error: {}\n", e.what());
+    fmt::print(stderr, "stability-scan: error: {}\n", escaped(e.what()));
     return exit_bad_input;
   } catch (const NotSupportedError& e) {
-    fmt::print(stderr, "stability-scan: not supported yet: {}\n", e.what());
+    fmt::print(stderr, "stability-scan: not supported yet: {}\n", escaped(e.what()));
     return exit_bad_input;
   } catch (const NumericalError& e) {
-    fmt::print(stderr, "stability-scan: numerical failure: {}\n", e.what());
+    fmt::print(stderr, "stability-scan: numerical failure: {}\n", escaped(e.what()));
     return exit_numerical;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "stability-scan: failed: {}\n", e.what());
+    fmt::print(stderr, "stability-scan: failed: {}\n", escaped(e.what()));
     return exit_failure;
   }
 }

@@ -1,6 +1,7 @@
 // The `stability-scan` command line: subcommands `equilibria`, `sweep` (and the ones
-// later issues add). Exit codes: 0 done, 1 internal or I/O failure, 2 invalid input
-// (nothing written), 3 numerical failure (reported with where and why), 130 interrupted.
+// later issues add). Exit codes (docs/robustness.md): 0 done, 1 internal or I/O failure,
+// 2 invalid input (nothing written), 3 numerical failure (reported with where and why),
+// 4 results written but a chart could not be drawn, 130 / 143 stopped by SIGINT / SIGTERM.
 #pragma once
 
 #include <string>
@@ -15,7 +16,8 @@ enum ExitCode : int {
   exit_failure = 1,
   exit_bad_input = 2,
   exit_numerical = 3,
-  exit_interrupted = 130,  ///< SIGINT/SIGTERM (map: the finished tiles are kept for --resume)
+  exit_chart_failed = 4,   ///< every CSV written, a chart not drawn (cause on stderr)
+  exit_interrupted = 130,  ///< 128 + the signal: SIGINT 130, SIGTERM 143 (map: the finished tiles are kept)
 };
 
 /// Runs the program; never throws.
@@ -29,6 +31,13 @@ struct SceneOptions {
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+
+/// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
+int interrupted_exit_code();
+
+/// Set by `map` while it runs: what to say if the signal thread must end the process
+/// ("the tiles are kept in DIR; rerun with --resume").
+void set_interrupt_note(std::string note);
 
 /// The command line as typed, for provenance headers.
 const std::string& command_line();

@@ -11,6 +11,7 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
+#include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "commands.hpp"
 
@@ -29,6 +30,12 @@ struct ContinueOptions {
   bool chart = true;
   std::string output_dir = "out";
 };
+
+// True if setting `a` changes a value `b` also sets (m and m1, or m2 and m2): two axes or
+// continuation parameters that overlap are one parameter, refused (docs/robustness.md).
+bool params_overlap(ParamRef a, ParamRef b) {
+  return a.quantity == b.quantity && (a.ball < 0 || b.ball < 0 || a.ball == b.ball);
+}
 
 // "q1,q2,beta1,beta2" -> a configuration, or an InputError naming the rule.
 Coordinates<long double, 2> parse_state(const std::string& text) {
@@ -57,6 +64,7 @@ ParamRef checked_param(const Scene& scene, const std::string& option, const std:
     throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
   Scene probe = scene;
   set_checked(probe, *ref, to, to_option);
+  check_numerical_range(probe, to_option);
   return *ref;
 }
 
@@ -90,16 +98,24 @@ void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, co
 }
 
 // The run's one-line account (`what`: "N branches" and more), and its exit code: a
-// branch that ended in a step underflow is a numerical failure.
+// branch that ended in an MX (step underflow or out of steps) is a numerical failure.
 template <class RunT>
 int finish(const RunT& run, const std::string& what, const std::filesystem::path& dir) {
   std::size_t points = 0, specials_count = 0;
   for (const auto& b : run.branches) points += b.points.size(), specials_count += b.specials.size();
   fmt::print(stderr, "{}, {} points, {} special points -> {}\n", what, points, specials_count, dir.string());
-  for (const auto& b : run.branches)
-    for (int end = 0; end < 2; ++end)
-      if (b.stop[std::size_t(end)] == StopReason::step_underflow) return exit_numerical;
-  return exit_ok;
+  // A branch that ended in failure (an MX row: the corrector failed at the minimum step, or
+  // the steps ran out) is a numerical failure, exit 3 (docs/robustness.md); the files are written.
+  int code = exit_ok;
+  for (std::size_t i = 0; i < run.branches.size(); ++i)
+    for (int end = 0; end < 2; ++end) {
+      const StopReason stop = run.branches[i].stop[std::size_t(end)];
+      if (stop != StopReason::step_underflow && stop != StopReason::max_steps) continue;
+      fmt::print(stderr, "stability-scan: numerical failure: branch {} ended in failure (MX): {}\n", i + 1,
+                 escaped(run.branches[i].stop_detail[std::size_t(end)]));
+      code = exit_numerical;
+    }
+  return code;
 }
 
 // Three or more balls (branches_n.hpp): every aligned branch and every balanced sample
@@ -116,7 +132,7 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   std::optional<ParamRef> ref2;
   if (!o.param2.empty()) {
     ref2 = checked_param(scene, "--param2", o.param2, "--to2", o.to2);
-    if (*ref2 == param) throw InputError("--param2", 0, o.param2, "must differ from --param");
+    if (params_overlap(*ref2, param)) throw InputError("--param2", 0, o.param2, "must differ from --param (it sets the same value)");
     check_moves(p, *ref2, o.to2, "--to2", o.param2);
   }
   const ContinuationRunN run = continue_branches(p, param, o.to, o.numerics, o.sampling);
@@ -177,6 +193,7 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    check_output_directory(o->output_dir);  // refused before any work
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
@@ -190,7 +207,7 @@ Action add_continue_command(CLI::App& app) {
     std::optional<ParamRef> ref2;
     if (!o->param2.empty()) {
       ref2 = checked_param(scene, "--param2", o->param2, "--to2", o->to2, /*radius_allowed=*/true);
-      if (*ref2 == param) throw InputError("--param2", 0, o->param2, "must differ from --param");
+      if (params_overlap(*ref2, param)) throw InputError("--param2", 0, o->param2, "must differ from --param (it sets the same value)");
       check_moves(p, *ref2, o->to2, "--to2", o->param2);
     }
 

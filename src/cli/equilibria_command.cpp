@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cli.hpp"
+#include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
@@ -18,7 +19,19 @@ struct EquilibriaOptions {
   std::string format = "table";
   std::string output;
   BalancedSampling sampling;
+  bool chart = true;  // no chart to draw: --no-chart is accepted like everywhere
 };
+
+// A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
+// (rounding level is 1e-16) is a numerical failure, exit 3, not a row (issue 12).
+template <class A>
+void check_equilibria(const A& a, double omega) {
+  for (const auto& e : a.equilibria.points())
+    if (!e.converged && !(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: the Newton polish of a {} point did not converge (residual {:.3g}): "
+                                       "it is not an equilibrium",
+                                       omega, to_string(e.family), e.residual));
+}
 
 // Two balls take the fixed-size path (closed forms of model.md §5), any other count the
 // general one (§13); both write the same formats.
@@ -26,6 +39,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);
     const Analysis a = analyze(p);
+    check_equilibria(a, p.omega);
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
     if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
@@ -33,6 +47,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
+  check_equilibria(a, p.omega);
   warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
   if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p), p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
@@ -58,8 +73,11 @@ Action add_equilibria_command(CLI::App& app) {
                   "angle")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  sub->add_flag("!--no-chart", options->chart,
+                "Accepted for uniformity with the other commands (equilibria draws no chart)");
   return [options]() -> int {
     const Scene scene = load(options->scene);
+    if (!options->output.empty()) check_output_target(options->output);  // refused before any work
     std::string warnings;
     const std::string text = render(scene, *options, warnings);
     fmt::print(stderr, "{}", warnings);

@@ -5,13 +5,15 @@
 // (io/map_setup.hpp); this file is options, signals and messages.
 #include <fmt/format.h>
 
-#include <csignal>
 #include <thread>
 
 #include <unistd.h>
 
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
 #include "abu/io/map_setup.hpp"
+#include "abu/scan/map_driver.hpp"
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
@@ -29,30 +31,6 @@ struct MapOptions {
   bool resume = false, fresh = false, progress = false, quiet = false;
   bool chart = true, boundaries = true;
   BalancedSampling sampling;
-};
-
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) { g_interrupted = true; }
-
-// SIGINT/SIGTERM stop the workers after their current tile (the tiles written so far
-// stay for --resume); the previous handlers come back when the map is done.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupted = false;
-    previous_int_ = std::signal(SIGINT, on_interrupt);
-    previous_term_ = std::signal(SIGTERM, on_interrupt);
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  void (*previous_int_)(int) = SIG_DFL;
-  void (*previous_term_)(int) = SIG_DFL;
 };
 
 // The command line that determines the output: thread count, progress, resume and the
@@ -100,6 +78,7 @@ Action add_map_command(CLI::App& app) {
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
+    check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = o->x;
     request.y = o->y;
@@ -112,18 +91,20 @@ Action add_map_command(CLI::App& app) {
     output.directory = o->output_dir;
     output.mode = o->resume ? TileStore::Mode::resume : o->fresh ? TileStore::Mode::discard : TileStore::Mode::fresh;
     output.threads = o->threads;
-    output.stop = &g_interrupted;
+    output.stop = &stop_flag();  // set by the CLI's signal thread (cli.cpp)
     output.progress = !o->quiet && (o->progress || isatty(STDERR_FILENO));
     output.chart = o->chart;
     output.boundaries = o->boundaries;
     output.title = scene.file;
-    InterruptGuard guard;
+    set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
+                                   escaped((std::filesystem::path(o->output_dir) / tile_directory_name(job)).string())));
     const MapRunReport r = run_map(job, output);
+    set_interrupt_note({});
     switch (r.outcome) {
       case MapRunReport::Outcome::refused: return exit_bad_input;
       case MapRunReport::Outcome::other_rank: return exit_ok;
       case MapRunReport::Outcome::interrupted:
-        if (mpi_rank() != 0) return exit_interrupted;
+        if (mpi_rank() != 0) return interrupted_exit_code();
         if (r.tiles_kept == r.tiles_total)
           fmt::print(stderr, "stability-scan: interrupted while writing; the tiles are kept in {}; rerun with --resume\n",
                      r.tile_directory.string());
@@ -132,7 +113,7 @@ Action add_map_command(CLI::App& app) {
                      "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume "
                      "to finish the map\n",
                      r.tiles_kept, r.tiles_total, r.tile_directory.string());
-        return exit_interrupted;
+        return interrupted_exit_code();
       case MapRunReport::Outcome::done: break;
     }
     const MapRunStats& stats = r.stats;

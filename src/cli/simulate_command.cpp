@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/io/io.hpp"
@@ -39,27 +40,6 @@ struct SimulateOptions {
   bool chart = true, progress = false, quiet = false;
 };
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_stop(int) { g_stop = true; }
-
-class StopGuard {
- public:
-  StopGuard() {
-    g_stop = false;
-    int_ = std::signal(SIGINT, on_stop);
-    term_ = std::signal(SIGTERM, on_stop);
-  }
-  ~StopGuard() {
-    std::signal(SIGINT, int_);
-    std::signal(SIGTERM, term_);
-  }
-  StopGuard(const StopGuard&) = delete;
-  StopGuard& operator=(const StopGuard&) = delete;
-
- private:
-  void (*int_)(int) = SIG_DFL;
-  void (*term_)(int) = SIG_DFL;
-};
 
 std::vector<double> parse_list(const std::string& text, const std::string& option) {
   std::vector<double> v;
@@ -189,8 +169,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
   const fs::path dir(o.output);
   const fs::path csv_path = dir / "simulation.csv", png_path = dir / "simulation.png";
 
-  StopGuard guard;
-  so.interrupt = &g_stop;
+  so.interrupt = &stop_flag();  // set by the CLI's signal thread (cli.cpp)
   const bool show = !o.quiet && (o.progress || isatty(STDERR_FILENO));
   auto last = std::chrono::steady_clock::now();
   const auto t0 = last;
@@ -215,7 +194,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     out.commit();
   }
   int code = r.status == SimulationStatus::completed ? exit_ok
-             : r.status == SimulationStatus::interrupted ? exit_interrupted
+             : r.status == SimulationStatus::interrupted ? interrupted_exit_code()
                                                           : exit_numerical;
   if (o.chart && r.samples.size() >= 2) {
     // The CSV is in place already: a failing chart loses nothing else.
@@ -236,7 +215,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
       chart.commit();
     } catch (const std::exception& e) {
       fmt::print(stderr, "stability-scan: warning: chart not drawn ({}); the CSV is complete\n", e.what());
-      if (code == exit_ok) code = exit_failure;
+      if (code == exit_ok) code = exit_chart_failed;
     }
   }
   if (!o.quiet) fmt::print(stderr, "{}", simulation_text(r, speed));
@@ -297,6 +276,8 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o]() -> int {
     Scene scene = load(o->scene);
+    check_output_directory(o->output);  // refused before any work
+    if (!o->summary.empty()) check_output_target(o->summary, "--summary");
     if (!(o->sim.settle_tolerance > 0 && o->sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
     const SpeedProfile speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)

@@ -6,8 +6,10 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
+#include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -61,11 +63,13 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
     for (double v : grid_values(o.from, o.to, o.steps, o.logarithmic)) {
       Scene s = scene;
       set_checked(s, *ref, v, "--from/--to");
+      check_numerical_range(s, "--from/--to", fmt::format("at {}={}", o.param, v));
       scenes.push_back(s);
       result.values.push_back(v);
     }
   }
   for (std::size_t i = 0; i < scenes.size(); ++i) {
+    throw_if_stopped("sweep");
     result.points.push_back(analyze(params_of<any_balls>(scenes[i]), o.sampling));
     fmt::print(stderr, "{}", analysis_warnings(result.points.back(), fmt::format("{}={}", result.name, result.values[i])));
   }
@@ -117,6 +121,7 @@ Action add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    check_output_directory(o->output_dir);  // refused before any work
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
@@ -128,7 +133,9 @@ Action add_sweep_command(CLI::App& app) {
     {
       Scene probe = scene;
       set_checked(probe, *ref, o->from, "--from");
+      check_numerical_range(probe, "--from");
       set_checked(probe, *ref, o->to, "--to");
+      check_numerical_range(probe, "--to");
     }
     const Params base = params_of<2>(scene);
     const auto values = grid_values(o->from, o->to, o->steps, o->logarithmic);

@@ -2,21 +2,33 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <optional>
 #include <vector>
 
+#include <sys/statvfs.h>
+
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
+#include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/map_mpi.hpp"
 
 namespace abu {
 
 namespace {
+
+// True if setting `a` changes a value `b` also sets (m and m1, or m2 and m2): two axes or
+// continuation parameters that overlap are one parameter, refused (docs/robustness.md).
+bool params_overlap(ParamRef a, ParamRef b) {
+  return a.quantity == b.quantity && (a.ball < 0 || b.ball < 0 || a.ball == b.ball);
+}
 
 std::vector<std::string> split_fields(std::string_view spec) {
   std::vector<std::string> parts;
@@ -106,7 +118,9 @@ Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& or
   // The axis is an interval; the physical range and the scene's rules hold at both ends.
   Scene probe = scene;
   set_checked(probe, axis.param, axis.from, origin);
+  check_numerical_range(probe, origin, fmt::format("at {}={}", to_string(axis.param), axis.from));
   set_checked(probe, axis.param, axis.to, origin);
+  check_numerical_range(probe, origin, fmt::format("at {}={}", to_string(axis.param), axis.to));
   return axis;
 }
 
@@ -115,8 +129,10 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   job.x = parse_axis(request.x, scene, "--x");
   job.y = parse_axis(request.y, scene, "--y");
   if (job.x.ball_count && job.y.ball_count) throw InputError("--y", 0, request.y, "only one axis can be the ball count");
-  if (!job.x.ball_count && !job.y.ball_count && job.x.param == job.y.param)
-    throw InputError("--y", 0, request.y, "the y parameter must differ from the x one");
+  if (!job.x.ball_count && !job.y.ball_count && params_overlap(job.x.param, job.y.param))
+    throw InputError("--y", 0, escaped(request.y),
+                     fmt::format("the y parameter must differ from the x one ({} and {} set the same value)",
+                                 to_string(job.x.param), to_string(job.y.param)));
   if (long(job.x.count) * long(job.y.count) > kMaxCells)
     throw InputError("--y", 0, request.y,
                      fmt::format("the map would have {} x {} cells; at most {} are allowed (memory and time)",
@@ -156,6 +172,51 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   return job;
 }
 
+namespace {
+// Free bytes on the file system that will hold `dir` (its nearest existing ancestor).
+std::optional<double> free_bytes(std::filesystem::path dir) {
+  std::error_code ec;
+  dir = std::filesystem::absolute(dir, ec);
+  while (!dir.empty() && !std::filesystem::exists(dir, ec) && dir != dir.parent_path()) dir = dir.parent_path();
+  struct statvfs fs {};
+  if (::statvfs(dir.c_str(), &fs) != 0) return std::nullopt;
+  return double(fs.f_bavail) * double(fs.f_frsize);
+}
+
+std::optional<double> available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024;
+  return std::nullopt;
+}
+
+std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
+
+// Refuses (exit 2) a map whose tiles and CSVs cannot fit on the disk, or whose workers'
+// tiles cannot fit in memory, before any work (docs/robustness.md "Maps").
+void check_map_fits(const MapJob& job, const MapOutput& output) {
+  const double cells = double(job.x.count) * double(job.y.count);
+  const double per_cell = double(map_bytes_per_cell(job));
+  const double disk = 2 * cells * per_cell;  // the tiles, then the assembled CSVs
+  if (const auto free = free_bytes(output.directory); free && disk > *free)
+    throw InputError("-o", 0, escaped(output.directory.string()),
+                     fmt::format("the map needs about {} of disk ({} cells: its tiles and CSVs), {} are free there; "
+                                 "make the map smaller or write it elsewhere",
+                                 gigabytes(disk), cells, gigabytes(*free)));
+  const int workers = std::max(1, std::min(output.threads, tile_count(job)));
+  // Each worker's tile text, twice (the buffer and the tile's copy).
+  const double memory = 2.0 * workers * double(job.tile_columns()) * double(job.y.count) * per_cell;
+  if (const auto available = available_memory(); available && memory > *available)
+    throw InputError("--threads", 0, std::to_string(output.threads),
+                     fmt::format("{} workers would need about {} of memory for their tiles, {} are available; use "
+                                 "fewer threads or a shorter y axis",
+                                 workers, gigabytes(memory), gigabytes(*available)));
+}
+}  // namespace
+
 MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   MapRunReport report;
   const std::filesystem::path& dir = output.directory;
@@ -166,6 +227,7 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     std::exception_ptr failure;
     try {
       if (root) {
+        check_map_fits(job, output);
         store.emplace(dir / tile_directory_name(job), job, output.mode);
         missing = store->missing();
       }
@@ -185,7 +247,18 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   run_options.threads = output.threads;
   run_options.stop = output.stop;
   run_options.progress = &meter;
-  report.stats = compute_distributed(job, *missing, run_options, store ? &*store : nullptr);
+  try {
+    report.stats = compute_distributed(job, *missing, run_options, store ? &*store : nullptr);
+  } catch (const InputError&) {
+    throw;
+  } catch (const NumericalError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // An I/O failure (a full disk): say so, and that the work done is not lost.
+    if (!store) throw;
+    throw std::runtime_error(fmt::format("{}; the finished tiles are kept in {}, rerun the same command with --resume",
+                                         e.what(), escaped(store->directory().string())));
+  }
   meter.finish();
   const auto stopped = [&] { return output.stop && output.stop->load(); };
   if (store) report.tile_directory = store->directory();
@@ -207,7 +280,11 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     assemble(job, *store, map_csv, summary_csv);
     map_csv.close();
     summary_csv.close();
-    if (!map_csv || !summary_csv) throw std::runtime_error(fmt::format("{}: cannot write the map", dir.string()));
+    if (!map_csv || !summary_csv)
+      throw std::runtime_error(fmt::format("{}: cannot write the map: {}; the tiles are kept in {}, rerun the same "
+                                           "command with --resume",
+                                           escaped(dir.string()), errno ? std::strerror(errno) : "write error",
+                                           escaped(store->directory().string())));
   }
   const std::string x = job.x.name(), y = job.y.name();
   std::filesystem::path curves;

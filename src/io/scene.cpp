@@ -29,6 +29,7 @@
 
 #include "abu/core/errors.hpp"
 #include "scene_reading.hpp"
+#include "toml_guard.hpp"
 
 namespace abu {
 
@@ -83,6 +84,7 @@ int count_lines(std::string_view text) {
 }
 
 toml::table parse_toml(std::string_view text, const std::string& file) {
+  detail::prevalidate_toml(text, file);  // inputs toml++ 3.3 does not refuse cleanly
 #if TOML_EXCEPTIONS
   try {
     return toml::parse(text, std::string_view(file));

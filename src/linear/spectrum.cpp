@@ -263,6 +263,16 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
     if (failed[i]) {  // keeps its QR value, and the refinement is reported as failed
       sp.eigenvalues[first + i] = start[i].value;
       sp.error[first + i] = double(std::abs(refined[i] - as_ld(start[i].value)));
+      // Its band is the error it actually has, not the failed refinement's: at least the
+      // distance the refinement moved and 64 times the QR's a-priori bound (eps ||J|| from
+      // the direct matrix, eps ||(J - sigma)^-1|| |lambda - sigma|^2 from the inverse), so
+      // a QR value that cannot be told from the axis is marginal, never unstable.
+      const auto& e = start[i];
+      ld apriori = 0;
+      if (e.source == &starts.direct) apriori = ld(kEps) * ld(e.source->norm);
+      else if (e.source) apriori = ld(kEps) * ld(e.source->norm) * std::norm(as_ld(e.value) - ld(starts.shift));
+      band[first + i] = std::max({band[first + i], std::abs(refined[i] - as_ld(e.value)), 64 * apriori});
+      sp.error[first + i] = std::max(sp.error[first + i], double(64 * apriori));
       sp.converged = false;
       sp.status.merge(Outcome::not_converged, "an eigenvalue refinement did not converge; its QR value is kept");
     } else if (!converged_at[i]) {

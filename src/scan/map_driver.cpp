@@ -2,7 +2,14 @@
 
 #include <fmt/compile.h>
 #include <fmt/format.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 #include <cmath>
 #include <exception>
@@ -12,7 +19,9 @@
 #include <thread>
 
 #include "abu/continuation/continuation.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/temp_files.hpp"
 
 namespace abu {
 
@@ -61,7 +70,20 @@ std::string common_header(const MapJob& job) {
 
 }  // namespace
 
-int MapJob::tile_columns() const { return any_balls ? 1 : kTileColumns; }
+// A worker holds one tile's text in memory: with a long y axis fewer columns per tile keep
+// that under kTileBudgetBytes (the maps of up to ~5000 rows keep kTileColumns).
+int MapJob::tile_columns() const {
+  if (any_balls) return 1;
+  const long per_column = long(y.count) * long(map_bytes_per_cell(*this));
+  return int(std::clamp<long>(kTileBudgetBytes / std::max(per_column, 1L), 1, kTileColumns));
+}
+
+std::size_t map_bytes_per_cell(const MapJob& job) {
+  if (!job.any_balls) return kMapBytesPerCell;
+  // n balls: up to 2^n aligned rows and the balanced samples, each with n angle columns.
+  const int n = job.max_balls_in_map();
+  return std::size_t((64 + (1 << n)) * (100 + 25 * n));
+}
 
 int tile_count(const MapJob& job) { return (job.x.count + job.tile_columns() - 1) / job.tile_columns(); }
 
@@ -240,6 +262,7 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
     for (int ix = first; ix < last; ++ix) {
       const std::string x_value = format_number(job.x.value(ix), "x value");
       for (int iy = 0; iy < job.y.count; ++iy) {
+        throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
         workspace.any_balls->analyze(ix, iy, workspace.cell_n);
         ++text.cells;
         text.equilibria += long(workspace.cell_n.equilibria.size());
@@ -256,6 +279,7 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
   for (int ix = first; ix < last; ++ix) {
     const std::string x_value = format_number(job.x.value(ix), "x value");
     for (int iy = 0; iy < job.y.count; ++iy) {
+      throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
       analyzer.analyze(ix, iy, cell);
       ++text.cells;
       text.equilibria += cell.count;
@@ -299,9 +323,15 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
 
 namespace {
 
+// The job's headers without the lines that only spell the request (the command line as
+// typed, the scene's path): a resumed run is the same map when the parameters, axes,
+// method and program are, however the scene path or the options were written.
 std::string manifest_of(const MapJob& job) {
-  return fmt::format("abu map tiles: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job)) +
-         map_csv_header(job) + summary_csv_header(job);
+  std::string out = fmt::format("abu map tiles: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job));
+  std::istringstream headers(map_csv_header(job) + summary_csv_header(job));
+  for (std::string line; std::getline(headers, line);)
+    if (line.rfind("# command:", 0) != 0 && line.rfind("# scene:", 0) != 0) out += line + '\n';
+  return out;
 }
 
 std::string read_file(const fs::path& path) {
@@ -312,45 +342,112 @@ std::string read_file(const fs::path& path) {
   return content;
 }
 
-// Writes under a temporary name and renames: a reader sees the whole file or none.
+// Writes under an exclusively created temporary (random name, registered so that a stop
+// removes it) and renames: a reader sees the whole file or none. Errors name errno.
 void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {}) {
-  fs::path part = path;
-  part += ".part";
-  {
-    std::ofstream out(part, std::ios::binary | std::ios::trunc);
-    out.write(a.data(), std::streamsize(a.size()));
-    out.write(b.data(), std::streamsize(b.size()));
-    out.write(c.data(), std::streamsize(c.size()));
-    out.flush();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write", part.string()));
+  int fd = -1;
+  const fs::path part = create_temporary_next_to(path, "part", fd);
+  const auto fail = [&](const char* what, int err) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(part.c_str());
+    unregister_temporary(part);
+    throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(err)));
+  };
+  for (std::string_view piece : {a, b, c}) {
+    while (!piece.empty()) {
+      const ssize_t n = ::write(fd, piece.data(), piece.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) fail("write", n < 0 ? errno : ENOSPC);
+      piece.remove_prefix(std::size_t(n));
+    }
   }
-  fs::rename(part, path);
+  if (::close(fd) != 0) {
+    fd = -1;
+    fail("write", errno);
+  }
+  fd = -1;
+  if (::rename(part.c_str(), path.c_str()) != 0) fail("rename into place", errno);
+  unregister_temporary(part);
 }
 
 }  // namespace
+
+// The directory's lock: flock on DIR/lock, the holder's PID inside. A lock file that was
+// removed (a finished map removes its directory) while we waited is not ours: retry.
+void TileStore::lock() {
+  const fs::path path = directory_ / "lock";
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0)
+      throw std::runtime_error(fmt::format("{}: cannot open the tile lock: {}", path.string(), std::strerror(errno)));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int err = errno;
+      char buffer[32] = {};
+      const ssize_t n = ::pread(fd, buffer, sizeof buffer - 1, 0);
+      ::close(fd);
+      if (err != EWOULDBLOCK)
+        throw std::runtime_error(fmt::format("{}: cannot lock: {}", path.string(), std::strerror(err)));
+      const std::string holder = n > 0 ? std::string(buffer, std::size_t(n)) : std::string("unknown");
+      throw InputError("-o", 0, directory_.string(),
+                       fmt::format("another map (PID {}) is writing these tiles; wait for it to finish or stop it",
+                                   holder.substr(0, holder.find_first_not_of("0123456789"))));
+    }
+    struct stat by_fd {}, by_path {};
+    if (::fstat(fd, &by_fd) == 0 && ::stat(path.c_str(), &by_path) == 0 && by_fd.st_ino == by_path.st_ino &&
+        by_fd.st_dev == by_path.st_dev) {
+      const std::string pid = std::to_string(::getpid());
+      if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
+        // The lock holds without the PID; the message of a second writer says "unknown".
+      }
+      lock_fd_ = fd;
+      return;
+    }
+    ::close(fd);
+    fs::create_directories(directory_);
+  }
+  throw std::runtime_error(fmt::format("{}: cannot take the tile lock", path.string()));
+}
 
 TileStore::TileStore(fs::path directory, const MapJob& job, Mode mode)
     : directory_(std::move(directory)), tiles_(tile_count(job)) {
   const std::string manifest = manifest_of(job);
   const fs::path manifest_path = directory_ / "manifest";
   std::error_code ec;
-  const bool exists = fs::exists(directory_, ec);
-  if (exists && mode == Mode::fresh)
+  const bool existed = fs::exists(directory_, ec);
+  if (existed && !fs::is_directory(directory_, ec))
+    throw InputError("-o", 0, directory_.string(), "exists and is not a tile directory");
+  fs::create_directories(directory_);
+  lock();  // before looking at anything inside: another writer may be changing it
+  // A directory without a manifest holds no tiles of any map (a first write that failed,
+  // or only the lock of a finished run): it counts as absent.
+  const bool has_map = fs::exists(manifest_path, ec);
+  if (has_map && mode == Mode::fresh)
     throw InputError("-o", 0, directory_.string(),
                      "holds the tiles of an interrupted map; continue it with --resume or start over with --fresh");
-  if (exists && mode == Mode::resume) {
-    if (!fs::exists(manifest_path) || read_file(manifest_path) != manifest)
+  if (has_map && mode == Mode::resume) {
+    if (read_file(manifest_path) != manifest)
       throw InputError("--resume", 0, directory_.string(),
-                       "these tiles belong to a different map (scene, --set, axes, method or program version "
+                       "these tiles belong to a different map (scene content, --set, axes, method or program version "
                        "differ); run with --fresh to start over");
     // Temporaries of tiles whose writing was cut short.
     for (const auto& entry : fs::directory_iterator(directory_))
-      if (entry.path().extension() == ".part") fs::remove(entry.path());
+      if (entry.path().filename().string().find(".part") != std::string::npos) fs::remove(entry.path());
     return;
   }
-  if (exists) fs::remove_all(directory_);
-  fs::create_directories(directory_);
-  write_atomically(manifest_path, manifest);
+  // Start over: everything but the lock goes.
+  for (const auto& entry : fs::directory_iterator(directory_))
+    if (entry.path().filename() != "lock") fs::remove_all(entry.path());
+  try {
+    write_atomically(manifest_path, manifest);
+  } catch (...) {
+    // No manifest (and, if we made it, no directory) is left to make the next run refuse.
+    if (!existed) fs::remove_all(directory_, ec);
+    throw;
+  }
+}
+
+TileStore::~TileStore() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 fs::path TileStore::tile_path(int tile) const { return directory_ / fmt::format("tile{:06}", tile); }
@@ -457,6 +554,8 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
         sink(tiles[i], std::move(text));
         if (options.progress) options.progress->tile_done(cells);
       }
+    } catch (const Interrupted&) {
+      // Stopped inside a tile: that tile is not written, the finished ones stay.
     } catch (...) {
       std::lock_guard lock(mutex);
       if (!error) error = std::current_exception();

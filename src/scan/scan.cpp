@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "abu/core/cancel.hpp"
+
 namespace abu {
 
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method) {
@@ -53,6 +55,7 @@ SweepResult sweep(const Params& base, ParamRef param, const std::vector<double>&
   r.points.reserve(values.size());
   Params p = base;
   for (double v : values) {
+    throw_if_stopped("sweep");
     set(p, param, v);
     r.points.push_back(analyze(p));
   }

@@ -33,6 +33,11 @@ namespace abu {
 /// Columns (x values) per tile: small enough for progress and resume, large enough that
 /// a tile (8 x ny cells) dwarfs the cost of writing it.
 inline constexpr int kTileColumns = 8;
+/// Memory for one tile's text per worker, above which a tile gets fewer columns.
+inline constexpr long kTileBudgetBytes = 32L << 20;
+/// Bytes of CSV per cell of a two-ball map (long rows and summary, measured on the default
+/// scene, rounded up): the up-front disk and memory estimate (docs/robustness.md).
+inline constexpr std::size_t kMapBytesPerCell = 900;
 
 /// Everything that determines a map's output.
 struct MapJob {
@@ -83,10 +88,14 @@ std::string summary_csv_header(const MapJob& job);
 std::string map_file_name(const MapJob& job);
 std::string summary_file_name(const MapJob& job);
 std::string tile_directory_name(const MapJob& job);
+/// Bytes of CSV text per cell, an upper estimate (long rows and summary).
+std::size_t map_bytes_per_cell(const MapJob& job);
 
 /// The tiles of one map on disk: a directory holding a manifest (the job's headers: a
 /// resumed run must be the same map) and one file per finished tile, each written under a
-/// temporary name and renamed, so a present tile is complete. Thread-safe.
+/// temporary name and renamed, so a present tile is complete. Thread-safe. The directory
+/// is locked (flock on its file "lock", holding the writer's PID) for the store's life: a
+/// second writer is refused, naming the holder.
 class TileStore {
  public:
   enum class Mode {
@@ -96,6 +105,9 @@ class TileStore {
   };
   /// Throws InputError (origin "--resume" / "-o") when the mode's rule is broken.
   TileStore(std::filesystem::path directory, const MapJob& job, Mode mode);
+  ~TileStore();
+  TileStore(const TileStore&) = delete;
+  TileStore& operator=(const TileStore&) = delete;
   bool has(int tile) const;
   /// Tiles not on disk yet, ascending.
   std::vector<int> missing() const;
@@ -108,8 +120,10 @@ class TileStore {
 
  private:
   std::filesystem::path tile_path(int tile) const;
+  void lock();
   std::filesystem::path directory_;
   int tiles_ = 0;
+  int lock_fd_ = -1;
 };
 
 /// Progress and ETA of a map on stderr: one '\r'-updated line on a terminal, a line every

@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# Hostile input and faults (issue 12, docs/robustness.md): output files never replace what
+# is not theirs and come back on a failure, results are never lost to a chart, signals
+# stop every command in time without leaving temporaries, numerical range, exit codes.
+#   check_robustness.sh BINARY SOURCE_DIR
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+scene=$src/data/scenes/default.toml
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+. "$(dirname "$0")/../contract.sh"
+cd "$work"
+# No temporaries of ours (".NAME.tmp-*", ".NAME.old-*", ".NAME.part-*") under $1.
+no_temporaries() { [ -z "$(find "$1" -name '.*.tmp-*' -o -name '.*.old-*' -o -name '.*.part-*' 2>/dev/null)" ]; }
+
+# --- 1. output targets ------------------------------------------------------------------
+"$bin" equilibria "$scene" --format csv -o /dev/null 2>/dev/null
+check "-o /dev/null: exit 0, written in place" "[ $? -eq 0 ] && [ -c /dev/null ]"
+mkdir -p "$work/adir"
+"$bin" equilibria "$scene" --format csv -o "$work/adir" 2>"$work/dir.err"
+check "-o DIRECTORY refused with exit 2" "[ $? -eq 2 ] && grep -q 'is a directory' '$work/dir.err' && [ -d '$work/adir' ]"
+echo precious >"$work/precious"
+ln -s "$work/precious" "$work/link.csv"
+"$bin" equilibria "$scene" --format csv -o "$work/link.csv" 2>"$work/link.err"
+check "-o SYMLINK refused with exit 2, its target untouched" \
+  "[ $? -eq 2 ] && [ -L '$work/link.csv' ] && [ \"\$(cat '$work/precious')\" = precious ]"
+echo x >"$work/notdir"
+"$bin" sweep "$scene" --param omega --from 100 --to 200 --steps 2 --no-chart -o "$work/notdir" 2>"$work/nd.err"
+check "-o DIR that is a file refused with exit 2" "[ $? -eq 2 ] && [ \"\$(cat '$work/notdir')\" = x ]"
+# A planted link with the old predictable temporary name is not followed.
+mkdir -p "$work/plant"
+for pid in $(seq $$ $(($$ + 400))); do ln -s "$work/precious" "$work/plant/.eq.csv.tmp-$pid"; done
+"$bin" equilibria "$scene" --format csv -o "$work/plant/eq.csv" 2>/dev/null
+check "planted temporary links are not followed" "[ $? -eq 0 ] && [ \"\$(cat '$work/precious')\" = precious ] && [ -s '$work/plant/eq.csv' ]"
+
+# --- 1. commit as a group, rolled back on failure -----------------------------------------
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 --no-chart -o "$work/grp" 2>/dev/null
+cp "$work/grp/branch_omega.csv" "$work/old_branch"; cp "$work/grp/special_omega.csv" "$work/old_special"
+ABU_TEST_FAIL_RENAME=2 "$bin" continue "$scene" --set omega=210 --param omega --to 400 --no-chart -o "$work/grp" 2>"$work/grp.err"
+check "a rename failing halfway: exit 1, message" "[ $? -eq 1 ] && grep -q 'previous files are restored' '$work/grp.err'"
+check "... and both old files are back, unchanged" \
+  "cmp -s '$work/old_branch' '$work/grp/branch_omega.csv' && cmp -s '$work/old_special' '$work/grp/special_omega.csv'"
+check "... and no temporary is left" "no_temporaries '$work/grp' && [ \$(ls -A '$work/grp' | wc -l) -eq 2 ]"
+
+# --- 1. standard output checked -----------------------------------------------------------
+if [ -w /dev/full ]; then
+  "$bin" equilibria "$scene" --format csv >/dev/full 2>"$work/full.err"
+  check "stdout write error: exit 1 with the cause" "[ $? -eq 1 ] && grep -q 'standard output' '$work/full.err'"
+fi
+
+# --- 1. results never lost to a chart ------------------------------------------------------
+ABU_GNUPLOT=/nonexistent/gnuplot "$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 10 -o "$work/nog" 2>"$work/nog.err"
+check "gnuplot missing: exit 4, the CSV written, the cause said" \
+  "[ $? -eq 4 ] && [ -s '$work/nog/sweep_omega.csv' ] && [ ! -e '$work/nog/sweep_omega.png' ] && grep -q 'gnuplot not found' '$work/nog.err'"
+check "... and no temporary is left" "no_temporaries '$work/nog'"
+mkdir -p "$work/badplots"; echo 'this is not gnuplot;' >"$work/badplots/sweep.gp"
+ABU_PLOTS_DIR="$work/badplots" "$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 10 -o "$work/badg" 2>"$work/badg.err"
+check "gnuplot failing: exit 4, the CSV written, gnuplot's message quoted" \
+  "[ $? -eq 4 ] && [ -s '$work/badg/sweep_omega.csv' ] && grep -q \"chart 'sweep' not drawn: gnuplot exited\" '$work/badg.err'"
+for cmd in "equilibria $scene" "sweep $scene --param omega --from 100 --to 200 --steps 2 -o $work/nc1" \
+  "continue $scene --set omega=200 --param omega --to 220 -o $work/nc2" \
+  "map $scene --x omega:100:200:3 --y mu:0.001:0.01:3 --quiet --no-boundaries -o $work/nc3" \
+  "simulate $scene --balls 0,1 --t-end 0.01 --quiet -o $work/nc4"; do
+  ABU_GNUPLOT=/nonexistent/gnuplot "$bin" $cmd --no-chart >/dev/null 2>&1
+  check "--no-chart accepted by ${cmd%% *} (exit 0 without gnuplot)" "[ $? -eq 0 ]"
+done
+# A documented degenerate case (no fold or Hopf point in a two-parameter run): the CSVs and
+# an empty chart with a note, exit 0.
+"$bin" continue "$scene" --set omega=900 --param omega --to 1000 --param2 mu --to2 0.01 -o "$work/deg" 2>"$work/deg.err"
+check "no boundary curve: exit 0, CSVs and a chart" \
+  "[ $? -eq 0 ] && [ -s '$work/deg/boundary_omega_mu.csv' ] && [ -s '$work/deg/branch_omega.csv' ] && [ -s '$work/deg/boundary_omega_mu.png' ]"
+
+"$bin" sweep "$scene" --set U=0 --param omega --from 100 --to 1000 --steps 20 -o "$work/u0" 2>"$work/u0.err"
+check "U = 0 sweep (nothing on the log axis): exit 0, CSV and an empty chart with the note" \
+  "[ $? -eq 0 ] && [ -s '$work/u0/sweep_omega.csv' ] && [ -s '$work/u0/sweep_omega.png' ] && grep -q 'drawn empty with that note' '$work/u0.err'"
+
+# --- 2. signals ----------------------------------------------------------------------------
+# $1: signal; the rest: the command. Runs it, signals it after 0.7 s, prints "CODE SECONDS".
+stop_after() {
+  local sig=$1; shift
+  "$@" >/dev/null 2>"$work/stop.err" &
+  local pid=$!
+  sleep 0.7
+  local t0=$(date +%s.%N)
+  kill -"$sig" "$pid" 2>/dev/null
+  wait "$pid"
+  local code=$?
+  echo "$code $(echo "$(date +%s.%N) - $t0" | bc)"
+}
+read code secs < <(stop_after TERM "$bin" sweep "$scene" --param omega --from 100 --to 2000 --steps 200000 --no-chart -o "$work/sig1")
+check "SIGTERM stops sweep: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
+check "... no file, no temporary" "[ ! -e '$work/sig1/sweep_omega.csv' ] && no_temporaries '$work/sig1'"
+read code secs < <(stop_after INT "$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 --no-chart -o "$work/sig2")
+check "SIGINT stops continue: exit 130 within 3 s ($code, $secs s)" "[ $code -eq 130 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
+read code secs < <(stop_after TERM "$bin" map "$scene" --x omega:50:2000:400 --y mu:1e-4:0.1:400:log --threads 2 --no-chart --no-boundaries --quiet -o "$work/sig3")
+check "SIGTERM stops map: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
+check "... says the tiles are kept" "grep -q 'tiles are kept' '$work/stop.err' && grep -q -- '--resume' '$work/stop.err'"
+check "... no temporary in the tile directory" "no_temporaries '$work/sig3'"
+
+# --- 3. numerical range: never a hang -----------------------------------------------------
+for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300; do
+  timeout -s KILL 20 "$bin" equilibria "$scene" --format csv --set "$set" >"$work/range.csv" 2>"$work/range.err"
+  code=$?
+  check "--set $set: refused (2) or reported (3) or right (0), never a hang (exit $code)" \
+    "[ $code -eq 0 ] || [ $code -eq 2 ] || [ $code -eq 3 ]"
+  if [ $code -eq 0 ]; then
+    check "--set $set: no DBL_MAX printed" "! grep -v '^#' '$work/range.csv' | grep -q '1.7976931348623157e+308'"
+    check "--set $set: every row an equilibrium (residual < 1e-6)" \
+      "grep -v '^#' '$work/range.csv' | tail -n +2 | awk -F, '{if (\$8 + 0 > 1e-6 || \$8 == \"\") exit 1}'"
+  fi
+done
+
+# A failed eigenvalue refinement (kappa = 1e12: spectra over 26 decades) classifies by the
+# error it has: the balanced states, stable by a 40-digit computation (abscissa -3.6e-15),
+# are stable or marginal, never unstable.
+"$bin" equilibria "$scene" --set kappa=1e12 --set omega=400 --set mu=0.1 --format json 2>/dev/null >"$work/k.json"
+check "kappa=1e12: no balanced state called unstable after a failed refinement" \
+  "/usr/bin/python3 -c \"import json,sys; d=json.load(open('$work/k.json')); sys.exit(any(e['family']=='balanced' and e['stability']=='unstable' for e in d['equilibria']))\""
+
+# --- 5. exit codes, escapes, integers, overlaps, --set order -------------------------------
+"$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/mx" 2>/dev/null
+check "a branch ending in MX exits 3" "[ $? -eq 3 ] && grep -q ',MX,' '$work/mx/special_omega.csv'"
+nl=$'bad\nname'
+"$bin" equilibria "$work/$nl.toml" 2>"$work/ctl.err"
+check "a newline in a path is escaped in the message (one line)" "[ $? -eq 2 ] && [ \$(wc -l <'$work/ctl.err') -eq 1 ] && grep -q 'bad\\\\nname' '$work/ctl.err'"
+cp "$scene" "$work/$nl.toml"
+"$bin" equilibria "$work/$nl.toml" --format csv -o "$work/ctl.csv" 2>/dev/null
+check "... and in the CSV comment lines" "[ -z \"\$(grep -v '^#' '$work/ctl.csv' | grep -n 'name')\" ] && grep -q '^# scene: .*bad\\\\nname' '$work/ctl.csv'"
+"$bin" sweep "$scene" --param omega --from 100 --to 200 --steps 010 --no-chart -o "$work/dec" 2>/dev/null
+check "--steps 010 is ten steps (decimal)" "[ \$(grep -v '^#' '$work/dec/sweep_omega.csv' | tail -n +2 | cut -d, -f1 | sort -u | wc -l) -eq 11 ]"
+"$bin" map "$scene" --x m:0.001:0.01:3 --y m1:0.001:0.01:3 --quiet -o "$work/ovl" 2>"$work/ovl.err"
+check "overlapping map axes (m, m1) refused with exit 2" "[ $? -eq 2 ] && [ ! -e '$work/ovl' ]"
+"$bin" continue "$scene" --param m --to 0.02 --param2 m2 --to2 0.02 --no-chart -o "$work/ovl2" 2>/dev/null
+check "overlapping continuation parameters (m, m2) refused with exit 2" "[ $? -eq 2 ]"
+"$bin" equilibria "$scene" --format csv --set r=0.03 --set l=0.2 >"$work/o1.csv" 2>/dev/null; c1=$?
+"$bin" equilibria "$scene" --format csv --set l=0.2 --set r=0.03 >"$work/o2.csv" 2>/dev/null; c2=$?
+check "--set order does not decide acceptance ($c1, $c2)" "[ $c1 -eq $c2 ] && [ $c1 -eq 0 ]"
+"$bin" equilibria "$scene" --set r=0.3 --set l=0.2 >/dev/null 2>&1
+check "... and a final scene breaking a rule is still refused" "[ $? -eq 2 ]"
+
+finish
