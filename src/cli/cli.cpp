@@ -1,6 +1,9 @@
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
 #include <exception>
+#include <string>
 
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
@@ -15,9 +18,33 @@ std::string g_command_line;
 
 const std::string& command_line() { return g_command_line; }
 
+SpeedUnit SceneOptions::speed_unit() const { return speed_unit_from_string(units).value_or(SpeedUnit::rad_per_s); }
+
+double omega_input(const SceneOptions& options, double typed) { return to_rad_per_s(typed, options.speed_unit()); }
+
+namespace {
+// `--set omega=V` in the command's --units: rewritten to rad/s before the scene's rules
+// check it (a value that is not a number is left for apply_override to report).
+std::string in_si(const SceneOptions& options, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (options.speed_unit() == SpeedUnit::rad_per_s || eq == std::string::npos) return assignment;
+  std::string name = assignment.substr(0, eq);
+  name.erase(0, name.find_first_not_of(" \t"));
+  name.erase(name.find_last_not_of(" \t") + 1);
+  if (name != "omega") return assignment;
+  std::string text = assignment.substr(eq + 1);
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) return assignment;
+  return fmt::format("omega={}", omega_input(options, v));
+}
+}  // namespace
+
 Scene load(const SceneOptions& options) {
   Scene scene = load_scene(options.scene);
-  for (const auto& assignment : options.overrides) apply_override(scene, assignment);
+  for (const auto& assignment : options.overrides) apply_override(scene, in_si(options, assignment));
   return scene;
 }
 
@@ -28,6 +55,11 @@ void add_scene_options(CLI::App& sub, SceneOptions& options) {
       ->type_name("NAME=VALUE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub.add_option("--units", options.units,
+                 "Unit of the speed omega as typed (--set omega=, --from/--to of omega) and displayed: rad/s, rpm or "
+                 "hz; CSV columns named omega and JSON values stay in rad/s")
+      ->check(CLI::IsMember({"rad/s", "rpm", "hz", "Hz"}))
+      ->capture_default_str();
 }
 
 int run(int argc, char** argv) {

@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "cli.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
 
@@ -18,25 +20,55 @@ struct EquilibriaOptions {
   std::string format = "table";
   std::string output;
   BalancedSampling sampling;
+  std::string mode_shapes;  // --mode-shapes DIR
 };
+
+// `--mode-shapes DIR`: DIR/modes.csv (every equilibrium's modes) and DIR/modes.png (the
+// best stable state's, else the first equilibrium's), docs/views.md.
+template <class A, int N>
+void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& a, const ParamsT<double, N>& p,
+                       const Scene& scene) {
+  const std::filesystem::path d(dir);
+  const auto csv = out.stage(d / "modes.csv",
+                             mode_shapes_csv(a, p, provenance_header(command_line(), scene.file, p)));
+  const ModeChart chart = mode_chart(a, p);
+  if (chart.titles.empty()) return;
+  std::vector<std::pair<std::string, std::string>> vars{
+      {"csv", csv.string()},
+      {"png", out.reserve(d / "modes.png").string()},
+      {"equilibrium", std::to_string(chart.equilibrium + 1)},
+      {"count", std::to_string(chart.titles.size())},
+      {"title", fmt::format("{}: mode shapes of {} at omega = {} rad/s (rotating frame)", scene.file, chart.label,
+                            p.omega)}};
+  for (std::size_t k = 0; k < chart.titles.size(); ++k) vars.emplace_back(fmt::format("t{}", k + 1), chart.titles[k]);
+  run_gnuplot(plots_dir() / "modes.gp", vars);
+}
 
 // Two balls take the fixed-size path (closed forms of model.md §5), any other count the
 // general one (§13); both write the same formats.
-std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
+  const SpeedUnit unit = o.scene.speed_unit();
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);
     const Analysis a = analyze(p);
+    if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene);
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
-    if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p));
+    const PointAnswer answer = point_answer(a, p);
+    if (o.format == "csv")
+      return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return equilibria_table(a, p);
+    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p);
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
+  if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene);
   warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
-  if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p), p.n_balls());
+  const PointAnswer answer = point_answer(a, p);
+  if (o.format == "csv")
+    return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "),
+                          p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return equilibria_table(a, p);
+  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p);
 }
 }  // namespace
 
@@ -58,15 +90,20 @@ Action add_equilibria_command(CLI::App& app) {
                   "angle")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  sub->add_option("--mode-shapes", options->mode_shapes,
+                  "Also write DIR/modes.csv (every mode of every equilibrium: rotor and ball motion over one cycle) and "
+                  "DIR/modes.png")
+      ->type_name("DIR");
   return [options]() -> int {
     const Scene scene = load(options->scene);
     std::string warnings;
-    const std::string text = render(scene, *options, warnings);
+    OutputTransaction out;
+    const std::string text = render(scene, *options, warnings, out);
     fmt::print(stderr, "{}", warnings);
     if (options->output.empty()) {
+      out.commit();
       fmt::print("{}", text);
     } else {
-      OutputTransaction out;
       out.stage(options->output, text);
       out.commit();
     }

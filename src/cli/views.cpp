@@ -1,0 +1,77 @@
+#include "views.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace abu::cli {
+
+template <int N>
+std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const ViewsInput& in, const ParamsT<double, N>& p,
+                                               const Scene& scene, const SceneOptions& options) {
+  const SpeedUnit unit = options.speed_unit();
+  std::vector<std::filesystem::path> files;
+  const std::vector<CriticalSpeed> critical = critical_speeds(in.samples);
+  if (!in.samples.empty()) {
+    const auto csv_path = in.dir / fmt::format("campbell_{}.csv", in.param);
+    const auto staged = out.stage(csv_path, campbell_csv(in.samples, in.header, unit));
+    files.push_back(csv_path);
+    if (in.chart) {
+      const auto png_path = in.dir / fmt::format("campbell_{}.png", in.param);
+      std::string marks;
+      for (const auto& c : critical)
+        if (c.family == "balanced" || critical.size() == 1) marks += fmt::format("{} ", from_rad_per_s(c.omega, unit));
+      // The chart shows one family: the balanced state where it exists (the design state).
+      std::string family = "balanced";
+      bool has_balanced = false;
+      for (const auto& s : in.samples) has_balanced = has_balanced || s.family == "balanced";
+      if (!has_balanced) family = in.samples.front().family;
+      if (!has_balanced) {
+        marks.clear();
+        for (const auto& c : critical)
+          if (c.family == family) marks += fmt::format("{} ", from_rad_per_s(c.omega, unit));
+      }
+      {  // one mark per distinct speed (mirror members and branches share theirs)
+        std::vector<std::string> seen;
+        std::string unique;
+        for (std::size_t pos = 0; pos < marks.size();) {
+          const auto end = marks.find(' ', pos);
+          const std::string w = marks.substr(pos, end - pos);
+          const std::string key = fmt::format("{:.6g}", std::stod(w));
+          if (std::find(seen.begin(), seen.end(), key) == seen.end()) seen.push_back(key), unique += w + " ";
+          pos = end + 1;
+        }
+        marks = unique;
+      }
+      run_gnuplot(plots_dir() / "campbell.gp",
+                  {{"csv", staged.string()},
+                   {"png", out.reserve(png_path).string()},
+                   {"unit", std::string(to_string(unit))},
+                   {"family", family},
+                   {"critical", marks},
+                   {"omega_n", fmt::format("{}", from_rad_per_s(natural_frequency(p), unit))},
+                   {"title", in.title}});
+      files.push_back(png_path);
+    }
+  }
+  const auto json_path = in.dir / fmt::format("summary_{}.json", in.param);
+  out.stage(json_path, summary_json(command_line(), scene.file, p, in.param, in.param_unit, in.from, in.to, in.ranges,
+                                    critical, unit));
+  files.push_back(json_path);
+  fmt::print(stderr, "{}", ranges_text(in.ranges, in.param, in.param_unit, unit));
+  for (const auto& c : critical)
+    fmt::print(stderr, "critical speed ({}: rotor forward whirl crosses 1X): omega = {:.9g} rad/s{} = {:.6g} omega_n\n",
+               c.series, c.omega,
+               unit == SpeedUnit::rad_per_s ? std::string()
+                                            : fmt::format(" = {:.6g} {}", from_rad_per_s(c.omega, unit), to_string(unit)),
+               c.omega / c.omega_n);
+  return files;
+}
+
+template std::vector<std::filesystem::path> stage_views<2>(OutputTransaction&, const ViewsInput&, const Params&,
+                                                           const Scene&, const SceneOptions&);
+template std::vector<std::filesystem::path> stage_views<any_balls>(OutputTransaction&, const ViewsInput&,
+                                                                   const ParamsN&, const Scene&, const SceneOptions&);
+
+}  // namespace abu::cli
