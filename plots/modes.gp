@@ -36,7 +36,7 @@ place(m, v) = (column("equilibrium") == equilibrium && column("mode") == m && co
 do for [k = 1:count] {
   ttl = exists(sprintf('t%d', k)) ? value(sprintf('t%d', k)) : sprintf('mode %d', k)
   m = 0 + substr(ttl, 6, strstrt(ttl, ':') - 1)
-  set title ttl noenhanced
+  set title ttl noenhanced font ',8'
   plot cos(t), sin(t) with lines lc rgb '#bbbbbb' dt 2 notitle, \
        csv using (pick(m, 'rotor', column("x"))):(pick(m, 'rotor', column("y"))) with lines lc rgb '#d62728' lw 2 title 'rotor centre', \
        for [b = 1:12] csv using (pick(m, sprintf('ball%d', b), column("x"))):(pick(m, sprintf('ball%d', b), column("y"))) with lines lc rgb '#1f77b4' lw 1.5 title (b == 1 ? 'ball centres' : ''), \

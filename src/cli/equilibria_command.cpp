@@ -57,7 +57,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     if (o.format == "csv")
       return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p);
+    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -68,7 +68,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p);
+  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
 }
 }  // namespace
 

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <sstream>
 #include <cstdio>
 
 namespace abu::cli {
@@ -60,13 +63,60 @@ std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const Vie
                                     critical, unit));
   files.push_back(json_path);
   fmt::print(stderr, "{}", ranges_text(in.ranges, in.param, in.param_unit, unit));
-  for (const auto& c : critical)
-    fmt::print(stderr, "critical speed ({}: rotor forward whirl crosses 1X): omega = {:.9g} rad/s{} = {:.6g} omega_n\n",
-               c.series, c.omega,
+  // One line per distinct critical speed (mirror members, branches and samples of one
+  // balanced set share theirs): the first equilibrium and how many more.
+  for (std::size_t i = 0; i < critical.size();) {
+    const auto& c = critical[i];
+    const std::string key = fmt::format("{:.9g}", c.omega);
+    std::size_t j = i + 1;
+    while (j < critical.size() && fmt::format("{:.9g}", critical[j].omega) == key) ++j;
+    fmt::print(stderr, "critical speed ({}{}: rotor forward whirl crosses 1X): omega = {:.9g} rad/s{} = {:.6g} omega_n\n",
+               c.series, j - i > 1 ? fmt::format(" and {} more", j - i - 1) : std::string(), c.omega,
                unit == SpeedUnit::rad_per_s ? std::string()
                                             : fmt::format(" = {:.6g} {}", from_rad_per_s(c.omega, unit), to_string(unit)),
                c.omega / c.omega_n);
+    i = j;
+  }
   return files;
+}
+
+std::string omega_axis_input(const SceneOptions& options, const std::string& axis) {
+  if (options.speed_unit() == SpeedUnit::rad_per_s || axis.rfind("omega:", 0) != 0) return axis;
+  std::vector<std::string> parts;
+  for (std::size_t pos = 0;;) {
+    const auto end = axis.find(':', pos);
+    parts.push_back(axis.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
+    if (end == std::string::npos) break;
+    pos = end + 1;
+  }
+  if (parts.size() < 3) return axis;
+  for (std::size_t k : {std::size_t(1), std::size_t(2)}) {
+    double v = 0;
+    const auto& t = parts[k];
+    const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || ptr != t.data() + t.size()) return axis;
+    parts[k] = fmt::format("{}", omega_input(options, v));
+  }
+  std::string out;
+  for (std::size_t k = 0; k < parts.size(); ++k) out += (k ? ":" : "") + parts[k];
+  return out;
+}
+
+void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y, const Scene& scene,
+                      const SceneOptions& options, const std::string& command, bool quiet) {
+  if (x != "omega" && y != "omega") return;
+  const auto csv_path = dir / fmt::format("summary_{}_{}.csv", x, y);
+  std::ifstream in(csv_path);
+  if (!in) return;
+  std::stringstream text;
+  text << in.rdbuf();
+  const MapRangesOutput r = map_ranges(text.str(), x, y, command, scene.file, params_of<any_balls>(scene),
+                                       options.speed_unit(), 10);
+  if (r.json.empty()) return;
+  OutputTransaction out;
+  out.stage(dir / fmt::format("summary_{}_{}.json", x, y), r.json);
+  out.commit();
+  if (!quiet) fmt::print(stderr, "{}", r.text);
 }
 
 template std::vector<std::filesystem::path> stage_views<2>(OutputTransaction&, const ViewsInput&, const Params&,

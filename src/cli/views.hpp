@@ -31,4 +31,15 @@ template <int N>
 std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const ViewsInput& in, const ParamsT<double, N>& p,
                                                const Scene& scene, const SceneOptions& options);
 
+/// A map axis `omega:FROM:TO:N[:log]` typed in the command's --units, rewritten in rad/s
+/// (any other axis, or a malformed one for the map's own checks, unchanged).
+std::string omega_axis_input(const SceneOptions& options, const std::string& axis);
+
+/// After a map: summary_<x>_<y>.json with the omega ranges per value of the other axis,
+/// read from the map's summary_<x>_<y>.csv (nothing when no axis is omega); the ranges on
+/// stderr unless `quiet`. `command`: the map's canonical command line (the same bytes for
+/// any thread or rank count).
+void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y, const Scene& scene,
+                      const SceneOptions& options, const std::string& command, bool quiet);
+
 }  // namespace abu::cli

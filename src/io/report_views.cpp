@@ -313,6 +313,38 @@ CampbellSample sample_of(int step, const ParamsT<double, N>& p, const Equilibriu
 }
 }  // namespace
 
+namespace {
+template <class A, int N>
+std::string modes_block(const A& a, const ParamsT<double, N>& p, SpeedUnit unit) {
+  std::string out = fmt::format(
+      "\nmodes in the fixed frame (docs/model.md §16): Omega = fixed-frame whirl frequency, > 0 forward, < 0 "
+      "backward; zeta, delta = damping ratio, log decrement; rotor = rotor translation's share\n");
+  out += fmt::format("{:<13} {:>4} {:<22} {:>16} {:>12} {:>12} {:>12} {:>8}\n", "equilibrium", "mode", "label",
+                     "Omega [rad/s]", unit == SpeedUnit::rad_per_s ? std::string() : fmt::format("[{}]", to_string(unit)),
+                     "zeta", "delta", "rotor");
+  const auto points = a.equilibria.points();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto modes = mode_views(p, points[i].position, a.spectra[i]);
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      const auto& m = modes[k];
+      if (m.kind == ModeKind::set_direction) continue;
+      out += fmt::format("{:<13} {:>4} {:<22} {:>16.9g} {:>12} {:>12.4g} {:>12} {:>8.3g}\n", state_label(points[i]), k + 1,
+                         to_string(m.kind), m.whirl_frequency,
+                         unit == SpeedUnit::rad_per_s ? std::string()
+                                                      : fmt::format("{:.6g}", from_rad_per_s(m.whirl_frequency, unit)),
+                         m.damping_ratio, m.has_log_decrement ? fmt::format("{:.4g}", m.log_decrement) : "-",
+                         m.rotor_share);
+    }
+  }
+  return out;
+}
+}  // namespace
+
+std::string modes_table(const Analysis& a, const Params& p, SpeedUnit unit) { return modes_block<Analysis, 2>(a, p, unit); }
+std::string modes_table(const AnalysisN& a, const ParamsN& p, SpeedUnit unit) {
+  return modes_block<AnalysisN, any_balls>(a, p, unit);
+}
+
 std::string mode_shapes_csv(const Analysis& a, const Params& p, std::string_view header) {
   return shapes_csv<Analysis, 2>(a, p, header);
 }
@@ -588,6 +620,10 @@ void branch_segments(const Branch& b, bool balanced_only, double lo, double hi, 
 }
 }  // namespace
 
+std::vector<Range> grid_ranges(const std::vector<double>& values, const std::vector<bool>& flag) {
+  return runs(values, flag);
+}
+
 StabilityRanges stability_ranges(const SweepResult& s) { return sweep_ranges(s); }
 StabilityRanges stability_ranges(const SweepResultN& s) { return sweep_ranges(s); }
 
@@ -680,6 +716,101 @@ std::string summary_json(std::string_view command_line, std::string_view scene_f
   out += critical.empty() ? "]\n}\n" : "\n  ]\n}\n";
   return out;
 }
+namespace {
+std::vector<std::string> split_csv_line(std::string_view line) {
+  std::vector<std::string> cells;
+  std::size_t pos = 0;
+  while (true) {
+    const auto end = line.find(',', pos);
+    cells.emplace_back(line.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos));
+    if (end == std::string_view::npos) break;
+    pos = end + 1;
+  }
+  return cells;
+}
+}  // namespace
+
+template <int N>
+MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std::string_view y,
+                           std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p,
+                           SpeedUnit unit, int max_lines) {
+  MapRangesOutput result;
+  if (x != "omega" && y != "omega") return result;
+  const std::string_view other = x == "omega" ? y : x;
+  std::vector<std::string> header;
+  // per value of the other axis (in file order of first appearance): omega values and flags
+  std::vector<double> others;
+  std::map<double, std::vector<std::array<double, 3>>> rows;  // other -> (omega, balanced stable, any stable)
+  std::size_t pos = 0;
+  int i_omega = -1, i_other = -1, i_bal = -1, i_n = -1;
+  while (pos < summary_csv.size()) {
+    const auto end = summary_csv.find('\n', pos);
+    const std::string_view line = summary_csv.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos);
+    pos = end == std::string_view::npos ? summary_csv.size() : end + 1;
+    if (line.empty() || line.front() == '#') continue;
+    const auto cells = split_csv_line(line);
+    if (header.empty()) {
+      header = cells;
+      for (std::size_t k = 0; k < header.size(); ++k) {
+        if (header[k] == "omega") i_omega = int(k);
+        if (header[k] == other) i_other = int(k);
+        if (header[k] == "balanced_stable") i_bal = int(k);
+        if (header[k] == "n_stable") i_n = int(k);
+      }
+      if (i_omega < 0 || i_other < 0 || i_bal < 0 || i_n < 0) return result;
+      continue;
+    }
+    const auto at = [&](int k) { return std::size_t(k) < cells.size() ? cells[std::size_t(k)] : std::string(); };
+    const double o = std::stod(at(i_other));
+    if (!rows.count(o)) others.push_back(o);
+    rows[o].push_back({std::stod(at(i_omega)), at(i_bal) == "1" ? 1.0 : 0.0, at(i_n).empty() || at(i_n) == "0" ? 0.0 : 1.0});
+  }
+  std::string json_rows;
+  int lines = 0;
+  for (std::size_t r = 0; r < others.size(); ++r) {
+    auto cells = rows[others[r]];
+    std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a[0] < b[0]; });
+    std::vector<double> omega;
+    std::vector<bool> balanced, none;
+    for (const auto& c : cells) omega.push_back(c[0]), balanced.push_back(c[1] > 0), none.push_back(c[2] == 0);
+    StabilityRanges ranges;
+    ranges.balanced_stable = runs(omega, balanced);
+    ranges.nothing_stable = runs(omega, none);
+    json_rows += fmt::format("{}{{{}: {}, \"balanced_stable\": {}, \"nothing_stable\": {}}}", r ? ",\n    " : "\n    ",
+                             json_string(other), num(others[r], "axis"), ranges_json(ranges.balanced_stable),
+                             ranges_json(ranges.nothing_stable));
+    if (lines < max_lines) {
+      result.text += fmt::format("at {} = {:.6g}:\n", other, others[r]);
+      const std::string block = ranges_text(ranges, "omega", "rad/s", unit);
+      for (std::size_t b = 0; b < block.size();) {
+        const auto e = block.find('\n', b);
+        result.text += "  " + block.substr(b, e - b + 1);
+        b = e == std::string::npos ? block.size() : e + 1;
+      }
+      ++lines;
+    }
+  }
+  if (int(others.size()) > max_lines)
+    result.text += fmt::format("... {} more values of {} in the summary JSON\n", int(others.size()) - max_lines, other);
+  result.json = fmt::format("{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n",
+                            ABU_VERSION, json_string(command_line), json_string(scene_file));
+  result.json += fmt::format("  \"parameters\": {},\n  \"omega_n\": {},\n  \"capacity\": {},\n  \"unbalance\": {},\n",
+                             parameters_json(p), quantity(natural_frequency(p), "rad/s", "omega_n"),
+                             quantity(ball_capacity_of(p), "kg m", "capacity"),
+                             quantity(p.rotor.unbalance, "kg m", "U"));
+  result.json += fmt::format("  \"speed_axis\": \"omega\",\n  \"speed_unit\": \"rad/s\",\n  \"other_axis\": {},\n", json_string(other));
+  result.json += fmt::format("  \"ranges_note\": {},\n  \"rows\": [{}\n  ]\n}}\n",
+                             json_string("per value of the other axis, the omega ranges on the map's grid where a "
+                                         "balanced state is stable and where nothing is; an end is 'grid' (the true "
+                                         "end lies between the value and *_outside) or 'interval'"),
+                             json_rows);
+  return result;
+}
+template MapRangesOutput map_ranges<2>(std::string_view, std::string_view, std::string_view, std::string_view,
+                                       std::string_view, const Params&, SpeedUnit, int);
+template MapRangesOutput map_ranges<any_balls>(std::string_view, std::string_view, std::string_view, std::string_view,
+                                               std::string_view, const ParamsN&, SpeedUnit, int);
+
 template std::string summary_json<2>(std::string_view, std::string_view, const Params&, std::string_view,
                                      std::string_view, double, double, const StabilityRanges&,
                                      const std::vector<CriticalSpeed>&, SpeedUnit);

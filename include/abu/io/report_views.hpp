@@ -60,6 +60,11 @@ template <int N>
 std::string eigen_view_json(const ParamsT<double, N>& p, const SpectrumT<N>& sp, int k,
                             const std::vector<ModeView>& modes, const std::vector<int>& mode_of);
 
+/// The table's block of fixed-frame modes: per equilibrium and mode, the label, the signed
+/// whirl frequency (in `unit` too), zeta, delta and the rotor share.
+std::string modes_table(const Analysis& a, const Params& p, SpeedUnit unit);
+std::string modes_table(const AnalysisN& a, const ParamsN& p, SpeedUnit unit);
+
 /// Mode shapes (docs/views.md): for every equilibrium and every mode (structural zeros left
 /// out) one cycle of the motion Re(v e^{i theta}), theta = 0 .. 2 pi in 48 steps, of the rotor
 /// centre and of each ball's centre in the rotating frame, in race-radius units (ball i drawn at
@@ -128,6 +133,22 @@ struct StabilityRanges {
 StabilityRanges stability_ranges(const SweepResult& s);
 StabilityRanges stability_ranges(const SweepResultN& s);
 StabilityRanges stability_ranges(const ContinuationRun& run);
+
+/// Maximal runs of consecutive grid values where `flag` holds, with grid-bracketed ends.
+std::vector<Range> grid_ranges(const std::vector<double>& values, const std::vector<bool>& flag);
+
+/// A map with an omega axis (`map`'s summary_X_Y.csv text, read by column names
+/// `balanced_stable` and `n_stable`): per value of the other axis, the omega ranges where
+/// a balanced state is stable and where nothing is. `summary_<x>_<y>.json` and stderr
+/// lines (at most `max_lines` rows). Empty strings when the CSV lacks those columns or
+/// neither axis is omega.
+struct MapRangesOutput {
+  std::string json, text;
+};
+template <int N>
+MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std::string_view y,
+                           std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p,
+                           SpeedUnit unit, int max_lines);
 
 /// stderr lines: the ranges in the parameter's unit (and the display unit for omega).
 std::string ranges_text(const StabilityRanges& r, std::string_view param, std::string_view param_unit,
