@@ -62,7 +62,7 @@ std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const Vie
   out.stage(json_path, summary_json(command_line(), scene.file, p, in.param, in.param_unit, in.from, in.to, in.ranges,
                                     critical, unit));
   files.push_back(json_path);
-  fmt::print(stderr, "{}", ranges_text(in.ranges, in.param, in.param_unit, unit));
+  fmt::print(stderr, "{}", ranges_text(in.ranges, in.param, in.param_unit, unit, natural_frequency(p)));
   // One line per distinct critical speed (mirror members, branches and samples of one
   // balanced set share theirs): the first equilibrium and how many more.
   for (std::size_t i = 0; i < critical.size();) {

@@ -642,7 +642,8 @@ StabilityRanges stability_ranges(const ContinuationRun& run) {
 }
 
 namespace {
-std::string range_text(const Range& r, std::string_view param, std::string_view param_unit, SpeedUnit unit) {
+std::string range_text(const Range& r, std::string_view param, std::string_view param_unit, SpeedUnit unit,
+                       double omega_n) {
   const auto end = [](double x, const std::string& kind, const std::optional<double>& outside) {
     std::string s = fmt::format("{:.9g}", x);
     if (kind == "grid" && outside) s += fmt::format(" (grid: next value {:.9g})", *outside);
@@ -653,10 +654,12 @@ std::string range_text(const Range& r, std::string_view param, std::string_view 
                               param_unit);
   if (param == "omega" && unit != SpeedUnit::rad_per_s)
     s += fmt::format(" = {:.6g} .. {:.6g} {}", from_rad_per_s(r.from, unit), from_rad_per_s(r.to, unit), to_string(unit));
+  if (param == "omega" && omega_n > 0) s += fmt::format(" ({:.4g} .. {:.4g} omega_n)", r.from / omega_n, r.to / omega_n);
   return s;
 }
 
-std::string ranges_json(const std::vector<Range>& v) {
+// omega_n > 0 (an omega range): the ends also as multiples of omega_n.
+std::string ranges_json(const std::vector<Range>& v, double omega_n = 0) {
   std::string s = "[";
   for (std::size_t i = 0; i < v.size(); ++i) {
     const auto& r = v[i];
@@ -665,19 +668,23 @@ std::string ranges_json(const std::vector<Range>& v) {
                      i ? ", " : "", num(r.from, "range"), num(r.to, "range"), r.from_kind, r.to_kind,
                      r.from_outside ? num(*r.from_outside, "range") : std::string("null"),
                      r.to_outside ? num(*r.to_outside, "range") : std::string("null"));
+    if (omega_n > 0)
+      s.insert(s.size() - 1, fmt::format(", \"from_over_omega_n\": {}, \"to_over_omega_n\": {}",
+                                         num(r.from / omega_n, "ratio"), num(r.to / omega_n, "ratio")));
   }
   return s + "]";
 }
 }  // namespace
 
-std::string ranges_text(const StabilityRanges& r, std::string_view param, std::string_view param_unit, SpeedUnit unit) {
+std::string ranges_text(const StabilityRanges& r, std::string_view param, std::string_view param_unit, SpeedUnit unit,
+                        double omega_n) {
   std::string out;
   const auto list = [&](std::string_view what, const std::vector<Range>& v) {
     if (v.empty()) {
       out += fmt::format("{}: nowhere in the range\n", what);
       return;
     }
-    for (const auto& x : v) out += fmt::format("{}: {} = {}\n", what, param, range_text(x, param, param_unit, unit));
+    for (const auto& x : v) out += fmt::format("{}: {} = {}\n", what, param, range_text(x, param, param_unit, unit, omega_n));
   };
   list("balanced state stable", r.balanced_stable);
   list("no stable state", r.nothing_stable);
@@ -702,7 +709,9 @@ std::string summary_json(std::string_view command_line, std::string_view scene_f
                                  "the continuation), 'grid' (the true end lies between the value and *_outside), "
                                  "'interval' (the end of the computed interval) or 'branch_end' (a branch stopped)"));
   out += fmt::format("  \"balanced_stable\": {},\n  \"nothing_stable\": {},\n  \"some_stable\": {},\n",
-                     ranges_json(r.balanced_stable), ranges_json(r.nothing_stable), ranges_json(r.some_stable));
+                     ranges_json(r.balanced_stable, param == "omega" ? natural_frequency(p) : 0),
+                     ranges_json(r.nothing_stable, param == "omega" ? natural_frequency(p) : 0),
+                     ranges_json(r.some_stable, param == "omega" ? natural_frequency(p) : 0));
   out += "  \"critical_speeds\": [";
   for (std::size_t i = 0; i < critical.size(); ++i) {
     const auto& c = critical[i];
@@ -777,11 +786,12 @@ MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std
     ranges.balanced_stable = runs(omega, balanced);
     ranges.nothing_stable = runs(omega, none);
     json_rows += fmt::format("{}{{{}: {}, \"balanced_stable\": {}, \"nothing_stable\": {}}}", r ? ",\n    " : "\n    ",
-                             json_string(other), num(others[r], "axis"), ranges_json(ranges.balanced_stable),
-                             ranges_json(ranges.nothing_stable));
+                             json_string(other), num(others[r], "axis"),
+                             ranges_json(ranges.balanced_stable, natural_frequency(p)),
+                             ranges_json(ranges.nothing_stable, natural_frequency(p)));
     if (lines < max_lines) {
       result.text += fmt::format("at {} = {:.6g}:\n", other, others[r]);
-      const std::string block = ranges_text(ranges, "omega", "rad/s", unit);
+      const std::string block = ranges_text(ranges, "omega", "rad/s", unit, natural_frequency(p));
       for (std::size_t b = 0; b < block.size();) {
         const auto e = block.find('\n', b);
         result.text += "  " + block.substr(b, e - b + 1);

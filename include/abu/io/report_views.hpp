@@ -150,9 +150,10 @@ MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std
                            std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p,
                            SpeedUnit unit, int max_lines);
 
-/// stderr lines: the ranges in the parameter's unit (and the display unit for omega).
+/// stderr lines: the ranges in the parameter's unit (and the display unit for omega, and as
+/// multiples of omega_n when `omega_n` > 0).
 std::string ranges_text(const StabilityRanges& r, std::string_view param, std::string_view param_unit,
-                        SpeedUnit unit);
+                        SpeedUnit unit, double omega_n = 0);
 /// `summary_<param>.json`: program, command, scene, parameters (object with units), the
 /// swept parameter, omega_n, capacity and U, the ranges and the critical speeds.
 template <int N>
