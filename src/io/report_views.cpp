@@ -423,7 +423,7 @@ std::vector<CriticalSpeed> critical_speeds(const std::vector<CampbellSample>& sa
     if (i > 0 && samples[i - 1].series != s.series) last = nullptr;
     const ModeView* m = rotor_forward(s);
     if (!m) continue;
-    // whirl - omega = +-Im lambda (16.1): zero exactly at the 1X crossing.
+    // whirl - omega = +-Im lambda (16.1.3): zero exactly at the 1X crossing.
     const double g = m->whirl_frequency - s.omega;
     if (g == 0) continue;
     if (last && (g > 0) != (last_g > 0)) {
@@ -451,16 +451,16 @@ std::string campbell_csv(const std::vector<CampbellSample>& samples, std::string
       "omega_over_omega_n; family, pattern, member (continuation: member = branch); stable = the equilibrium's "
       "verdict;\n"
       "#   mode = 1-based index of the mode in the sorted spectrum's pairs; label = rotor forward whirl | rotor "
-      "backward whirl | ball mode | ball relative mode (by participation, model.md (16.3));\n"
+      "backward whirl | ball mode | ball relative mode (by participation, model.md (16.3.1));\n"
       "#   re_rotating, im_rotating [1/s]: the rotating-frame eigenvalue lambda (Im >= 0); re_fixed [1/s], "
       "whirl_frequency [rad/s]: the fixed-frame eigenvalue carrying most of the motion, lambda + i omega or "
-      "conj(lambda) + i omega (16.1);\n"
+      "conj(lambda) + i omega (16.1.2);\n"
       "#   whirl_frequency > 0: forward whirl, < 0: backward; whirl_display = |whirl_frequency| in the display unit "
       "[{0}]; whirl = forward|backward;\n"
       "#   zeta = -re_fixed / |fixed eigenvalue|; log_decrement = -2 pi re_fixed / |whirl_frequency| (empty when "
       "the whirl frequency is 0);\n"
       "#   rotor_share = rotor translation's share of M|dq|^2 + sum j_i m_i l_i^2 |dbeta_i|^2; forward_share = "
-      "the mass-weighted share of the motion at a positive fixed-frame frequency (16.2); balls_together = the balls' share in common rotation (16.3.1)\n",
+      "the mass-weighted share of the motion at a positive fixed-frame frequency (§16.2); balls_together = the balls' share in common rotation (16.3.1)\n",
       u);
   for (const auto& c : critical_speeds(samples))
     out += fmt::format("# critical speed ({}: rotor forward whirl = 1X): omega = {:.9g} rad/s = {:.6g} {} = {:.6g} "

@@ -34,7 +34,7 @@ int conjugate_of(const SpectrumT<N>& sp, int k) {
   return best;
 }
 
-// Circular components (16.2) of a planar displacement amplitude (x, y) of the rotating
+// Circular components (16.1.1) of a planar displacement amplitude (x, y) of the rotating
 // frame: w+ rides on exp((lambda + i omega) t), w- on exp((conj lambda + i omega) t).
 struct Circular {
   double forward = 0, backward = 0;  // |w+|^2, |w-|^2
@@ -63,13 +63,13 @@ std::vector<ModeView> mode_views(const ParamsT<double, N>& p, const Coordinates<
     m.conjugate = (!structural && lambda.imag() > 0) ? conjugate_of(sp, k) : -1;
     const auto& v = sp.vectors[std::size_t(k)];
 
-    // Mass-weighted circular components over the bodies (16.2): the rotor (M_r) and each
+    // Mass-weighted circular components over the bodies (16.2.1): the rotor (M_r) and each
     // ball (m_i) at its absolute displacement q + i l_i e^{i beta_i} dbeta_i, rotating frame.
     Circular total{};
     const Circular rotor = circular(v(0), v(1));
     total.forward += p.rotor.mass * rotor.forward;
     total.backward += p.rotor.mass * rotor.backward;
-    // Inertia measure (16.3): the diagonal of A (3.8), M |dq|^2 and j_i m_i l_i^2 |dbeta_i|^2.
+    // Inertia measure (16.3.1): the diagonal of A (3.8), M |dq|^2 and j_i m_i l_i^2 |dbeta_i|^2.
     const double rotor_energy = M * (std::norm(v(0)) + std::norm(v(1)));
     double ball_energy = 0, common_norm = 0;
     std::complex<double> common{};
@@ -92,7 +92,7 @@ std::vector<ModeView> mode_views(const ParamsT<double, N>& p, const Coordinates<
     const double weighted = total.forward + total.backward;
     m.plus_share = weighted > 0 ? total.forward / weighted : 0.5;
 
-    // (16.1): the forward component's fixed-frame eigenvalue is lambda + i omega, the
+    // (16.1.2), (16.1.3): the forward component's fixed-frame eigenvalue is lambda + i omega, the
     // backward one's conj(lambda) + i omega. A tie (a real eigenvalue, where both are the
     // same, or a pure ball oscillation) is resolved toward forward.
     const std::complex<double> plus = lambda + i * p.omega, minus = std::conj(lambda) + i * p.omega;

@@ -101,7 +101,7 @@ std::vector<CampbellSample> campbell_samples(const SweepResultN& s, const std::v
 std::vector<CampbellSample> campbell_samples(const ContinuationRun& run, const Params& p);
 
 /// A speed where a rotor forward-whirl mode crosses the 1X line (fixed-frame whirl = omega,
-/// i.e. its rotating-frame frequency passes 0, (16.1)): linear interpolation of
+/// i.e. its rotating-frame frequency passes 0, (16.1.3)): linear interpolation of
 /// whirl - omega between the two samples that bracket the sign change.
 struct CriticalSpeed {
   std::string series, family, pattern;

@@ -35,7 +35,7 @@ struct ModeView {
   int index = 0;      ///< the eigenvalue's index in the sorted spectrum (the one with Im >= 0)
   int conjugate = -1; ///< index of its conjugate partner, -1 for a real eigenvalue
   std::complex<double> rotating;  ///< lambda, rotating frame, Im lambda >= 0 [1/s]
-  /// The fixed-frame eigenvalue carrying most of the mode's motion (16.2): lambda + i omega
+  /// The fixed-frame eigenvalue carrying most of the mode's motion (16.1.2), (16.2.1): lambda + i omega
   /// (forward circular component dominant) or conj(lambda) + i omega; its imaginary part is
   /// the signed whirl frequency [rad/s], > 0 forward, < 0 backward.
   std::complex<double> fixed;
@@ -43,11 +43,11 @@ struct ModeView {
   std::complex<double> fixed_minor;
   double whirl_frequency = 0;  ///< Im fixed [rad/s], signed: > 0 forward, < 0 backward
   double plus_share = 0;       ///< f+ = |w+|^2 / (|w+|^2 + |w-|^2), mass-weighted over the bodies (16.2.1)
-  double forward_share = 0;    ///< the share of that motion at a positive fixed-frame frequency (16.2)
-  double rotor_share = 0;      ///< rotor translation's share of the mode's inertia measure (16.3)
-  double common_share = 0;     ///< of the balls' part: the share of all balls turning together (16.3)
-  double damping_ratio = 0;    ///< zeta = -Re fixed / |fixed| (16.4), fixed frame
-  /// delta = 2 pi zeta / sqrt(1 - zeta^2) = -2 pi Re / |Im| (16.4); not finite when the
+  double forward_share = 0;    ///< the share of that motion at a positive fixed-frame frequency (§16.2)
+  double rotor_share = 0;      ///< rotor translation's share of the mode's inertia measure (16.3.1)
+  double common_share = 0;     ///< of the balls' part: the share of all balls turning together (16.3.1)
+  double damping_ratio = 0;    ///< zeta = -Re fixed / |fixed| (16.4.1), fixed frame
+  /// delta = 2 pi zeta / sqrt(1 - zeta^2) = -2 pi Re / |Im| (16.4.1); not finite when the
   /// fixed-frame frequency is 0 (`has_log_decrement` false).
   double log_decrement = 0;
   bool has_log_decrement = false;
