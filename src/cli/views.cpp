@@ -63,18 +63,23 @@ std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const Vie
                                     critical, unit));
   files.push_back(json_path);
   fmt::print(stderr, "{}", ranges_text(in.ranges, in.param, in.param_unit, unit, natural_frequency(p)));
-  // One line per distinct critical speed (mirror members, branches and samples of one
-  // balanced set share theirs): the first equilibrium and how many more.
+  // One line per family (and pattern): its equilibria's crossings share a speed up to the
+  // ball arrangement (mirror members, branches, samples of one balanced set): min .. max.
   for (std::size_t i = 0; i < critical.size();) {
     const auto& c = critical[i];
-    const std::string key = fmt::format("{:.9g}", c.omega);
+    double lo = c.omega, hi = c.omega;
     std::size_t j = i + 1;
-    while (j < critical.size() && fmt::format("{:.9g}", critical[j].omega) == key) ++j;
-    fmt::print(stderr, "critical speed ({}{}: rotor forward whirl crosses 1X): omega = {:.9g} rad/s{} = {:.6g} omega_n\n",
-               c.series, j - i > 1 ? fmt::format(" and {} more", j - i - 1) : std::string(), c.omega,
-               unit == SpeedUnit::rad_per_s ? std::string()
-                                            : fmt::format(" = {:.6g} {}", from_rad_per_s(c.omega, unit), to_string(unit)),
-               c.omega / c.omega_n);
+    for (; j < critical.size() && critical[j].family == c.family && critical[j].pattern == c.pattern; ++j)
+      lo = std::min(lo, critical[j].omega), hi = std::max(hi, critical[j].omega);
+    const auto speed = [&](double w) {
+      return unit == SpeedUnit::rad_per_s ? fmt::format("{:.9g} rad/s", w)
+                                          : fmt::format("{:.9g} rad/s = {:.6g} {}", w, from_rad_per_s(w, unit), to_string(unit));
+    };
+    const std::string who = j - i > 1 ? fmt::format("{}{}{}, {} equilibria", c.family, c.pattern.empty() ? "" : " ",
+                                                    c.pattern, j - i)
+                                      : c.series;
+    fmt::print(stderr, "critical speed ({}: rotor forward whirl crosses 1X): omega = {}{} = {:.6g} omega_n\n", who,
+               speed(lo), speed(hi) != speed(lo) ? fmt::format(" .. {}", speed(hi)) : std::string(), lo / c.omega_n);
     i = j;
   }
   return files;
