@@ -3,14 +3,17 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <algorithm>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -102,6 +105,30 @@ void set_interrupt_note(std::string note) {
 
 const std::string& command_line() { return g_command_line; }
 
+SpeedUnit SceneOptions::speed_unit() const { return speed_unit_from_string(units).value_or(SpeedUnit::rad_per_s); }
+
+double omega_input(const SceneOptions& options, double typed) { return to_rad_per_s(typed, options.speed_unit()); }
+
+namespace {
+// `--set omega=V` in the command's --units: rewritten to rad/s before the scene's rules
+// check it (a value that is not a number is left for apply_override to report).
+std::string in_si(const SceneOptions& options, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (options.speed_unit() == SpeedUnit::rad_per_s || eq == std::string::npos) return assignment;
+  std::string name = assignment.substr(0, eq);
+  name.erase(0, name.find_first_not_of(" \t"));
+  name.erase(name.find_last_not_of(" \t") + 1);
+  if (name != "omega") return assignment;
+  std::string text = assignment.substr(eq + 1);
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) return assignment;
+  return fmt::format("omega={}", omega_input(options, v));
+}
+}  // namespace
+
 // The overrides do not depend on their order for being accepted: a rule between two
 // values (r < l) is judged on the final scene. They are applied in the given order; one
 // refused only because of a value a later override changes is applied again after the
@@ -114,7 +141,7 @@ Scene load(const SceneOptions& options) {
     std::optional<InputError> first;
     for (const auto& assignment : pending) {
       try {
-        apply_override(scene, assignment);
+        apply_override(scene, in_si(options, assignment));
       } catch (const InputError& e) {
         if (!first) first = e;
         refused.push_back(assignment);
@@ -123,7 +150,7 @@ Scene load(const SceneOptions& options) {
     if (refused.size() == pending.size()) throw *first;
     pending = std::move(refused);
   }
-  for (const auto& assignment : options.overrides) apply_override(scene, assignment);
+  for (const auto& assignment : options.overrides) apply_override(scene, in_si(options, assignment));
   check_numerical_range(scene, options.overrides.empty() ? scene.file : "--set");
   return scene;
 }
@@ -165,6 +192,11 @@ void add_scene_options(CLI::App& sub, SceneOptions& options) {
       ->type_name("NAME=VALUE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub.add_option("--units", options.units,
+                 "Unit of the speed omega as typed (--set omega=, --from/--to of omega) and displayed: rad/s, rpm or "
+                 "hz; CSV columns named omega and JSON values stay in rad/s")
+      ->check(CLI::IsMember({"rad/s", "rpm", "hz", "Hz"}))
+      ->capture_default_str();
 }
 
 int run_command(int argc, char** argv);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "abu/core/speed_units.hpp"
 #include "abu/io/scene.hpp"
 
 namespace abu::cli {
@@ -27,7 +28,12 @@ int run(int argc, char** argv);
 struct SceneOptions {
   std::string scene;
   std::vector<std::string> overrides;  ///< --set NAME=VALUE, in order
+  std::string units = "rad/s";          ///< --units: how omega is typed and displayed (docs/views.md)
+  SpeedUnit speed_unit() const;
 };
+
+/// A value of omega typed in the command's --units, in rad/s.
+double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);

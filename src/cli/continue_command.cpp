@@ -14,6 +14,7 @@
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "commands.hpp"
+#include "views.hpp"
 
 namespace abu::cli {
 
@@ -171,7 +172,8 @@ Action add_continue_command(CLI::App& app) {
       "fold and Hopf points are continued in two parameters.");
   add_scene_options(*sub, o->scene);
   sub->add_option("--param", o->param, fmt::format("Continuation parameter: {}", param_symbols_help()))->required();
-  sub->add_option("--to", o->to, "End value of the parameter (it starts at the scene's value)")->required();
+  sub->add_option("--to", o->to, "End value of the parameter (it starts at the scene's value; omega in --units)")
+      ->required();
   auto* fam = sub->add_option("--from-equilibrium", o->family, "Start only from this family's equilibria")
                   ->check(CLI::IsMember({"balanced", "together", "opposite"}));
   auto* all = sub->add_flag("--all", o->all, "Start from every equilibrium (the default)");
@@ -194,6 +196,8 @@ Action add_continue_command(CLI::App& app) {
   return [o]() -> int {
     Scene scene = load(o->scene);
     check_output_directory(o->output_dir);  // refused before any work
+    if (o->param == "omega") o->to = omega_input(o->scene, o->to);
+    if (o->param2 == "omega") o->to2 = omega_input(o->scene, o->to2);
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
@@ -219,6 +223,12 @@ Action add_continue_command(CLI::App& app) {
     OutputTransaction out;
     const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
     const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
+    stage_views(out,
+                {dir, name, std::string(unit(param.quantity)), run.from, run.to, campbell_samples(run, p),
+                 stability_ranges(run), header, fmt::format("{}: Campbell diagram along the branches (fixed frame)",
+                                                            scene.file),
+                 o->chart},
+                p, scene, o->scene);
     if (o->chart)
       run_gnuplot(plots_dir() / "bifurcation.gp",
                   {{"branches", branches.string()},

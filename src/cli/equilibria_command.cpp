@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
 
@@ -20,6 +22,7 @@ struct EquilibriaOptions {
   std::string output;
   BalancedSampling sampling;
   bool chart = true;  // no chart to draw: --no-chart is accepted like everywhere
+  std::string mode_shapes;  // --mode-shapes DIR
 };
 
 // A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
@@ -33,25 +36,54 @@ void check_equilibria(const A& a, double omega) {
                                        omega, to_string(e.family), e.residual));
 }
 
+// `--mode-shapes DIR`: DIR/modes.csv (every equilibrium's modes) and DIR/modes.png (the
+// best stable state's, else the first equilibrium's), docs/views.md.
+template <class A, int N>
+void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& a, const ParamsT<double, N>& p,
+                       const Scene& scene, bool draw) {
+  const std::filesystem::path d(dir);
+  const auto csv = out.stage(d / "modes.csv",
+                             mode_shapes_csv(a, p, provenance_header(command_line(), scene.file, p)));
+  const ModeChart chart = mode_chart(a, p);
+  if (chart.titles.empty() || !draw) return;
+  std::vector<std::pair<std::string, std::string>> vars{
+      {"csv", csv.string()},
+      {"png", out.reserve(d / "modes.png").string()},
+      {"equilibrium", std::to_string(chart.equilibrium + 1)},
+      {"count", std::to_string(chart.titles.size())},
+      {"title", fmt::format("{}: mode shapes of {} at omega = {} rad/s (rotating frame)", scene.file, chart.label,
+                            p.omega)}};
+  for (std::size_t k = 0; k < chart.titles.size(); ++k) vars.emplace_back(fmt::format("t{}", k + 1), chart.titles[k]);
+  run_gnuplot(plots_dir() / "modes.gp", vars);
+}
+
 // Two balls take the fixed-size path (closed forms of model.md §5), any other count the
 // general one (§13); both write the same formats.
-std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
+  const SpeedUnit unit = o.scene.speed_unit();
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);
     const Analysis a = analyze(p);
     check_equilibria(a, p.omega);
+    if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene, o.chart);
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
-    if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p));
+    const PointAnswer answer = point_answer(a, p);
+    if (o.format == "csv")
+      return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return equilibria_table(a, p);
+    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
   check_equilibria(a, p.omega);
+  if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene, o.chart);
   warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
-  if (o.format == "csv") return equilibria_csv(a, provenance_header(command_line(), scene.file, p), p.n_balls());
+  const PointAnswer answer = point_answer(a, p);
+  if (o.format == "csv")
+    return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "),
+                          p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return equilibria_table(a, p);
+  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
 }
 }  // namespace
 
@@ -74,17 +106,22 @@ Action add_equilibria_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   sub->add_flag("!--no-chart", options->chart,
-                "Accepted for uniformity with the other commands (equilibria draws no chart)");
+                "Do not draw the --mode-shapes chart (its CSV is still written)");
+  sub->add_option("--mode-shapes", options->mode_shapes,
+                  "Also write DIR/modes.csv (every mode of every equilibrium: rotor and ball motion over one cycle) and "
+                  "DIR/modes.png")
+      ->type_name("DIR");
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work
     std::string warnings;
-    const std::string text = render(scene, *options, warnings);
+    OutputTransaction out;
+    const std::string text = render(scene, *options, warnings, out);
     fmt::print(stderr, "{}", warnings);
     if (options->output.empty()) {
+      out.commit();
       fmt::print("{}", text);
     } else {
-      OutputTransaction out;
       out.stage(options->output, text);
       out.commit();
     }

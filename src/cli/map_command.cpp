@@ -17,6 +17,7 @@
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "views.hpp"
 
 namespace abu::cli {
 
@@ -38,6 +39,7 @@ struct MapOptions {
 std::string canonical_command_line(const MapOptions& o) {
   std::string line = fmt::format("stability-scan map {} --x {} --y {}", o.scene.scene, o.x, o.y);
   for (const auto& s : o.scene.overrides) line += " --set " + s;
+  if (o.scene.units != "rad/s") line += " --units " + o.scene.units;  // omega is typed in that unit
   return line + " --method " + o.method;
 }
 
@@ -80,8 +82,8 @@ Action add_map_command(CLI::App& app) {
     const Scene scene = load(o->scene);
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
-    request.x = o->x;
-    request.y = o->y;
+    request.x = omega_axis_input(o->scene, o->x);
+    request.y = omega_axis_input(o->scene, o->y);
     request.method = o->method == "full" ? CellMethod::full : CellMethod::fast;
     request.sampling = o->sampling;
     request.command_line = canonical_command_line(*o);
@@ -118,6 +120,9 @@ Action add_map_command(CLI::App& app) {
     }
     const MapRunStats& stats = r.stats;
     const std::filesystem::path dir(o->output_dir);
+    // The stable speed ranges per value of the other axis (docs/views.md), from the summary.
+    write_map_ranges(dir, o->x.substr(0, o->x.find(':')), o->y.substr(0, o->y.find(':')), scene, o->scene,
+                     canonical_command_line(*o), o->quiet);
     if (!o->quiet && r.boundary_seconds >= 0) fmt::print(stderr, "boundaries: {:.2f} s\n", r.boundary_seconds);
     if (!o->quiet && !r.boundary_note.empty()) fmt::print(stderr, "{}\n", r.boundary_note);
     if (!o->quiet)

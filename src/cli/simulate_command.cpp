@@ -278,6 +278,10 @@ Action add_simulate_command(CLI::App& app) {
     Scene scene = load(o->scene);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
+    // --units converts --set omega; a run-up profile stays in rad/s (docs/views.md).
+    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && (!o->ramp.empty() || !o->profile_file.empty()))
+      throw InputError(!o->ramp.empty() ? "--ramp" : "--speed-profile", 0, "units",
+                       "a speed profile is given in rad/s; --units applies to --set omega only (drop --units)");
     if (!(o->sim.settle_tolerance > 0 && o->sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
     const SpeedProfile speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)

@@ -13,6 +13,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "views.hpp"
 
 namespace abu::cli {
 
@@ -80,6 +81,13 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
   const auto summary_path = dir / fmt::format("summary_{}.csv", result.name);
   const auto png_path = dir / fmt::format("summary_{}.png", result.name);
   OutputTransaction out;
+  std::vector<ParamsN> params;
+  for (const auto& s : scenes) params.push_back(params_of<any_balls>(s));
+  stage_views(out,
+              {dir, result.name, result.unit, result.values.front(), result.values.back(),
+               campbell_samples(result, params), stability_ranges(result), header,
+               fmt::format("{}: Campbell diagram (fixed frame)", scene.file), o.chart},
+              first, scene, o.scene);
   out.stage(csv_path, sweep_csv(result, header));
   const auto staged_summary = out.stage(summary_path, sweep_summary_csv(result, header));
   if (o.chart) {
@@ -108,8 +116,8 @@ Action add_sweep_command(CLI::App& app) {
   sub->add_option("--param", o->param,
                   fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene)", param_symbols_help()))
       ->required();
-  sub->add_option("--from", o->from, "First value (SI)")->required();
-  sub->add_option("--to", o->to, "Last value (SI)")->required();
+  sub->add_option("--from", o->from, "First value (SI; omega in --units)")->required();
+  sub->add_option("--to", o->to, "Last value (SI; omega in --units)")->required();
   sub->add_option("--steps", o->steps, "Number of intervals: N+1 values including both ends (not for --param n)");
   sub->add_flag("--log", o->logarithmic, "Space the values evenly in log");
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
@@ -122,6 +130,7 @@ Action add_sweep_command(CLI::App& app) {
   return [o]() -> int {
     Scene scene = load(o->scene);
     check_output_directory(o->output_dir);  // refused before any work
+    if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
@@ -150,6 +159,12 @@ Action add_sweep_command(CLI::App& app) {
     OutputTransaction out;
     const std::string csv = sweep_csv(result, provenance_header(command_line(), scene.file, base));
     const auto staged_csv = out.stage(csv_path, csv);
+    stage_views(out,
+                {dir, name, std::string(unit(ref->quantity)), values.front(), values.back(),
+                 campbell_samples(result, base), stability_ranges(result),
+                 provenance_header(command_line(), scene.file, base),
+                 fmt::format("{}: Campbell diagram (fixed frame)", scene.file), o->chart},
+                base, scene, o->scene);
     if (o->chart) {
       // gnuplot reads the staged CSV and writes the staged PNG; both move into place together.
       run_gnuplot(plots_dir() / "sweep.gp",

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "abu/io/io.hpp"
+#include "abu/io/report_views.hpp"
 
 namespace abu {
 
@@ -201,6 +202,10 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
                      p.n_balls(),
                      json_string("q [m], beta [rad] in [0, 2 pi), eigenvalues (rotating frame) and errors [1/s], "
                                  "residual and condition dimensionless"));
+  // Rotordynamics views (docs/views.md): the frame of every eigenvalue, the parameters with
+  // their units, the point's answer.
+  out += fmt::format("  \"frame\": \"rotating\",\n  \"parameter_values\": {},\n  \"answer\": {},\n",
+                     parameters_json(p), answer_json(point_answer(a, p)));
   out += "  \"degeneracies\": [";
   const auto deg = describe_degeneracy(a.equilibria.degeneracy);
   for (std::size_t i = 0; i < deg.size(); ++i) out += (i ? ", " : "") + json_string(deg[i]);
@@ -239,15 +244,17 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
                        "\"eigenvalues\": [",
                        to_string(sp.stability), num(sp.abscissa, "abscissa"), sp.n_unstable, sp.n_marginal,
                        sp.n_structural, sp.ill_conditioned, sp.converged);
+    const auto modes = mode_views(p, e.position, sp);
+    const auto mode_of = mode_of_eigenvalue(modes, sp.count);
     for (std::size_t k = 0; k < std::size_t(sp.count); ++k) {
-      out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"error\": {}, \"condition\": {}, \"structural\": {}}}",
+      out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"error\": {}, \"condition\": {}, \"structural\": {}{}}}",
                          k ? ",\n       " : "", num(sp.eigenvalues[k].real(), "eigenvalue"),
                          num(sp.eigenvalues[k].imag(), "eigenvalue"), num(sp.error[k], "error"),
                          // A structural zero has no condition number (it is exact, not computed);
                          // an eigenvalue 0 has none either (cond divides by |lambda|): null.
                          std::isfinite(sp.condition[k]) && !sp.structural[k] ? num(sp.condition[k], "condition")
                                                                               : std::string("null"),
-                         sp.structural[k]);
+                         sp.structural[k], eigen_view_json(p, sp, int(k), modes, mode_of));
     }
     out += "]}";
   }

@@ -56,7 +56,7 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
       "# continuation in {} [{}] from {} to {}; pseudo-arclength, points ordered along each branch\n"
       "# columns: branch (1-based), point (index along the branch), label (EP at the ends; special points are in "
       "special_{}.csv),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
-      "n_unstable,\n#   re_k im_k [1/s]: eigenvalue k in TRACKED order (matched from point to point: k stays the "
+      "n_unstable,\n#   re_k im_k [1/s]: eigenvalue k (rotating frame; fixed frame: campbell_<param>.csv) in TRACKED order (matched from point to point: k stays the "
       "same mode along a branch)\n",
       name, unit(run.param.quantity), run.from, run.to, name);
   out += run_comments(run);
@@ -82,7 +82,7 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
   out += fmt::format(
       "# special points of the continuation in {} [{}]: LP fold, BP branch point, HB Hopf, MX a branch that ended "
       "in failure\n# columns: branch, label, {} (located by an augmented system to the rounding level), q1 q2 [m], "
-      "beta1 beta2 [rad], q_abs [m], family,\n#   frequency [rad/s] (HB; empty otherwise), re im [1/s] the critical eigenvalue, "
+      "beta1 beta2 [rad], q_abs [m], family,\n#   frequency [rad/s] (HB; empty otherwise), re im [1/s] the critical eigenvalue (both in the rotating frame), "
       "lyapunov = first Lyapunov coefficient (HB; < 0 supercritical, > 0 subcritical; state in SI, <q,q> = 1;\n"
       "#   empty off HB rows and where the Hopf system did not converge), converged (1/0), n_unstable before/after "
       "along the branch;\n#   MX rows: frequency, re, im, lyapunov and converged empty (no point was located)\n",
@@ -123,7 +123,7 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
       "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp: where the curve meets them, located by "
       "interpolating their test functions; GH generalized Hopf,\n#   the zero of l1 along the Hopf curve, located by "
       "regula falsi on the curve), the two parameters, q1 q2 [m], beta1 beta2 [rad],\n#   q_abs [m], family, "
-      "frequency [rad/s] (Hopf curves; empty on fold curves), lyapunov = first Lyapunov coefficient l1\n#   (Hopf "
+      "frequency [rad/s] (Hopf curves, rotating frame; empty on fold curves), lyapunov = first Lyapunov coefficient l1\n#   (Hopf "
       "curves: < 0 supercritical, > 0 subcritical there; 0 at GH; empty on fold curves)\n",
       n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
   for (std::size_t c = 0; c < run.curves.size(); ++c)

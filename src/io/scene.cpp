@@ -28,6 +28,7 @@
 #include <toml++/toml.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/speed_units.hpp"
 #include "scene_reading.hpp"
 #include "toml_guard.hpp"
 
@@ -192,8 +193,17 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                                 {"damping", Quantity::damping, true},
                                 {"unbalance", Quantity::unbalance, true}};
   if (rotor.table) read_table(p, *rotor.table, "rotor", rotor_slots, "mass, stiffness, damping, unbalance", no_other);
-  std::vector<Slot> speed_slots{{"omega", Quantity::omega, true}};
-  if (speed.table) read_table(p, *speed.table, "speed", speed_slots, "omega", no_other);
+  // [speed] gives omega [rad/s] or rpm [1/min] (docs/views.md), exactly one of them.
+  std::vector<Slot> speed_slots{{"omega", Quantity::omega, false}, {"rpm", Quantity::omega, false}};
+  if (speed.table) {
+    read_table(p, *speed.table, "speed", speed_slots, "omega or rpm", no_other);
+    const Slot* omega_slot = find(speed_slots, "omega");
+    const Slot* rpm_slot = find(speed_slots, "rpm");
+    if (omega_slot->seen && rpm_slot->seen)
+      p.add(rpm_slot->pos, rpm_slot->key, "give exactly one of omega [rad/s] and rpm [1/min] (got both)");
+    else if (!omega_slot->seen && !rpm_slot->seen)
+      p.add(speed.table->source().begin, "speed.omega", "missing required key (or rpm, the speed in 1/min)");
+  }
 
   // --- [[ball]]: geometry, and per-ball overrides of rolling and friction coefficients.
   std::vector<BallInput> listed;
@@ -293,7 +303,8 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   scene.file = file;
   scene.rotor = {value(rotor_slots, "mass"), value(rotor_slots, "stiffness"), value(rotor_slots, "damping"),
                  value(rotor_slots, "unbalance")};
-  scene.omega = value(speed_slots, "omega");
+  scene.omega = find(speed_slots, "rpm")->seen ? to_rad_per_s(value(speed_slots, "rpm"), SpeedUnit::rpm)
+                                               : value(speed_slots, "omega");
   scene.law = *law;
   scene.kappa = value(friction_slots, "kappa");
   if (ring_in) {

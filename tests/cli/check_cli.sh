@@ -39,7 +39,7 @@ check "--set changes the parameters in the header" "grep -q 'omega=150' '$work/s
 # --- sweep -------------------------------------------------------------------------------
 "$bin" sweep "$scene" --param omega --from 100 --to 1000 --steps 30 -o "$work/sweep" 2>"$work/sweep.err"
 check "sweep exits 0" "[ $? -eq 0 ]"
-check "sweep writes csv and png only" "[ \"\$(ls '$work/sweep' | tr '\n' ' ')\" = 'sweep_omega.csv sweep_omega.png ' ]"
+check "sweep writes csv, png and the views (campbell, summary)" "[ \"\$(ls '$work/sweep' | tr '\n' ' ')\" = 'campbell_omega.csv campbell_omega.png summary_omega.json sweep_omega.csv sweep_omega.png ' ]"
 check "png is a PNG" "[ \"\$(head -c 8 '$work/sweep/sweep_omega.png' | od -An -tx1 | tr -d ' \n')\" = '89504e470d0a1a0a' ]"
 check "sweep csv has 31 distinct steps" "[ \$(grep -v '^#' '$work/sweep/sweep_omega.csv' | tail -n +2 | cut -d, -f1 | sort -u | wc -l) -eq 31 ]"
 check "sweep csv ends exactly at --to" "grep -v '^#' '$work/sweep/sweep_omega.csv' | cut -d, -f2 | grep -qx 1000"
@@ -52,7 +52,7 @@ check "same input, same bytes (csv)" "cmp -s <(grep -v '^# command' '$work/sweep
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 -o "$work/cont" 2>"$work/cont.err"
 check "continue exits 0" "[ $? -eq 0 ]"
 check "continue writes branch, special points and chart" \
-  "[ \"\$(ls '$work/cont' | tr '\n' ' ')\" = 'bifurcation_omega.png branch_omega.csv special_omega.csv ' ]"
+  "[ \"\$(ls '$work/cont' | tr '\n' ' ')\" = 'bifurcation_omega.png branch_omega.csv campbell_omega.csv campbell_omega.png special_omega.csv summary_omega.json ' ]"
 check "special points: LP and HB found between 200 and 400 rad/s" \
   "grep -q '^[0-9]*,LP,' '$work/cont/special_omega.csv' && grep -q '^[0-9]*,HB,' '$work/cont/special_omega.csv'"
 check "branch csv has the tracked-eigenvalue columns" "grep -v '^#' '$work/cont/branch_omega.csv' | head -1 | grep -q ',n_unstable,re1,im1,'"
@@ -162,7 +162,7 @@ ev = [e for q in eq for e in q[\"eigenvalues\"]]
 sys.exit(0 if any(e[\"structural\"] for e in ev) and all((e[\"condition\"] is None) == e[\"structural\"] for e in ev) else 1)' '$work/three.json'"
 "$bin" sweep "$src/data/scenes/ring11.toml" --param n --from 2 --to 5 -o "$work/swn" 2>/dev/null
 check "sweep --param n on a ring: exits 0" "[ $? -eq 0 ]"
-check "sweep --param n: summary, long CSV and chart" "[ \"\$(ls '$work/swn' | tr '\n' ' ')\" = 'summary_n.csv summary_n.png sweep_n.csv ' ]"
+check "sweep --param n: summary, long CSV and chart" "[ \"\$(ls '$work/swn' | tr '\n' ' ')\" = 'summary_n.csv summary_n.json summary_n.png sweep_n.csv ' ]"
 check "sweep --param n: one summary row per ball count 2..5" \
   "[ \"\$(grep -v '^#' '$work/swn/summary_n.csv' | tail -n +2 | cut -d, -f3 | tr '\n' ' ')\" = '2 3 4 5 ' ]"
 check "sweep --param n: 2^n aligned equilibria of the equal-ball ring" \

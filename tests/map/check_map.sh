@@ -26,7 +26,7 @@ check "3-thread map exits 0" "[ $? -eq 0 ]"
 check "long csv: 1 and 3 threads give the same bytes" "cmp -s '$work/t1/map_omega_mu.csv' '$work/t3/map_omega_mu.csv'"
 check "summary: 1 and 3 threads give the same bytes" "cmp -s '$work/t1/summary_omega_mu.csv' '$work/t3/summary_omega_mu.csv'"
 check "the tile directory is removed after success" "[ ! -e '$work/t1/.map_omega_mu.tiles' ]"
-check "only the two csvs are written" "[ \"\$(ls -A '$work/t1' | tr '\n' ' ')\" = 'map_omega_mu.csv summary_omega_mu.csv ' ]"
+check "only the two csvs and the ranges json are written" "[ \"\$(ls -A '$work/t1' | tr '\n' ' ')\" = 'map_omega_mu.csv summary_omega_mu.csv summary_omega_mu.json ' ]"
 
 # --- content ---------------------------------------------------------------------------
 long=$work/t1/map_omega_mu.csv
