@@ -1,10 +1,14 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <exception>
+#include <string_view>
 
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/params.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/plausibility.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {
@@ -18,6 +22,7 @@ const std::string& command_line() { return g_command_line; }
 Scene load(const SceneOptions& options) {
   Scene scene = load_scene(options.scene);
   for (const auto& assignment : options.overrides) apply_override(scene, assignment);
+  for (const auto& w : implausible_values(scene)) fmt::print(stderr, "stability-scan: warning: {}\n", w);
   return scene;
 }
 
@@ -42,6 +47,20 @@ int run(int argc, char** argv) {
                     add_simulate_command}) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
+  }
+  // An unknown word where the subcommand goes is named (CLI11 would say only that a
+  // subcommand is required), with the nearest subcommand.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string_view> names;
+    for (const auto* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    const std::string_view word = argv[1];
+    if (std::find(names.begin(), names.end(), word) == names.end()) {
+      std::string list;
+      for (auto n : names) list += fmt::format("{}{}", list.empty() ? "" : ", ", n);
+      fmt::print(stderr, "stability-scan: unknown subcommand '{}'{} (subcommands: {})\nRun with --help for usage.\n",
+                 word, did_you_mean(word, names), list);
+      return exit_bad_input;
+    }
   }
   try {
     app.parse(argc, argv);

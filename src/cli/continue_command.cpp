@@ -10,6 +10,7 @@
 #include "abu/continuation/boundaries.hpp"
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "commands.hpp"
@@ -52,7 +53,9 @@ Coordinates<long double, 2> parse_state(const std::string& text) {
 ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
                        const std::string& to_option, double to, bool radius_allowed = false) {
   const auto ref = parse_param(symbol, int(scene.balls.size()));
-  if (!ref) throw InputError(option, 0, symbol, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+  if (!ref)
+    throw InputError(option, 0, symbol,
+                     unknown_name_rule("unknown parameter", closest_param(symbol), "known", param_symbols_help()));
   if (!radius_allowed && ref->quantity == Quantity::ball_radius)
     throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
   Scene probe = scene;

@@ -107,6 +107,10 @@ Action add_map_command(CLI::App& app) {
     request.sampling = o->sampling;
     request.command_line = canonical_command_line(*o);
     const MapJob job = map_job(scene, request);
+    for (const Axis* a : {&job.x, &job.y})
+      if (a->from > a->to && !o->quiet)
+        fmt::print(stderr, "stability-scan: note: {} runs downward, from {} to {} (index 0 at {})\n",
+                   a == &job.x ? "--x" : "--y", a->from, a->to, a->from);
 
     MapOutput output;
     output.directory = o->output_dir;

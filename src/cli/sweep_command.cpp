@@ -7,6 +7,7 @@
 
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
@@ -40,10 +41,11 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
   if (o.param == "n") {
     if (!scene.ring)
       throw InputError("--param", 0, "n", "the ball count is a study parameter only for a [balls] ring scene");
-    if (o.from != std::floor(o.from) || o.to != std::floor(o.to) || o.to < o.from)
-      throw InputError("--from", 0, "n", fmt::format("an increasing range of integers (got {} .. {})", o.from, o.to));
+    if (o.from != std::floor(o.from) || o.to != std::floor(o.to))
+      throw InputError("--from", 0, "n", fmt::format("a range of integers (got {} .. {})", o.from, o.to));
     result.unit = "-";
-    for (double n = o.from; n <= o.to; n += 1) {
+    const double step = o.to < o.from ? -1 : 1;  // a descending range runs downward
+    for (double n = o.from; step * n <= step * o.to; n += step) {
       Scene s = scene;
       set_ball_count(s, int(n), "--param n");
       scenes.push_back(s);
@@ -51,7 +53,10 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
     }
   } else {
     const auto ref = parse_param(o.param, int(scene.balls.size()));
-    if (!ref) throw InputError("--param", 0, o.param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (!ref)
+      throw InputError("--param", 0, o.param,
+                       unknown_name_rule("unknown parameter", closest_param(o.param, true), "known",
+                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
     if (o.steps < 1 || o.steps > kMaxSteps)
       throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o.steps));
     if (o.logarithmic && !(o.from > 0 && o.to > 0))
@@ -117,10 +122,16 @@ Action add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (o->from > o->to)
+      fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
+                 o->from, o->to, o->param);
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
-    if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (!ref)
+      throw InputError("--param", 0, o->param,
+                       unknown_name_rule("unknown parameter", closest_param(o->param, true), "known",
+                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
     if (o->steps < 1 || o->steps > kMaxSteps)
       throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o->steps));
     if (o->logarithmic && !(o->from > 0 && o->to > 0))

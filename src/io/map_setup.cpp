@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/map_mpi.hpp"
@@ -76,8 +77,8 @@ Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& or
   if (parts.size() != 4 && parts.size() != 5) return fail("expected NAME:FROM:TO:N or NAME:FROM:TO:N:log");
   Axis axis;
   const auto ref = parse_param(parts[0], int(scene.balls.size()));
-  if (!ref) return fail(fmt::format("unknown parameter '{}'; known: {}, or n (a ring's ball count)", parts[0],
-                                    param_symbols_help()));
+  if (!ref) return fail(unknown_name_rule(fmt::format("unknown parameter '{}'", parts[0]), closest_param(parts[0], true),
+                                          "known", fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
   if (ref->quantity == Quantity::ball_radius)
     return fail("the ball radius does not enter the equations of motion (model.md §3)");
   axis.param = *ref;
