@@ -9,8 +9,10 @@
 #include "cli.hpp"
 #include "abu/continuation/boundaries.hpp"
 #include "abu/continuation/continuation.hpp"
+#include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "commands.hpp"
@@ -203,7 +205,8 @@ Action add_continue_command(CLI::App& app) {
     const std::filesystem::path dir(o->output_dir);
     const std::string header = provenance_header(command_line(), scene.file, p);
     OutputTransaction out;
-    const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+    const auto branches =
+        out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
     const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
     if (o->chart)
       run_gnuplot(plots_dir() / "bifurcation.gp",
@@ -212,7 +215,9 @@ Action add_continue_command(CLI::App& app) {
                    {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                    {"param", name},
                    {"unit", std::string(unit(param.quantity))},
-                   {"title", fmt::format("{}: continuation in {}", scene.file, name)}});
+                   {"title", fmt::format("{}: continuation in {}", scene.file, name)},
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
+                   {"omega_n", format_omega_n(scene)}});
     if (ref2)
       stage_boundaries(out, continue_boundaries(p, run, *ref2, o->to2, o->numerics), dir, header, o->chart,
                        "boundary.gp",

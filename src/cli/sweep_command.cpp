@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
@@ -162,7 +163,9 @@ Action add_sweep_command(CLI::App& app) {
                    {"param", name},
                    {"unit", std::string(unit(ref->quantity))},
                    {"logx", o->logarithmic ? "1" : "0"},
-                   {"title", fmt::format("{}: sweep of {}", scene.file, name)}});
+                   {"title", fmt::format("{}: sweep of {}", scene.file, name)},
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
+                   {"omega_n", format_omega_n(scene)}});
     }
     out.commit();
     std::size_t rows = 0;

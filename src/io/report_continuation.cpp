@@ -15,10 +15,13 @@ std::string num(double v, std::string_view what) { return format_number(v, what)
 
 long double wrap(long double beta) { return wrap_angle(beta); }
 
-std::string position_cells(const Coordinates<long double, 2>& s) {
-  return fmt::format("{},{},{},{},{}", num(double(s(0)), "q1"), num(double(s(1)), "q2"),
-                     num(double(wrap(s(2))), "beta1"), num(double(wrap(s(3))), "beta2"),
-                     num(std::hypot(double(s(0)), double(s(1))), "|q|"));
+// q = 0 by construction on the balanced family (model.md §5): the corrector's rounding
+// residue (|q| ~ 1e-44 m) is printed as the exact 0 it stands for.
+std::string position_cells(const Coordinates<long double, 2>& s, Family family) {
+  const bool balanced = family == Family::balanced;
+  const double q1 = balanced ? 0.0 : double(s(0)), q2 = balanced ? 0.0 : double(s(1));
+  return fmt::format("{},{},{},{},{}", num(q1, "q1"), num(q2, "q2"), num(double(wrap(s(2))), "beta1"),
+                     num(double(wrap(s(3))), "beta2"), num(std::hypot(q1, q2), "|q|"));
 }
 
 std::string stop_line(const Branch& b, std::size_t k, int end) {
@@ -54,8 +57,10 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
   std::string out(header);
   out += fmt::format(
       "# continuation in {} [{}] from {} to {}; pseudo-arclength, points ordered along each branch\n"
-      "# columns: branch (1-based), point (index along the branch), label (EP at the ends; special points are in "
-      "special_{}.csv),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
+      "# columns: branch (1-based), point (index along the branch), label (EP at the ends; LP, BP, HB: a special "
+      "point of special_{}.csv\n#   at its located parameter, written twice where the stability changes there: "
+      "first with the stable and n_unstable of the side\n#   before it, then of the side after it; its eigenvalues are "
+      "those at the point),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
       "n_unstable,\n#   re_k im_k [1/s]: eigenvalue k in TRACKED order (matched from point to point: k stays the "
       "same mode along a branch)\n",
       name, unit(run.param.quantity), run.from, run.to, name);
@@ -68,7 +73,7 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
     for (std::size_t i = 0; i < branch.points.size(); ++i) {
       const auto& pt = branch.points[i];
       out += fmt::format("{},{},{},{},{},{},{},{}", b + 1, i, to_string(pt.label), num(double(pt.parameter), name),
-                         position_cells(pt.position), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
+                         position_cells(pt.position, pt.family), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
       for (const auto& l : pt.modes) out += fmt::format(",{},{}", num(l.real(), "eigenvalue"), num(l.imag(), "eigenvalue"));
       out += "\n";
     }
@@ -96,7 +101,7 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
     const auto& branch = run.branches[b];
     for (const auto& sp : branch.specials)
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", b + 1, to_string(sp.label),
-                         num(double(sp.parameter), name), position_cells(sp.position), to_string(sp.family),
+                         num(double(sp.parameter), name), position_cells(sp.position, sp.family), to_string(sp.family),
                          num_if(sp.label == Label::HB, sp.frequency, "frequency"),
                          num(sp.eigenvalue.real(), "eigenvalue"), num(sp.eigenvalue.imag(), "eigenvalue"),
                          num_if(sp.label == Label::HB && sp.converged, sp.lyapunov, "lyapunov"), sp.converged ? 1 : 0,
@@ -107,7 +112,7 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
       // No special point was located here: frequency, eigenvalue, lyapunov and converged
       // are not defined (empty).
       out += fmt::format("{},MX,{},{},{},,,,,,{},{}\n", b + 1, num(double(pt.parameter), name),
-                         position_cells(pt.position), to_string(branch.family), pt.spectrum.n_unstable,
+                         position_cells(pt.position, branch.family), to_string(branch.family), pt.spectrum.n_unstable,
                          pt.spectrum.n_unstable);
     }
   }
@@ -138,7 +143,8 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
     for (std::size_t i = 0; i < curve.points.size(); ++i) {
       const auto& pt = curve.points[i];
       out += fmt::format("{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
-                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2), position_cells(pt.position),
+                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2),
+                         position_cells(pt.position, pt.family),
                          to_string(pt.family), num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"));
     }
   }

@@ -2,7 +2,8 @@
 # Messages for a user's slips (issue 10): implausible values warn (and the run goes on),
 # unknown names get a "did you mean", a misspelled TOML key is reported as unknown (not
 # as the missing key it leaves), an unknown subcommand is named, descending ranges run
-# and are said.
+# and are said; the continuation's branch CSV has a row at every located special point,
+# where the stability flips exactly.
 #   check_messages.sh BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -87,5 +88,36 @@ check "descending sweep: first value 1000, last 100" \
   "[ \"\$(grep -v '^#' '$work/down/sweep_omega.csv' | awk -F, 'NR == 2 {print \$2}')\" = 1000 ] && grep -v '^#' '$work/down/sweep_omega.csv' | tail -1 | cut -d, -f2 | grep -qx 100"
 "$bin" map "$scene" --x omega:600:150:6 --y mu:1e-3:1e-2:3 --no-chart --no-boundaries -o "$work/mdown" 2>"$work/err"
 check "map axis FROM > TO: exit 0, said" "[ $? -eq 0 ] && grep -q -- '--x runs downward, from 600 to 150' '$work/err'"
+
+# --- special points as rows of the branch CSV ---------------------------------------------
+"$bin" continue "$scene" --set omega=50 --param omega --to 2000 --no-chart -o "$work/cont" 2>/dev/null
+check "continue 50 -> 2000 exits 0" "[ $? -eq 0 ]"
+check "every located special point is a row of its branch, the stability flipping exactly there" \
+  "/usr/bin/python3 - '$work/cont/branch_omega.csv' '$work/cont/special_omega.csv' <<'PY'
+import csv, sys
+read = lambda f: list(csv.DictReader(l for l in open(f) if not l.startswith('#')))
+branch, special = read(sys.argv[1]), read(sys.argv[2])
+hb = [s for s in special if s['label'] == 'HB']
+assert hb and any(abs(float(s['omega']) - 249.93374034470625) < 1e-9 for s in hb), 'the balanced HB at 249.93374'
+for s in special:
+    if s['label'] not in ('LP', 'BP', 'HB') or s['converged'] != '1':
+        continue
+    rows = [i for i, r in enumerate(branch) if r['branch'] == s['branch'] and r['label'] == s['label']
+            and r['omega'] == s['omega']]
+    assert rows, ('no row at', s['label'], s['omega'])
+    before, after = branch[rows[0] - 1], branch[rows[-1] + 1]
+    assert before['branch'] == s['branch'] and after['branch'] == s['branch']
+    # the first row carries the side before, the last the side after
+    assert branch[rows[0]]['stable'] == before['stable'] and branch[rows[-1]]['stable'] == after['stable'], s
+    assert branch[rows[0]]['n_unstable'] == before['n_unstable'] and branch[rows[-1]]['n_unstable'] == after['n_unstable']
+    if before['stable'] != after['stable']:
+        assert len(rows) == 2, ('two rows where the stability flips', s)
+for s in hb:  # the balanced Hopf point: the branch is unstable below it, stable above
+    if s['family'] == 'balanced':
+        rows = [r for r in branch if r['branch'] == s['branch'] and r['label'] == 'HB' and r['omega'] == s['omega']]
+        assert [r['stable'] for r in rows] == ['0', '1'], rows
+PY"
+check "balanced rows print |q| = 0 exactly" \
+  "[ -z \"\$(grep -v '^#' '$work/cont/branch_omega.csv' | awk -F, 'NR > 1 && \$10 == \"balanced\" && \$9 != 0')\" ]"
 
 finish

@@ -1,0 +1,112 @@
+#include "abu/continuation/special_rows.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+
+#include "abu/continuation/tracking.hpp"
+#include "abu/model/static_equations.hpp"
+
+namespace abu {
+
+namespace {
+using ld = long double;
+
+// The index i of the two consecutive points (i, i + 1) that bracket the special point.
+std::optional<std::size_t> bracket_of(const Branch& b, const SpecialPoint& sp) {
+  for (std::size_t i = 0; i + 1 < b.points.size(); ++i) {
+    const ld p0 = b.points[i].parameter, p1 = b.points[i + 1].parameter;
+    if ((p0 == sp.bracket_from && p1 == sp.bracket_to) || (p0 == sp.bracket_to && p1 == sp.bracket_from)) return i;
+  }
+  return std::nullopt;
+}
+
+// The special point as a branch point, its eigenvalues in the modes of the branch: each
+// mode predicted by interpolating between the bracketing points in the parameter.
+BranchPoint point_at(const StaticEquations& eq, const SpecialPoint& sp, const BranchPoint& a, const BranchPoint& c) {
+  BranchPoint row;
+  row.parameter = sp.parameter;
+  row.position = sp.position;
+  row.family = sp.family;
+  row.label = sp.label;
+  row.spectrum = compute_spectrum(eq.linearization(eq.scaled(sp.position, sp.parameter)));
+  const ld span = c.parameter - a.parameter;
+  const double t = span != 0 ? std::clamp(double((sp.parameter - a.parameter) / span), 0.0, 1.0) : 0.0;
+  const double length = double(eq.length());
+  const auto scaled = [length](const Vec4c& v) {
+    return Vec4c(v(0) / length, v(1) / length, v(2), v(3)).normalized();
+  };
+  ModePrediction predicted;
+  for (std::size_t k = 0; k < 8; ++k) {
+    predicted.values[k] = a.modes[k] + t * (c.modes[k] - a.modes[k]);
+    predicted.vectors[k] = scaled(a.mode_vectors[k]);
+    predicted.si_vectors[k] = a.mode_vectors[k];
+  }
+  std::array<Vec4c, 8> vectors{};
+  for (std::size_t k = 0; k < 8; ++k) vectors[k] = scaled(row.spectrum.vectors[k]);
+  std::array<int, 8> source{};
+  track(predicted, row.spectrum, vectors, row.modes, source);
+  for (std::size_t k = 0; k < 8; ++k) row.mode_vectors[k] = row.spectrum.vectors[std::size_t(source[k])];
+  // The test functions vanish at the point they locate; the other one is interpolated.
+  row.tangent_parameter =
+      sp.label == Label::LP ? 0.0 : a.tangent_parameter + t * (c.tangent_parameter - a.tangent_parameter);
+  row.branch_test = sp.label == Label::BP ? 0.0 : a.branch_test + t * (c.branch_test - a.branch_test);
+  return row;
+}
+
+// `row` with the stability verdict of `side` (the eigenvalues stay the point's own).
+BranchPoint with_side(BranchPoint row, const BranchPoint& side) {
+  row.spectrum.stability = side.spectrum.stability;
+  row.spectrum.n_unstable = side.spectrum.n_unstable;
+  return row;
+}
+
+}  // namespace
+
+void insert_special_rows(const Params& p, ContinuationRun& run) {
+  const StaticEquations eq(p, run.param, run.from, ld(run.to) - ld(run.from));
+  for (auto& b : run.branches) {
+    // Rows to insert after point i, in the order met along the branch.
+    std::vector<std::vector<std::pair<ld, const SpecialPoint*>>> after(b.points.size());
+    for (const auto& sp : b.specials) {
+      if (!sp.converged) continue;
+      const auto i = bracket_of(b, sp);
+      if (!i) continue;
+      const auto& a = b.points[*i];
+      const ld from_a = (eq.scaled(sp.position, sp.parameter) - eq.scaled(a.position, a.parameter)).norm();
+      after[*i].emplace_back(from_a, &sp);
+    }
+    std::vector<BranchPoint> points;
+    points.reserve(b.points.size() + 2 * b.specials.size());
+    for (std::size_t i = 0; i < b.points.size(); ++i) {
+      points.push_back(b.points[i]);
+      auto& here = after[i];
+      if (here.empty()) continue;
+      std::sort(here.begin(), here.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      const BranchPoint& a = b.points[i];
+      const BranchPoint& c = b.points[i + 1];
+      const bool flips = a.spectrum.stability != c.spectrum.stability || a.spectrum.n_unstable != c.spectrum.n_unstable;
+      for (const auto& [distance, sp] : here) {
+        const BranchPoint row = point_at(eq, *sp, a, c);
+        if (!flips) {
+          points.push_back(with_side(row, a));  // the same verdict on both sides
+        } else if (here.size() == 1) {
+          points.push_back(with_side(row, a));
+          points.push_back(with_side(row, c));
+        } else {
+          // Two special points between the same two points (rare): the side of each is
+          // not known from the grid; the row carries the verdict at the point itself.
+          points.push_back(row);
+        }
+      }
+    }
+    b.points = std::move(points);
+  }
+}
+
+ContinuationRun with_special_rows(const Params& p, ContinuationRun run) {
+  insert_special_rows(p, run);
+  return run;
+}
+
+}  // namespace abu
