@@ -28,6 +28,7 @@ struct MapOptions {
   int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   bool resume = false, fresh = false, progress = false, quiet = false;
   bool chart = true, boundaries = true;
+  bool long_csv = false;
   BalancedSampling sampling;
 };
 
@@ -93,6 +94,9 @@ Action add_map_command(CLI::App& app) {
   progress->excludes(quiet);
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG/SVG heat maps");
   sub->add_flag("!--no-boundaries", o->boundaries, "Skip the fold/Hopf boundary curves (continuation)");
+  sub->add_flag("--long", o->long_csv,
+                "Also write map_X_Y.csv, one row per equilibrium per cell (~0.9 kB a cell: 900 MB for 1000 x 1000); "
+                "summary_X_Y.csv is always written");
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
       ->check(CLI::Range(1, 100000))
@@ -120,6 +124,7 @@ Action add_map_command(CLI::App& app) {
     output.progress = !o->quiet && (o->progress || isatty(STDERR_FILENO));
     output.chart = o->chart;
     output.boundaries = o->boundaries;
+    output.long_csv = o->long_csv;
     output.title = scene.file;
     InterruptGuard guard;
     const MapRunReport r = run_map(job, output);

@@ -201,14 +201,20 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   }
 
   OutputTransaction out;
-  const auto map_path = out.reserve(dir / map_file_name(job));
+  // The long CSV (a row per equilibrium per cell: ~900 bytes a cell) only on request.
+  const auto map_path = output.long_csv ? out.reserve(dir / map_file_name(job)) : std::filesystem::path();
   const auto summary_path = out.reserve(dir / summary_file_name(job));
   {
-    std::ofstream map_csv(map_path, std::ios::binary), summary_csv(summary_path, std::ios::binary);
-    assemble(job, *store, map_csv, summary_csv);
-    map_csv.close();
+    std::ofstream summary_csv(summary_path, std::ios::binary);
+    std::ofstream map_csv;
+    std::ostream no_rows(nullptr);  // discards what is written to it
+    if (output.long_csv) map_csv.open(map_path, std::ios::binary);
+    std::ostream& rows = output.long_csv ? static_cast<std::ostream&>(map_csv) : no_rows;
+    assemble(job, *store, rows, summary_csv);
     summary_csv.close();
-    if (!map_csv || !summary_csv) throw std::runtime_error(fmt::format("{}: cannot write the map", dir.string()));
+    if (output.long_csv) map_csv.close();
+    if ((output.long_csv && !map_csv) || !summary_csv)
+      throw std::runtime_error(fmt::format("{}: cannot write the map", dir.string()));
   }
   const std::string x = job.x.name(), y = job.y.name();
   std::filesystem::path curves;
