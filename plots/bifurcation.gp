@@ -135,11 +135,11 @@ if (has_q) {
   unset label 2
   set yrange [*:*]
 }
-unset x2tics
-unset x2label
-unset link x2
-set x2tics
-unset x2tics
+if (param eq 'omega') {
+  unset x2tics
+  unset x2label
+  unset link x2
+}
 unset logscale y
 set mytics default
 set format y '%g'

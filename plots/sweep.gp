@@ -81,14 +81,16 @@ if (subtitle ne '') { heading = heading . "\n"; do for [i = 1:strlen(subtitle)] 
 set multiplot layout 2,1 title heading noenhanced font ',9'
 
 if (param eq 'omega') {
-  set link x2 via x * 30 / pi inverse x * pi / 30
-  # rpm tics at round values (1, 2 or 5 times a power of ten, about 8 of them)
-  r = (xhi - xlo) * 30 / pi / 8
-  r10 = 10.0**floor(log10(r))
   if (logx eq '1') {
+    # a log axis cannot be linked: the same proportions by the range
+    set x2range [xlo * 30 / pi : xhi * 30 / pi]
     set logscale x2
     set x2tics nomirror
   } else {
+    set link x2 via x * 30 / pi inverse x * pi / 30
+    # rpm tics at round values (1, 2 or 5 times a power of ten, about 8 of them)
+    r = (xhi - xlo) * 30 / pi / 8
+    r10 = 10.0**floor(log10(r))
     rpm_step = (r / r10 < 1.5 ? 1 : r / r10 < 3.5 ? 2 : r / r10 < 7.5 ? 5 : 10) * r10
     set x2tics nomirror rpm_step
   }
@@ -116,10 +118,12 @@ plot \
   unset label 2
   set yrange [*:*]
 }
-unset x2tics
-unset x2label
-unset link x2
-unset logscale x2
+if (param eq 'omega') {
+  unset x2tics
+  unset x2label
+  if (logx ne '1') { unset link x2 }
+  unset logscale x2
+}
 unset logscale y
 set format y '%g'
 unset label 1
