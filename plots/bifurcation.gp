@@ -94,6 +94,7 @@ marks(y, titled) = \
   (has_bp ? sprintf(", specials using (column(param)):(special('BP', %s)) with points ls 104 %s", y, titled ? "title 'BP branch point'" : 'notitle') : '')
 
 set xlabel sprintf('%s [%s]', param, unit)
+set format x '%.4g'
 set grid xtics ytics mxtics mytics lc rgb '#dddddd', lc rgb '#f0f0f0'
 set mxtics
 set key outside right top spacing 1.2

@@ -67,6 +67,7 @@ set style line 6 lc rgb colour_opposite lw 1.5 dt (6,4)
 
 if (logx eq '1') { set logscale x; set mxtics 10 } else { set mxtics }
 set xlabel sprintf('%s [%s]', param, unit)
+set format x '%.4g'
 set grid xtics ytics mxtics mytics lc rgb '#d0d0d0', lc rgb '#eeeeee'
 set key outside right top spacing 1.2
 set lmargin at screen 0.10

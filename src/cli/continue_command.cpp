@@ -75,7 +75,8 @@ void check_moves(const P& p, ParamRef ref, double to, const std::string& to_opti
 // The two-parameter curves' CSV and chart staged in `out`, their failures warned about.
 template <class BoundaryRunT>
 void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, const std::filesystem::path& dir,
-                      const std::string& header, bool chart, const char* script, const std::string& title) {
+                      const std::string& header, bool chart, const char* script, const std::string& title,
+                      const std::string& subtitle) {
   const std::string name = to_string(boundaries.param), name2 = to_string(boundaries.param2);
   const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
   if (chart)
@@ -86,7 +87,8 @@ void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, co
                  {"unit", std::string(unit(boundaries.param.quantity))},
                  {"param2", name2},
                  {"unit2", std::string(unit(boundaries.param2.quantity))},
-                 {"title", title}});
+                 {"title", title},
+                 {"subtitle", subtitle}});
   for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
     for (int end = 0; end < 2; ++end)
       if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
@@ -145,7 +147,8 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   if (ref2)
     stage_boundaries(out, continue_boundaries(p, run, *ref2, o.to2, o.numerics), dir, header, o.chart, "boundary_n.gp",
                      fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
-                                 to_string(*ref2)));
+                                 to_string(*ref2)),
+                     chart_subtitle(scene, o.scene.overrides));
   out.commit();
   return finish(run, fmt::format("{} branches ({} balanced samples)", run.branches.size(), run.envelope.samples), dir);
 }
@@ -221,7 +224,8 @@ Action add_continue_command(CLI::App& app) {
     if (ref2)
       stage_boundaries(out, continue_boundaries(p, run, *ref2, o->to2, o->numerics), dir, header, o->chart,
                        "boundary.gp",
-                       fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)));
+                       fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)),
+                       chart_subtitle(scene, o->scene.overrides));
     out.commit();
     return finish(run, fmt::format("{} branches", run.branches.size()), dir);
   };

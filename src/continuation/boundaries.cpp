@@ -61,6 +61,7 @@ class CurveTracer : public CurveSystem<N> {
     if (stage == Stage::step) this->rescale_frequency(y, t);
     if (stage != Stage::edge) this->refresh(y);
     points.push_back(point(y, stage == Stage::edge ? Label::EP : Label::none));
+    if constexpr (Sys::hopf) points.back().lyapunov = double(pending_.lyapunov);  // computed at y by evaluate
   }
 
   BoundaryPoint point(const Vec& y, Label label) const;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct BoundaryPoint {
   long double parameter = 0, parameter2 = 0;
   Coordinates<long double, 2> position = Coordinates<long double, 2>::Zero();
   long double frequency = 0;  ///< Hopf curves: omega_H [rad/s]
+  /// Hopf curves: the first Lyapunov coefficient l1 (< 0 supercritical, > 0 subcritical;
+  /// its sign changes at GH); nullopt on fold curves and at codimension-two points.
+  std::optional<double> lyapunov;
   Family family = Family::balanced;
   Label label = Label::none;  ///< EP at the ends, codimension-two labels where located
 };
