@@ -95,7 +95,7 @@ Action add_map_command(CLI::App& app) {
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG/SVG heat maps");
   sub->add_flag("!--no-boundaries", o->boundaries, "Skip the fold/Hopf boundary curves (continuation)");
   sub->add_flag("--long", o->long_csv,
-                "Also write map_X_Y.csv, one row per equilibrium per cell (~0.9 kB a cell: 900 MB for 1000 x 1000); "
+                "Also write map_X_Y.csv, one row per equilibrium per cell (~0.8 kB a cell: ~820 MB for 1000 x 1000); "
                 "summary_X_Y.csv is always written");
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")

@@ -201,7 +201,7 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   }
 
   OutputTransaction out;
-  // The long CSV (a row per equilibrium per cell: ~900 bytes a cell) only on request.
+  // The long CSV (a row per equilibrium per cell: ~800 bytes a cell) only on request.
   const auto map_path = output.long_csv ? out.reserve(dir / map_file_name(job)) : std::filesystem::path();
   const auto summary_path = out.reserve(dir / summary_file_name(job));
   {
