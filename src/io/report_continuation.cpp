@@ -127,8 +127,10 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
       "{}\n# columns: curve, kind (LP fold curve, HB Hopf curve), point (index along the curve), label (EP end, BT "
       "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp, GH generalized Hopf: where the curve meets them, located by "
       "interpolating their test functions), the two\n#   parameters, q1 q2 [m], beta1 beta2 [rad], q_abs [m], family, "
-      "frequency [rad/s] (Hopf curves; empty on fold curves), lyapunov = first Lyapunov coefficient l1 (Hopf curves:\n"
-      "#   < 0 supercritical, > 0 subcritical; empty on fold curves and at codimension-two points)\n",
+      "lyapunov = first Lyapunov coefficient l1 (Hopf curves:\n"
+      "#   < 0 supercritical, > 0 subcritical; empty on fold curves and at codimension-two points), stable_side (Hopf\n"
+      "#   curves: 1 the equilibrium is stable just above the curve in the first parameter, -1 just below, 0 on neither side; empty on\n"
+      "#   fold curves and at codimension-two points), frequency [rad/s] (Hopf curves; empty on fold curves)\n",
       n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
   for (std::size_t c = 0; c < run.curves.size(); ++c)
     for (int end = 0; end < 2; ++end) {
@@ -138,16 +140,20 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
                          curve.stop_detail[std::size_t(end)].empty() ? "" : ": ", curve.stop_detail[std::size_t(end)]);
     }
   for (const auto& n : run.notes) out += "# note: " + n + "\n";
-  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,frequency,lyapunov\n", n1, n2);
+  // frequency stays last: gnuplot 5.4 misreads an empty *last* field (strcol returns an
+  // earlier one), and only frequency's emptiness (fold curves) is old news to readers.
+  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,lyapunov,stable_side,frequency\n", n1,
+                     n2);
   for (std::size_t c = 0; c < run.curves.size(); ++c) {
     const auto& curve = run.curves[c];
     for (std::size_t i = 0; i < curve.points.size(); ++i) {
       const auto& pt = curve.points[i];
-      out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
                          num(double(pt.parameter), n1), num(double(pt.parameter2), n2),
                          position_cells(pt.position, pt.family),
-                         to_string(pt.family), num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"),
-                         num_if(pt.lyapunov.has_value(), pt.lyapunov.value_or(0.0), "lyapunov"));
+                         to_string(pt.family), num_if(pt.lyapunov.has_value(), pt.lyapunov.value_or(0.0), "lyapunov"),
+                         pt.stable_side ? fmt::format("{}", *pt.stable_side) : std::string(),
+                         num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"));
     }
   }
   return out;

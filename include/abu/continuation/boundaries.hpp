@@ -30,6 +30,9 @@ struct BoundaryPoint {
   /// Hopf curves: the first Lyapunov coefficient l1 (< 0 supercritical, > 0 subcritical;
   /// its sign changes at GH); nullopt on fold curves and at codimension-two points.
   std::optional<double> lyapunov;
+  /// Hopf curves: the side of the curve on which the equilibrium is stable, in the first
+  /// parameter (+1 larger, -1 smaller, 0 neither); nullopt on fold curves.
+  std::optional<int> stable_side;
   Family family = Family::balanced;
   Label label = Label::none;  ///< EP at the ends, codimension-two labels where located
 };
