@@ -132,7 +132,8 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   const std::filesystem::path dir(o.output_dir);
   const std::string header = provenance_header(command_line(), scene.file, p);
   OutputTransaction out;
-  const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+  const auto branches =
+      out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
   const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
   const auto envelope = out.stage(dir / fmt::format("envelope_{}.csv", name), envelope_csv(run, header));
   if (o.chart)

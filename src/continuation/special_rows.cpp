@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "abu/continuation/tracking.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/model/model.hpp"
 #include "abu/model/static_equations.hpp"
 
 namespace abu {
@@ -105,6 +107,69 @@ void insert_special_rows(const Params& p, ContinuationRun& run) {
 }
 
 ContinuationRun with_special_rows(const Params& p, ContinuationRun run) {
+  insert_special_rows(p, run);
+  return run;
+}
+
+void insert_special_rows(const ParamsN& p, ContinuationRunN& run) {
+  const StaticEquationsN eq(p, run.param, run.from, ld(run.to) - ld(run.from));
+  for (auto& b : run.branches) {
+    std::vector<std::vector<const SpecialPointN*>> after(b.points.size());
+    for (const auto& sp : b.specials) {
+      // next_point is the bracketing point after it along the branch.
+      if (!sp.converged || sp.next_point < 1 || std::size_t(sp.next_point) >= b.points.size()) continue;
+      after[std::size_t(sp.next_point) - 1].push_back(&sp);
+    }
+    std::vector<BranchPointN> points;
+    std::vector<std::size_t> added(b.points.size(), 0);  // rows inserted after point i
+    points.reserve(b.points.size() + 2 * b.specials.size());
+    for (std::size_t i = 0; i < b.points.size(); ++i) {
+      points.push_back(b.points[i]);
+      const auto& here = after[i];
+      if (here.empty()) continue;
+      const std::size_t before = points.size();
+      const BranchPointN& a = b.points[i];
+      const BranchPointN& c = b.points[i + 1];
+      const bool flips = a.spectrum.stability != c.spectrum.stability || a.spectrum.n_unstable != c.spectrum.n_unstable;
+      for (const SpecialPointN* sp : here) {
+        BranchPointN row;
+        row.parameter = sp->parameter;
+        row.position = sp->position;
+        row.label = sp->label;
+        const auto z = eq.scaled(sp->position, sp->parameter);
+        const Linearization<ld, any_balls> lin = eq.linearization(z);
+        row.spectrum = b.family == Family::balanced
+                           ? compute_normal_spectrum(lin, balanced_tangent_basis(eq.params(z), sp->position))
+                           : compute_spectrum<any_balls>(lin);
+        row.residual = static_residual<any_balls>(eq.params(z), sp->position);
+        const auto side = [&](const BranchPointN& s) {
+          BranchPointN r = row;
+          r.spectrum.stability = s.spectrum.stability;
+          r.spectrum.n_unstable = s.spectrum.n_unstable;
+          return r;
+        };
+        if (!flips) {
+          points.push_back(side(a));
+        } else if (here.size() == 1) {
+          points.push_back(side(a));
+          points.push_back(side(c));
+        } else {
+          points.push_back(row);
+        }
+      }
+      added[i] = points.size() - before;
+    }
+    // next_point indexes the points: shift it past the rows inserted before it.
+    for (auto& sp : b.specials) {
+      std::size_t inserted = 0;
+      for (std::size_t i = 0; i < std::size_t(std::max(sp.next_point, 0)) && i < added.size(); ++i) inserted += added[i];
+      sp.next_point += int(inserted);
+    }
+    b.points = std::move(points);
+  }
+}
+
+ContinuationRunN with_special_rows(const ParamsN& p, ContinuationRunN run) {
   insert_special_rows(p, run);
   return run;
 }

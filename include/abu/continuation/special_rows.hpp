@@ -17,6 +17,7 @@
 //   branch_csv(abu::with_special_rows(p, run), header);   // the same, on a copy
 #pragma once
 
+#include "abu/continuation/branches_n.hpp"
 #include "abu/continuation/continuation.hpp"
 
 namespace abu {
@@ -28,5 +29,10 @@ void insert_special_rows(const Params& p, ContinuationRun& run);
 /// A copy of `run` with the rows inserted (the run itself, e.g. for the two-parameter
 /// curves that start from its special points, stays as traced).
 ContinuationRun with_special_rows(const Params& p, ContinuationRun run);
+
+/// The same for n >= 3 balls: the full spectrum at an aligned branch's special point, the
+/// normal one (structural zeros flagged) at a balanced sample's (branches_n.hpp).
+void insert_special_rows(const ParamsN& p, ContinuationRunN& run);
+ContinuationRunN with_special_rows(const ParamsN& p, ContinuationRunN run);
 
 }  // namespace abu
