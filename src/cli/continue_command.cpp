@@ -144,7 +144,9 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
                  {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                  {"param", name},
                  {"unit", std::string(unit(param.quantity))},
-                 {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)}});
+                 {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)},
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides)},
+                 {"omega_n", format_omega_n(scene)}});
   if (ref2)
     stage_boundaries(out, continue_boundaries(p, run, *ref2, o.to2, o.numerics), dir, header, o.chart, "boundary_n.gp",
                      fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
