@@ -91,7 +91,8 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
                  {"param", result.name},
                  {"unit", result.unit},
                  {"logx", o.logarithmic ? "1" : "0"},
-                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)}});
+                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)},
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides)}});
   }
   out.commit();
   fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
