@@ -56,6 +56,41 @@ BranchPoint point_at(const StaticEquations& eq, const SpecialPoint& sp, const Br
   return row;
 }
 
+// Points of the branch between a Hopf point and a bracketing point, at 30 %, 10 % and 2 %
+// of the way from the Hopf point to `side` in the parameter (in the order met going from
+// `side` to the Hopf point), so that a chart of the spectral abscissa follows its curve
+// into the crossing instead of a chord across the bracket. Each is the equilibrium at
+// that parameter (Newton on the static equations, the parameter held, from the state
+// interpolated along the chord: the equilibrium is regular at a Hopf point, so Newton
+// stays on the branch) with its own spectrum and verdict; none where Newton fails.
+std::vector<BranchPoint> near_hopf(const StaticEquations& eq, const SpecialPoint& sp, const BranchPoint& side,
+                                   const BranchPoint& a, const BranchPoint& c) {
+  std::vector<BranchPoint> out;
+  for (const double f : {0.3, 0.1, 0.02}) {
+    const ld parameter = sp.parameter + ld(f) * (side.parameter - sp.parameter);
+    Coordinates<ld, 2> guess = sp.position + ld(f) * (side.position - sp.position);
+    auto z = eq.scaled(guess, parameter);
+    bool converged = false;
+    for (int it = 0; it < 30 && !converged; ++it) {
+      const auto F = eq.residual(z);
+      if (F.norm() <= 1e-14L) {
+        converged = true;
+        break;
+      }
+      const Eigen::Matrix<ld, 4, 4> J = eq.jacobian(z).template leftCols<4>();
+      z.head<4>() -= J.partialPivLu().solve(F);
+    }
+    if (!converged) continue;
+    SpecialPoint at = sp;
+    at.parameter = parameter;
+    at.position = eq.position(z);
+    at.family = classify(eq.base(), at.position);
+    at.label = Label::none;
+    out.push_back(point_at(eq, at, a, c));
+  }
+  return out;
+}
+
 // `row` with the stability verdict of `side` (the eigenvalues stay the point's own).
 BranchPoint with_side(BranchPoint row, const BranchPoint& side) {
   row.spectrum.stability = side.spectrum.stability;
@@ -90,6 +125,9 @@ void insert_special_rows(const Params& p, ContinuationRun& run) {
       const bool flips = a.spectrum.stability != c.spectrum.stability || a.spectrum.n_unstable != c.spectrum.n_unstable;
       for (const auto& [distance, sp] : here) {
         const BranchPoint row = point_at(eq, *sp, a, c);
+        const bool refine = sp->label == Label::HB && here.size() == 1;
+        if (refine)
+          for (auto& pt : near_hopf(eq, *sp, a, a, c)) points.push_back(std::move(pt));
         if (!flips) {
           points.push_back(with_side(row, a));  // the same verdict on both sides
         } else if (here.size() == 1) {
@@ -99,6 +137,10 @@ void insert_special_rows(const Params& p, ContinuationRun& run) {
           // Two special points between the same two points (rare): the side of each is
           // not known from the grid; the row carries the verdict at the point itself.
           points.push_back(row);
+        }
+        if (refine) {
+          auto towards_c = near_hopf(eq, *sp, c, a, c);
+          for (auto it = towards_c.rbegin(); it != towards_c.rend(); ++it) points.push_back(std::move(*it));
         }
       }
     }

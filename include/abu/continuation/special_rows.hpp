@@ -11,6 +11,9 @@
 // twice: first carrying the stability and n_unstable of the point before it, then those
 // of the point after it, so that the stability flips exactly at the located parameter.
 // (At the point itself the critical eigenvalue is on the imaginary axis: it is neither.)
+// Either side of a Hopf point (two balls), three more points of the branch at 30, 10 and
+// 2 % of the way to the bracketing point, each with its own spectrum, so that the
+// spectral abscissa is drawn as the curve it is into the crossing.
 //
 //   abu::ContinuationRun run = abu::continue_branches(p, param, to, options);
 //   abu::insert_special_rows(p, run);   // for output; the located points stay in specials
