@@ -27,7 +27,7 @@
 #   its only tic, and the curves are drawn against a notional cell width of 2 % of the
 #   value (log: 0.02 decade).
 # - |q| colour scale: from the least |q| above 1e-15 m to the largest; a stable state with
-#   |q| <= 1e-15 m (balanced: 0) gets the bottom colour, with its own key entry.
+#   |q| <= 1e-15 m (balanced: 0) gets its own colour (white), with its own key entry.
 # - The SVG embeds the image as one bitmap (not a rectangle per cell); viewers may smooth
 #   it when it is enlarged.
 # - Speed (1000 x 1000 cells): the geometry comes from a few rows (row 0, the rows with
@@ -60,6 +60,7 @@ c_unstable = '#fee090'  #   balanced state exists, unstable
 c_stable = '#74add1'    #   balanced state stable
 c_partly = '#b8d8a0'    #   n balls: some samples of the balanced set stable
 c_nostable = '#a6a6a6'  # vibration chart: no stable state
+c_zero = '#ffffff'      #   a stable state with |q| = 0 (balanced)
 c_hopf = '#d62728'
 c_fold = '#1f1f1f'
 qfloor = 1e-15          # |q| at or below this [m] counts as 0
@@ -236,7 +237,9 @@ low = 0
 # samples of the set), 3 stable (two balls: balanced_stable = 1; n balls: every sample)
 category(balanced, stable) = balanced == 0 ? 0 : nb ? (stable == 1 ? 3 : stable > 0 ? 2 : 1) : (stable == 1 ? 3 : 1)
 scan(q) = q > qfloor ? (q < qlo ? qlo = q : 0, q > qhi ? qhi = q : 0) : (q <= qfloor && !low ? low = 1 : 0)
-vibration(n_stable, q) = n_stable > 0 ? (q < cbmin ? cbmin : q) : NaN
+vibration(n_stable, q) = n_stable > 0 && q > qfloor ? (q < cbmin ? cbmin : q) : NaN
+# a stable state with |q| = 0 (balanced): its own colour, drawn over the colour scale
+zero(n_stable, q) = n_stable > 0 && q <= qfloor
 VAL1 = sprintf('(scan(column(%d)) + category(column(%d), column(%d)))', c_q, c_bal, c_balst)
 VAL2 = sprintf('(vibration(column(%d), column(%d)))', c_nstable, c_q)
 VAL3 = sprintf('(column(%d) == 0 ? NaN : column(%d))', c_bal, c_balst)
@@ -245,11 +248,15 @@ if (grid) {
   USE2 = sprintf('%d:%d:', c_ix, c_iy) . VAL2
   USE3 = sprintf('%d:%d:', c_ix, c_iy) . VAL3
   WITH = 'with image'
+  ZERO = sprintf("summary using %d:%d:(255):(255):(255):(zero(column(%d), column(%d)) ? 255 : 0) with rgbalpha notitle", \
+                 c_ix, c_iy, c_nstable, c_q)
 } else {
   USE1 = sprintf('%d:%d:(0.5):(0.5):', c_ix, c_iy) . VAL1
   USE2 = sprintf('%d:(column(%d) > 0 ? column(%d) : NaN):(0.5):(0.5):', c_ix, c_nstable, c_iy) . VAL2   # no box where nothing is stable
   USE3 = sprintf('%d:%d:(0.5):(0.5):', c_ix, c_iy) . VAL3
   WITH = 'with boxxyerror lc palette fs solid 1.0 border'     # border: no seams between boxes
+  ZERO = sprintf("summary using %d:(zero(column(%d), column(%d)) ? column(%d) : NaN):(0.5):(0.5) " . \
+                 "with boxxyerror lc rgb c_zero fs solid 1.0 border notitle", c_ix, c_nstable, c_q, c_iy)
 }
 # SVG viewers smooth an enlarged bitmap: browsers and Inkscape honour this mark
 heading(what) = strlen(title) > 0 ? sprintf("%s\n%s", what, title) : what
@@ -295,16 +302,16 @@ set colorbox user origin screen 0.675, screen 0.09 size screen 0.02, screen 0.81
 set key at screen 0.77, screen 0.90
 set palette defined (0 '#440154', 0.13 '#482878', 0.25 '#3e4989', 0.38 '#31688e', 0.5 '#26828e', \
                      0.63 '#1f9e89', 0.75 '#35b779', 0.88 '#6ece58', 1 '#fde725')
-c_bottom = '#440154'
 set object 1 rectangle from graph 0, 0 to graph 1, 1 behind fc rgb c_nostable fs solid 1.0 noborder
 nostable_title = (qhi > 0 || low) ? 'no stable state' : 'no stable state (no cell has one)'
-low_title = low ? sprintf('|q| <= %.0e m, e.g. 0', qfloor) : ''
+low_title = low ? 'balanced: |q| = 0' : ''
 set terminal pngcairo size 1200,800 enhanced font 'DejaVu Sans,10'
 set output png_vibration
 set title heading('residual vibration of the best stable state') noenhanced
 plot summary using @USE2 @WITH notitle, \
+     @ZERO, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_nostable title nostable_title, \
-     keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_bottom title low_title \
+     keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_zero title low_title \
      @CURVES
 set terminal svg size 1200,800 enhanced font 'DejaVu Sans,13' background rgb 'white'
 set output svg_vibration

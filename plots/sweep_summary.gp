@@ -10,6 +10,7 @@ if (!exists("param")) param = 'n'
 if (!exists("unit")) unit = '-'
 if (!exists("logx")) logx = '0'
 if (!exists("title")) title = 'sweep summary'
+if (!exists("subtitle")) subtitle = ''
 
 set terminal pngcairo size 1000,800 enhanced font 'DejaVu Sans,10'
 set output png
@@ -24,14 +25,23 @@ set grid
 set key outside right top
 set lmargin at screen 0.1
 set rmargin at screen 0.72
-set multiplot layout 2,1 title title noenhanced
+# A legend entry only for what is drawn.
+stats csv using (strcol("best_family") ne 'balanced' && strcol("best_family") ne '' ? 1 : 0) nooutput
+has_aligned = STATS_sum > 0
+stats csv using (strcol("best_family") eq 'balanced' ? 1 : 0) nooutput
+has_balanced = STATS_sum > 0
+t(flag, text) = flag ? text : ''
+# The subtitle's lines are separated by '|'.
+heading = title
+if (subtitle ne '') { heading = heading . "\n"; do for [i = 1:strlen(subtitle)] { heading = heading . (subtitle[i:i] eq '|' ? "\n" : subtitle[i:i]) } }
+set multiplot layout 2,1 title heading noenhanced font ',9'
 
 set ylabel 'fraction of the balanced set normally stable'
 set yrange [-0.05:1.05]
 set y2label 'stable aligned equilibria'
-set y2tics
 stats csv using (column("aligned_stable")) nooutput
 set y2range [-0.5:STATS_max + 0.5]
+if (STATS_max < 10) { set y2tics 1 } else { set y2tics }   # a count: whole numbers
 set ytics nomirror
 plot csv using (column(param)):(column("fraction_stable")) with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'balanced set: fraction stable', \
      csv using (column(param)):(column("aligned_stable")) axes x1y2 with linespoints lw 1.5 pt 5 dt (6,4) lc rgb '#d62728' title 'aligned: number stable'
@@ -42,11 +52,12 @@ set y2range [-0.5:STATS_max + 0.5]
 unset y2label
 set ytics mirror
 set logscale y
+set mytics 10
 set yrange [1e-12:1e-3]
 set format y '10^{%T}'
 set ylabel '|q| of the best stable state [m]'
 # A stable balanced state has |q| = 0: drawn on the floor of the axis (1e-12 m).
 positive(q) = (q > 0 ? q : NaN)
-plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title 'best stable: aligned', \
-     csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title 'best stable: balanced (|q| = 0)'
+plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title t(has_aligned, 'best stable: aligned'), \
+     csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title t(has_balanced, 'best stable: balanced (|q| = 0)')
 unset multiplot

@@ -273,7 +273,8 @@ TEST_CASE("apply_override rejects bad assignments", "[scene]") {
     const char* rule;
   };
   const Case cases[] = {
-      {"omgea=1200", "omgea", "unknown parameter; known: "},
+      {"omgea=1200", "omgea", "unknown parameter; did you mean 'omega'? (known: "},
+      {"xyz=1", "xyz", "unknown parameter; known: "},
       {"m3=1e-5", "m3", "ball index out of range"},
       {"omega", "omega", "expected NAME=VALUE"},
       {"=1200", "=1200", "expected NAME=VALUE"},

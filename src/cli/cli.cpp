@@ -14,6 +14,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -24,6 +25,8 @@
 #include "abu/core/temp_files.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/plausibility.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {
@@ -152,6 +155,7 @@ Scene load(const SceneOptions& options) {
   }
   for (const auto& assignment : options.overrides) apply_override(scene, in_si(options, assignment));
   check_numerical_range(scene, options.overrides.empty() ? scene.file : "--set");
+  for (const auto& w : implausible_values(scene)) fmt::print(stderr, "stability-scan: warning: {}\n", w);
   return scene;
 }
 
@@ -219,6 +223,20 @@ int run_command(int argc, char** argv) {
                     add_simulate_command}) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
+  }
+  // An unknown word where the subcommand goes is named (CLI11 would say only that a
+  // subcommand is required), with the nearest subcommand.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string_view> names;
+    for (const auto* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    const std::string_view word = argv[1];
+    if (std::find(names.begin(), names.end(), word) == names.end()) {
+      std::string list;
+      for (auto n : names) list += fmt::format("{}{}", list.empty() ? "" : ", ", n);
+      fmt::print(stderr, "stability-scan: unknown subcommand '{}'{} (subcommands: {})\nRun with --help for usage.\n",
+                 word, did_you_mean(word, names), list);
+      return exit_bad_input;
+    }
   }
   std::vector<std::string> args = decimal_arguments(argc, argv);
   std::vector<char*> arg_pointers;

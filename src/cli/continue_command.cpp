@@ -9,7 +9,10 @@
 #include "cli.hpp"
 #include "abu/continuation/boundaries.hpp"
 #include "abu/continuation/continuation.hpp"
+#include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
@@ -60,7 +63,9 @@ Coordinates<long double, 2> parse_state(const std::string& text) {
 ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
                        const std::string& to_option, double to, bool radius_allowed = false) {
   const auto ref = parse_param(symbol, int(scene.balls.size()));
-  if (!ref) throw InputError(option, 0, symbol, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+  if (!ref)
+    throw InputError(option, 0, symbol,
+                     unknown_name_rule("unknown parameter", closest_param(symbol), "known", param_symbols_help()));
   if (!radius_allowed && ref->quantity == Quantity::ball_radius)
     throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
   Scene probe = scene;
@@ -79,7 +84,8 @@ void check_moves(const P& p, ParamRef ref, double to, const std::string& to_opti
 // The two-parameter curves' CSV and chart staged in `out`, their failures warned about.
 template <class BoundaryRunT>
 void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, const std::filesystem::path& dir,
-                      const std::string& header, bool chart, const char* script, const std::string& title) {
+                      const std::string& header, bool chart, const char* script, const std::string& title,
+                      const std::string& subtitle) {
   const std::string name = to_string(boundaries.param), name2 = to_string(boundaries.param2);
   const auto curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", name, name2), boundary_csv(boundaries, header));
   if (chart)
@@ -90,7 +96,8 @@ void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, co
                  {"unit", std::string(unit(boundaries.param.quantity))},
                  {"param2", name2},
                  {"unit2", std::string(unit(boundaries.param2.quantity))},
-                 {"title", title}});
+                 {"title", title},
+                 {"subtitle", subtitle}});
   for (std::size_t c = 0; c < boundaries.curves.size(); ++c)
     for (int end = 0; end < 2; ++end)
       if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
@@ -142,7 +149,8 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   const std::filesystem::path dir(o.output_dir);
   const std::string header = provenance_header(command_line(), scene.file, p);
   OutputTransaction out;
-  const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+  const auto branches =
+      out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
   const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
   const auto envelope = out.stage(dir / fmt::format("envelope_{}.csv", name), envelope_csv(run, header));
   if (o.chart)
@@ -153,11 +161,14 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
                  {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                  {"param", name},
                  {"unit", std::string(unit(param.quantity))},
-                 {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)}});
+                 {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)},
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides)},
+                 {"omega_n", format_omega_n(scene)}});
   if (ref2)
     stage_boundaries(out, continue_boundaries(p, run, *ref2, o.to2, o.numerics), dir, header, o.chart, "boundary_n.gp",
                      fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
-                                 to_string(*ref2)));
+                                 to_string(*ref2)),
+                     chart_subtitle(scene, o.scene.overrides));
   out.commit();
   return finish(run, fmt::format("{} branches ({} balanced samples)", run.branches.size(), run.envelope.samples), dir);
 }
@@ -221,7 +232,8 @@ Action add_continue_command(CLI::App& app) {
     const std::filesystem::path dir(o->output_dir);
     const std::string header = provenance_header(command_line(), scene.file, p);
     OutputTransaction out;
-    const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(run, header));
+    const auto branches =
+        out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
     const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
     stage_views(out,
                 {dir, name, std::string(unit(param.quantity)), run.from, run.to, campbell_samples(run, p),
@@ -236,11 +248,14 @@ Action add_continue_command(CLI::App& app) {
                    {"png", out.reserve(dir / fmt::format("bifurcation_{}.png", name)).string()},
                    {"param", name},
                    {"unit", std::string(unit(param.quantity))},
-                   {"title", fmt::format("{}: continuation in {}", scene.file, name)}});
+                   {"title", fmt::format("{}: continuation in {}", scene.file, name)},
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
+                   {"omega_n", format_omega_n(scene)}});
     if (ref2)
       stage_boundaries(out, continue_boundaries(p, run, *ref2, o->to2, o->numerics), dir, header, o->chart,
                        "boundary.gp",
-                       fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)));
+                       fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)),
+                       chart_subtitle(scene, o->scene.overrides));
     out.commit();
     return finish(run, fmt::format("{} branches", run.branches.size()), dir);
   };

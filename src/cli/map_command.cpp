@@ -31,6 +31,7 @@ struct MapOptions {
   int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   bool resume = false, fresh = false, progress = false, quiet = false;
   bool chart = true, boundaries = true;
+  bool long_csv = false;
   BalancedSampling sampling;
 };
 
@@ -73,6 +74,9 @@ Action add_map_command(CLI::App& app) {
   progress->excludes(quiet);
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG/SVG heat maps");
   sub->add_flag("!--no-boundaries", o->boundaries, "Skip the fold/Hopf boundary curves (continuation)");
+  sub->add_flag("--long", o->long_csv,
+                "Also write map_X_Y.csv, one row per equilibrium per cell (~0.8 kB a cell: ~820 MB for 1000 x 1000); "
+                "summary_X_Y.csv is always written");
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
       ->check(CLI::Range(1, 100000))
@@ -88,6 +92,10 @@ Action add_map_command(CLI::App& app) {
     request.sampling = o->sampling;
     request.command_line = canonical_command_line(*o);
     const MapJob job = map_job(scene, request);
+    for (const Axis* a : {&job.x, &job.y})
+      if (a->from > a->to && !o->quiet)
+        fmt::print(stderr, "stability-scan: note: {} runs downward, from {} to {} (index 0 at {})\n",
+                   a == &job.x ? "--x" : "--y", a->from, a->to, a->from);
 
     MapOutput output;
     output.directory = o->output_dir;
@@ -97,6 +105,7 @@ Action add_map_command(CLI::App& app) {
     output.progress = !o->quiet && (o->progress || isatty(STDERR_FILENO));
     output.chart = o->chart;
     output.boundaries = o->boundaries;
+    output.long_csv = o->long_csv;
     output.title = scene.file;
     set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
                                    escaped((std::filesystem::path(o->output_dir) / tile_directory_name(job)).string())));

@@ -8,6 +8,8 @@
 #include "cli.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
@@ -43,10 +45,11 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
   if (o.param == "n") {
     if (!scene.ring)
       throw InputError("--param", 0, "n", "the ball count is a study parameter only for a [balls] ring scene");
-    if (o.from != std::floor(o.from) || o.to != std::floor(o.to) || o.to < o.from)
-      throw InputError("--from", 0, "n", fmt::format("an increasing range of integers (got {} .. {})", o.from, o.to));
+    if (o.from != std::floor(o.from) || o.to != std::floor(o.to))
+      throw InputError("--from", 0, "n", fmt::format("a range of integers (got {} .. {})", o.from, o.to));
     result.unit = "-";
-    for (double n = o.from; n <= o.to; n += 1) {
+    const double step = o.to < o.from ? -1 : 1;  // a descending range runs downward
+    for (double n = o.from; step * n <= step * o.to; n += step) {
       Scene s = scene;
       set_ball_count(s, int(n), "--param n");
       scenes.push_back(s);
@@ -54,7 +57,10 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
     }
   } else {
     const auto ref = parse_param(o.param, int(scene.balls.size()));
-    if (!ref) throw InputError("--param", 0, o.param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (!ref)
+      throw InputError("--param", 0, o.param,
+                       unknown_name_rule("unknown parameter", closest_param(o.param, true), "known",
+                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
     if (o.steps < 1 || o.steps > kMaxSteps)
       throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o.steps));
     if (o.logarithmic && !(o.from > 0 && o.to > 0))
@@ -97,7 +103,8 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
                  {"param", result.name},
                  {"unit", result.unit},
                  {"logx", o.logarithmic ? "1" : "0"},
-                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)}});
+                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)},
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides)}});
   }
   out.commit();
   fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
@@ -131,10 +138,16 @@ Action add_sweep_command(CLI::App& app) {
     Scene scene = load(o->scene);
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
+    if (o->from > o->to)
+      fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
+                 o->from, o->to, o->param);
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
-    if (!ref) throw InputError("--param", 0, o->param, fmt::format("unknown parameter; known: {}", param_symbols_help()));
+    if (!ref)
+      throw InputError("--param", 0, o->param,
+                       unknown_name_rule("unknown parameter", closest_param(o->param, true), "known",
+                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
     if (o->steps < 1 || o->steps > kMaxSteps)
       throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o->steps));
     if (o->logarithmic && !(o->from > 0 && o->to > 0))
@@ -173,7 +186,9 @@ Action add_sweep_command(CLI::App& app) {
                    {"param", name},
                    {"unit", std::string(unit(ref->quantity))},
                    {"logx", o->logarithmic ? "1" : "0"},
-                   {"title", fmt::format("{}: sweep of {}", scene.file, name)}});
+                   {"title", fmt::format("{}: sweep of {}", scene.file, name)},
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
+                   {"omega_n", format_omega_n(scene)}});
     }
     out.commit();
     std::size_t rows = 0;

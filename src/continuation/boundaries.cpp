@@ -18,6 +18,32 @@ using ld = long double;
 using Vec5 = StaticEquations::Vec5;
 using arclength::Stage;
 
+// Which side of a Hopf curve the equilibrium is stable on, in the first parameter: the
+// equilibrium re-solved (Newton, the second parameter held) at 1e-3 of the interval on
+// either side of z, and its spectrum: +1 stable at the larger value, -1 at the smaller,
+// 0 on neither side (or both, or where Newton does not converge). 1e-3 of the interval
+// puts the critical pair's real part well outside its error band (it moves linearly) and
+// keeps the equilibrium's state within Newton's reach.
+int stable_side(const StaticEquations& eq, const Vec5& z) {
+  const auto stable_at = [&](ld shift) {
+    Vec5 y = z;
+    y(4) += shift;
+    for (int it = 0; it < 30; ++it) {
+      const auto F = eq.residual(y);
+      if (F.norm() <= 1e-14L) {
+        const Spectrum sp = compute_spectrum(eq.linearization(y));
+        return sp.status.ok() && sp.stability == Stability::stable;
+      }
+      const Eigen::Matrix<ld, 4, 4> J = eq.jacobian(y).template leftCols<4>();
+      y.head<4>() -= J.partialPivLu().solve(F);
+    }
+    return false;
+  };
+  const bool up = stable_at(1e-3L), down = stable_at(-1e-3L);
+  const int direction = eq.span() > 0 ? 1 : -1;  // the scaled parameter runs with the interval
+  return up == down ? 0 : (up ? direction : -direction);
+}
+
 // Codimension-two test functions at one curve point; a sign change between consecutive
 // points flags the label.
 struct Tests {
@@ -63,6 +89,10 @@ class CurveTracer : public CurveSystem<N> {
     if (stage == Stage::step) this->rescale_frequency(y, t);
     if (stage != Stage::edge) this->refresh(y);
     points.push_back(point(y, stage == Stage::edge ? Label::EP : Label::none));
+    if constexpr (Sys::hopf) {
+      points.back().lyapunov = double(pending_.lyapunov);  // computed at y by evaluate
+      points.back().stable_side = stable_side(this->at(y), Sys::z(y));
+    }
   }
 
   BoundaryPoint point(const Vec& y, Label label) const;
@@ -99,7 +129,6 @@ BoundaryPoint CurveTracer<N>::point(const Vec& y, Label label) const {
   p.parameter2 = this->parameter2(y);
   p.position = eq.position(z);
   p.frequency = this->omega(y);
-  if constexpr (Sys::hopf) p.lyapunov = first_lyapunov_coefficient(eq.params(z), p.position, p.frequency);
   p.family = classify(this->base(), p.position);
   p.label = label;
   return p;
@@ -176,8 +205,7 @@ void CurveTracer<N>::locate_generalized_hopf(const Vec& ya, const Vec& yb, ld la
     y = ya + (la / (la - lb)) * chord;
   }
   BoundaryPoint p = point(y, Label::GH);
-  p.lyapunov = 0;
-  p.located = located;
+  p.located = located;  // l1 = 0 there: the CSV leaves it empty, as at every codimension-two point
   points.push_back(p);
 }
 

@@ -52,7 +52,7 @@ RingInput read_ring(Problems& p, const toml::table& table) {
              "count, mass, total_mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, override", other);
 
   if (!count_seen) {
-    p.add(table.source().begin, "balls.count", "missing required key");
+    p.add_missing(table.source().begin, "balls.count", "missing required key");
   } else if (count) {
     if (auto bad = ball_count_violation(*count))
       p.add(count_pos, "balls.count", *bad);
@@ -70,7 +70,8 @@ RingInput read_ring(Problems& p, const toml::table& table) {
           fmt::format("give either mass (per ball) or total_mass (of the ring), not both ({} is at line {})",
                       earlier->name, earlier->pos.line));
   } else if (!mass->seen && !total->seen) {
-    p.add(table.source().begin, "balls.mass", "missing required key: mass (per ball) or total_mass (of the ring)");
+    p.add_missing(table.source().begin, "balls.mass",
+                  "missing required key: mass (per ball) or total_mass (of the ring)");
   } else if (total->value && ring.count) {
     // m = total_mass / count must itself be a valid mass (it is unless total_mass is denormal).
     if (auto bad = range_violation(Quantity::ball_mass, *total->value / *ring.count))
@@ -101,7 +102,7 @@ RingInput read_ring(Problems& p, const toml::table& table) {
       read_table(p, t, o.path, o.slots, fmt::format("ball, {}", kBallKeysHelp), other_key);
       const std::string key = o.path + ".ball";
       if (!ball_seen) {
-        p.add(t.source().begin, key, "missing required key");
+        p.add_missing(t.source().begin, key, "missing required key");
       } else if (o.ball) {
         const auto same = std::find_if(ring.overrides.begin(), ring.overrides.end(), [&](const OverrideInput& e) {
           return e.valid_ball && *e.ball == *o.ball;

@@ -15,6 +15,7 @@
 #include <sys/statvfs.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
@@ -88,8 +89,8 @@ Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& or
   if (parts.size() != 4 && parts.size() != 5) return fail("expected NAME:FROM:TO:N or NAME:FROM:TO:N:log");
   Axis axis;
   const auto ref = parse_param(parts[0], int(scene.balls.size()));
-  if (!ref) return fail(fmt::format("unknown parameter '{}'; known: {}, or n (a ring's ball count)", parts[0],
-                                    param_symbols_help()));
+  if (!ref) return fail(unknown_name_rule(fmt::format("unknown parameter '{}'", parts[0]), closest_param(parts[0], true),
+                                          "known", fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
   if (ref->quantity == Quantity::ball_radius)
     return fail("the ball radius does not enter the equations of motion (model.md §3)");
   axis.param = *ref;
@@ -273,14 +274,19 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   }
 
   OutputTransaction out;
-  const auto map_path = out.reserve(dir / map_file_name(job));
+  // The long CSV (a row per equilibrium per cell: ~800 bytes a cell) only on request.
+  const auto map_path = output.long_csv ? out.reserve(dir / map_file_name(job)) : std::filesystem::path();
   const auto summary_path = out.reserve(dir / summary_file_name(job));
   {
-    std::ofstream map_csv(map_path, std::ios::binary), summary_csv(summary_path, std::ios::binary);
-    assemble(job, *store, map_csv, summary_csv);
-    map_csv.close();
+    std::ofstream summary_csv(summary_path, std::ios::binary);
+    std::ofstream map_csv;
+    std::ostream no_rows(nullptr);  // discards what is written to it
+    if (output.long_csv) map_csv.open(map_path, std::ios::binary);
+    std::ostream& rows = output.long_csv ? static_cast<std::ostream&>(map_csv) : no_rows;
+    assemble(job, *store, rows, summary_csv);
     summary_csv.close();
-    if (!map_csv || !summary_csv)
+    if (output.long_csv) map_csv.close();
+    if ((output.long_csv && !map_csv) || !summary_csv)
       throw std::runtime_error(fmt::format("{}: cannot write the map: {}; the tiles are kept in {}, rerun the same "
                                            "command with --resume",
                                            escaped(dir.string()), errno ? std::strerror(errno) : "write error",

@@ -20,11 +20,14 @@ std::string identity_cells(const BranchN& b, int n_balls) {
                      b.member);
 }
 
-// q1,q2,beta1..beta<n>,q_abs (angles wrapped to [0, 2 pi)).
-std::string position_cells(const Coordinates<long double, any_balls>& s) {
-  std::string out = fmt::format("{},{}", num(double(s(0)), "q1"), num(double(s(1)), "q2"));
+// q1,q2,beta1..beta<n>,q_abs (angles wrapped to [0, 2 pi)). On the balanced family q = 0
+// by construction (model.md §13): the corrector's rounding residue is printed as 0.
+std::string position_cells(const Coordinates<long double, any_balls>& s, Family family) {
+  const bool balanced = family == Family::balanced;
+  const double q1 = balanced ? 0.0 : double(s(0)), q2 = balanced ? 0.0 : double(s(1));
+  std::string out = fmt::format("{},{}", num(q1, "q1"), num(q2, "q2"));
   for (Eigen::Index i = 2; i < s.size(); ++i) out += fmt::format(",{}", num(double(wrap_angle(s(i))), "beta"));
-  out += fmt::format(",{}", num(std::hypot(double(s(0)), double(s(1))), "|q|"));
+  out += fmt::format(",{}", num(std::hypot(q1, q2), "|q|"));
   return out;
 }
 
@@ -85,7 +88,8 @@ std::string branch_csv(const ContinuationRunN& run, std::string_view header) {
       const BranchPointN& pt = branch.points[i];
       const SpectrumN& sp = pt.spectrum;
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}", b + 1, i, to_string(pt.label),
-                         num(double(pt.parameter), name), identity_cells(branch, n), position_cells(pt.position),
+                         num(double(pt.parameter), name), identity_cells(branch, n),
+                         position_cells(pt.position, branch.family),
                          num(pt.residual, "residual"), num(sp.abscissa, "spectral abscissa"),
                          sp.stability == Stability::stable ? 1 : 0, sp.n_unstable, sp.n_structural);
       for (int k = 0; k < sp.count; ++k) {
@@ -120,7 +124,8 @@ std::string special_points_csv(const ContinuationRunN& run, std::string_view hea
     const BranchN& branch = run.branches[b];
     for (const SpecialPointN& sp : branch.specials)
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", b + 1, to_string(sp.label),
-                         num(double(sp.parameter), name), identity_cells(branch, n), position_cells(sp.position),
+                         num(double(sp.parameter), name), identity_cells(branch, n),
+                         position_cells(sp.position, branch.family),
                          sp.frequency ? num(*sp.frequency, "frequency") : "", num(sp.eigenvalue.real(), "eigenvalue"),
                          num(sp.eigenvalue.imag(), "eigenvalue"), sp.converged ? 1 : 0, sp.n_unstable_before,
                          sp.n_unstable_after, num(double(sp.bracket_from), name), num(double(sp.bracket_to), name),
@@ -129,7 +134,7 @@ std::string special_points_csv(const ContinuationRunN& run, std::string_view hea
       if (!failed(branch.stop[std::size_t(end)])) continue;
       const BranchPointN& pt = end == 0 ? branch.points.front() : branch.points.back();
       out += fmt::format("{},MX,{},{},{},,,,,{},{},,,\"{}\"\n", b + 1, num(double(pt.parameter), name),
-                         identity_cells(branch, n), position_cells(pt.position), pt.spectrum.n_unstable,
+                         identity_cells(branch, n), position_cells(pt.position, branch.family), pt.spectrum.n_unstable,
                          pt.spectrum.n_unstable, branch.stop_detail[std::size_t(end)]);
     }
   }
@@ -184,7 +189,7 @@ std::string boundary_csv(const BoundaryRunN& run, std::string_view header) {
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", k + 1, to_string(c.kind), to_string(c.family),
                          c.family == Family::aligned ? pattern_string(c.pattern, n) : "", c.member, c.source_branch, i,
                          to_string(pt.label), num(double(pt.parameter), n1), num(double(pt.parameter2), n2),
-                         position_cells(pt.position), pt.frequency ? num(*pt.frequency, "frequency") : "");
+                         position_cells(pt.position, c.family), pt.frequency ? num(*pt.frequency, "frequency") : "");
     }
   }
   return out;

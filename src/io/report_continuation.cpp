@@ -15,10 +15,13 @@ std::string num(double v, std::string_view what) { return format_number(v, what)
 
 long double wrap(long double beta) { return wrap_angle(beta); }
 
-std::string position_cells(const Coordinates<long double, 2>& s) {
-  return fmt::format("{},{},{},{},{}", num(double(s(0)), "q1"), num(double(s(1)), "q2"),
-                     num(double(wrap(s(2))), "beta1"), num(double(wrap(s(3))), "beta2"),
-                     num(std::hypot(double(s(0)), double(s(1))), "|q|"));
+// q = 0 by construction on the balanced family (model.md §5): the corrector's rounding
+// residue (|q| ~ 1e-44 m) is printed as the exact 0 it stands for.
+std::string position_cells(const Coordinates<long double, 2>& s, Family family) {
+  const bool balanced = family == Family::balanced;
+  const double q1 = balanced ? 0.0 : double(s(0)), q2 = balanced ? 0.0 : double(s(1));
+  return fmt::format("{},{},{},{},{}", num(q1, "q1"), num(q2, "q2"), num(double(wrap(s(2))), "beta1"),
+                     num(double(wrap(s(3))), "beta2"), num(std::hypot(q1, q2), "|q|"));
 }
 
 std::string stop_line(const Branch& b, std::size_t k, int end) {
@@ -54,8 +57,10 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
   std::string out(header);
   out += fmt::format(
       "# continuation in {} [{}] from {} to {}; pseudo-arclength, points ordered along each branch\n"
-      "# columns: branch (1-based), point (index along the branch), label (EP at the ends; special points are in "
-      "special_{}.csv),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
+      "# columns: branch (1-based), point (index along the branch), label (EP at the ends; LP, BP, HB: a special "
+      "point of special_{}.csv\n#   at its located parameter, written twice where the stability changes there: "
+      "first with the stable and n_unstable of the side\n#   before it, then of the side after it; its eigenvalues are "
+      "those at the point),\n#   q1 q2 [m], beta1 beta2 [rad] in [0, 2 pi), q_abs [m], family of the point, stable (1/0), "
       "n_unstable,\n#   re_k im_k [1/s]: eigenvalue k (rotating frame; fixed frame: campbell_<param>.csv) in TRACKED order (matched from point to point: k stays the "
       "same mode along a branch)\n",
       name, unit(run.param.quantity), run.from, run.to, name);
@@ -68,7 +73,7 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
     for (std::size_t i = 0; i < branch.points.size(); ++i) {
       const auto& pt = branch.points[i];
       out += fmt::format("{},{},{},{},{},{},{},{}", b + 1, i, to_string(pt.label), num(double(pt.parameter), name),
-                         position_cells(pt.position), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
+                         position_cells(pt.position, pt.family), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
       for (const auto& l : pt.modes) out += fmt::format(",{},{}", num(l.real(), "eigenvalue"), num(l.imag(), "eigenvalue"));
       out += "\n";
     }
@@ -96,7 +101,7 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
     const auto& branch = run.branches[b];
     for (const auto& sp : branch.specials)
       out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", b + 1, to_string(sp.label),
-                         num(double(sp.parameter), name), position_cells(sp.position), to_string(sp.family),
+                         num(double(sp.parameter), name), position_cells(sp.position, sp.family), to_string(sp.family),
                          num_if(sp.label == Label::HB, sp.frequency, "frequency"),
                          num(sp.eigenvalue.real(), "eigenvalue"), num(sp.eigenvalue.imag(), "eigenvalue"),
                          num_if(sp.label == Label::HB && sp.converged, sp.lyapunov, "lyapunov"), sp.converged ? 1 : 0,
@@ -107,7 +112,7 @@ std::string special_points_csv(const ContinuationRun& run, std::string_view head
       // No special point was located here: frequency, eigenvalue, lyapunov and converged
       // are not defined (empty).
       out += fmt::format("{},MX,{},{},{},,,,,,{},{}\n", b + 1, num(double(pt.parameter), name),
-                         position_cells(pt.position), to_string(branch.family), pt.spectrum.n_unstable,
+                         position_cells(pt.position, branch.family), to_string(branch.family), pt.spectrum.n_unstable,
                          pt.spectrum.n_unstable);
     }
   }
@@ -120,11 +125,12 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
   out += fmt::format(
       "# two-parameter continuation of the fold (LP) and Hopf (HB) points in ({} [{}], {} [{}]) over {} .. {} x {} .. "
       "{}\n# columns: curve, kind (LP fold curve, HB Hopf curve), point (index along the curve), label (EP end, BT "
-      "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp: where the curve meets them, located by "
-      "interpolating their test functions; GH generalized Hopf,\n#   the zero of l1 along the Hopf curve, located by "
-      "regula falsi on the curve), the two parameters, q1 q2 [m], beta1 beta2 [rad],\n#   q_abs [m], family, "
-      "frequency [rad/s] (Hopf curves, rotating frame; empty on fold curves), lyapunov = first Lyapunov coefficient l1\n#   (Hopf "
-      "curves: < 0 supercritical, > 0 subcritical there; 0 at GH; empty on fold curves)\n",
+      "Bogdanov-Takens,\n#   ZH zero-Hopf, CP cusp: where the curve meets them, located by interpolating their test functions;\n"
+      "#   GH generalized Hopf: the zero of l1 along the Hopf curve, located by regula falsi on the curve), the two\n#   parameters, q1 q2 [m], beta1 beta2 [rad], q_abs [m], family, "
+      "lyapunov = first Lyapunov coefficient l1 (Hopf curves:\n"
+      "#   < 0 supercritical, > 0 subcritical; empty on fold curves and at codimension-two points), stable_side (Hopf\n"
+      "#   curves: 1 the equilibrium is stable just above the curve in the first parameter, -1 just below, 0 on neither side; empty on\n"
+      "#   fold curves and at codimension-two points), frequency [rad/s] (Hopf curves, rotating frame; empty on fold curves)\n",
       n1, unit(run.param.quantity), n2, unit(run.param2.quantity), run.from, run.to, run.from2, run.to2);
   for (std::size_t c = 0; c < run.curves.size(); ++c)
     for (int end = 0; end < 2; ++end) {
@@ -140,15 +146,20 @@ std::string boundary_csv(const BoundaryRun& run, std::string_view header) {
         out += fmt::format("# note: curve {}: the GH point at ({:.17g}, {:.17g}) is interpolated, not located (the "
                            "corrector failed inside its segment)\n",
                            c + 1, double(pt.parameter), double(pt.parameter2));
-  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,frequency,lyapunov\n", n1, n2);
+  // frequency stays last: gnuplot 5.4 misreads an empty *last* field (strcol returns an
+  // earlier one), and only frequency's emptiness (fold curves) is old news to readers.
+  out += fmt::format("curve,kind,point,label,{},{},q1,q2,beta1,beta2,q_abs,family,lyapunov,stable_side,frequency\n", n1,
+                     n2);
   for (std::size_t c = 0; c < run.curves.size(); ++c) {
     const auto& curve = run.curves[c];
     for (std::size_t i = 0; i < curve.points.size(); ++i) {
       const auto& pt = curve.points[i];
-      out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
-                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2), position_cells(pt.position),
-                         to_string(pt.family), num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"),
-                         num_if(curve.kind == Label::HB, double(pt.lyapunov), "lyapunov"));
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", c + 1, to_string(curve.kind), i, to_string(pt.label),
+                         num(double(pt.parameter), n1), num(double(pt.parameter2), n2),
+                         position_cells(pt.position, pt.family),
+                         to_string(pt.family), num_if(pt.lyapunov.has_value(), pt.lyapunov.value_or(0.0), "lyapunov"),
+                         pt.stable_side ? fmt::format("{}", *pt.stable_side) : std::string(),
+                         num_if(curve.kind == Label::HB, double(pt.frequency), "frequency"));
     }
   }
   return out;

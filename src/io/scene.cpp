@@ -29,6 +29,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/core/speed_units.hpp"
+#include "abu/core/suggest.hpp"
 #include "scene_reading.hpp"
 #include "toml_guard.hpp"
 
@@ -169,8 +170,9 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       }
     } else {
       p.add(pos, name,
-            fmt::format("unknown {}; the top level has: rolling, [rotor], [[ball]] or [balls], [friction], [speed]",
-                        node.is_table() ? "table" : "key"));
+            unknown_name_rule(node.is_table() ? "unknown table" : "unknown key",
+                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed"}),
+                              "the top level has", "rolling, [rotor], [[ball]] or [balls], [friction], [speed]"));
     }
   }
   for (auto [part, name] : {std::pair{&rotor, "rotor"}, {&friction, "friction"}, {&speed, "speed"}})
@@ -263,7 +265,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       return true;
     };
     read_table(p, *friction.table, "friction", friction_slots, "law, mu, d, kappa, mu_c, mu_s, v_s", other);
-    if (!law_seen) p.add(friction.table->source().begin, "friction.law", "missing required key");
+    if (!law_seen) p.add_missing(friction.table->source().begin, "friction.law", "missing required key");
   }
   if (law) {
     // Per-ball coefficients as written: [[ball]] tables, [balls] and its overrides.
@@ -291,7 +293,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                 : fmt::format("missing key (friction law '{}' requires it; per-ball values replace it only "
                               "if every ball has one, and {} has none)",
                               to_string(*law), lacking->path);
-        p.add(friction.table->source().begin, "friction." + std::string(s.name), why);
+        p.add_missing(friction.table->source().begin, "friction." + std::string(s.name), why);
       }
     }
   }
@@ -411,7 +413,8 @@ void apply_override(Scene& scene, std::string_view assignment) {
     const bool index_too_large = parse_param(name, std::numeric_limits<int>::max()).has_value();
     throw InputError("--set", 0, std::string(name),
                      index_too_large ? index_out_of_range(name, std::size_t(n))
-                                     : fmt::format("unknown parameter; known: {}", param_symbols_help()));
+                                     : unknown_name_rule("unknown parameter", closest_param(name), "known",
+                                                         param_symbols_help()));
   }
   double value = 0.0;
   const char* end = text.data() + text.size();

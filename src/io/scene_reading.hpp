@@ -17,6 +17,7 @@
 #include <toml++/toml.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 #include "abu/io/scene.hpp"
 
 namespace abu::scene_reading {
@@ -97,6 +98,7 @@ struct Problem {
   int seq;  // order of detection: the last tie-breaker, for determinism
   std::string key;
   std::string rule;
+  bool missing = false;  // a required key or table absent (add_missing, add_absent)
 };
 
 class Problems {
@@ -106,16 +108,23 @@ class Problems {
   void add(toml::source_position pos, std::string key, std::string rule) {
     list_.push_back({int(pos.line), int(pos.column), int(list_.size()), std::move(key), std::move(rule)});
   }
+  // A required key that is absent, reported at `pos` (its table's header). Absent keys
+  // come after every other problem: a misspelled key (`stifness`) is an unknown key
+  // *and* leaves the right one missing, and the unknown key is the one to report.
+  void add_missing(toml::source_position pos, std::string key, std::string rule) {
+    list_.push_back({int(pos.line), int(pos.column), int(list_.size()), std::move(key), std::move(rule), true});
+  }
   // Something absent from the file has no position of its own. It is reported at the
   // last line (after everything present), where the user would append it.
   void add_absent(std::string key, std::string rule) {
     list_.push_back({last_line_, std::numeric_limits<int>::max(), int(list_.size()), std::move(key),
-                     std::move(rule)});
+                     std::move(rule), true});
   }
+  // The first problem in the file; absent keys and tables only when nothing else is wrong.
   void throw_first() const {
     if (list_.empty()) return;
     const auto& first = *std::min_element(list_.begin(), list_.end(), [](const Problem& a, const Problem& b) {
-      return std::tie(a.line, a.column, a.seq) < std::tie(b.line, b.column, b.seq);
+      return std::tie(a.missing, a.line, a.column, a.seq) < std::tie(b.missing, b.line, b.column, b.seq);
     });
     throw InputError(file_, first.line, first.key, first.rule);
   }
@@ -228,11 +237,12 @@ inline void read_table(Problems& p, const toml::table& table, const std::string&
       slot->key = key;
       slot->value = read_number(p, key, node, pos, slot->quantity);
     } else if (!other(k.str(), node, key, pos)) {
-      p.add(pos, key, fmt::format("unknown key; allowed here: {}", known));
+      p.add(pos, key, unknown_name_rule("unknown key", closest_name(k.str(), split_names(known)), "allowed here", known));
     }
   }
   for (const Slot& s : slots)
-    if (s.required && !s.seen) p.add(table.source().begin, fmt::format("{}.{}", path, s.name), "missing required key");
+    if (s.required && !s.seen)
+      p.add_missing(table.source().begin, fmt::format("{}.{}", path, s.name), "missing required key");
 }
 
 inline const auto no_other = [](std::string_view, const toml::node&, const std::string&, toml::source_position) {

@@ -593,20 +593,60 @@ void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, 
 namespace {
 // The fold and Hopf curves of the map's plane from the continuations in x along its bottom
 // and top edges (`trace(p, to2)`: the branches at p, their points continued in y to to2).
+// Two points of boundary curves are one point of the plane: both parameters within 1e-8
+// of the map's extent (a curve's end on an edge and the special point located there each
+// solve an augmented system, to ~1e-12). The configuration is not compared: a curve and
+// its mirror image (equal balls swapped) are one boundary in the plane, and the curves of
+// distinct equilibria (n balls: the samples of the balanced set) lie ~1e-5 apart or more.
+template <class Point>
+bool same_point(const Point& a, const Point& b, const MapJob& job) {
+  using std::abs;
+  const double sx = abs(job.x.to - job.x.from), sy = abs(job.y.to - job.y.from);
+  return abs(double(a.parameter - b.parameter)) <= 1e-8 * sx && abs(double(a.parameter2 - b.parameter2)) <= 1e-8 * sy;
+}
+
+// A curve traced from the top edge that a curve from the bottom edge already crossed the
+// map with (it starts where that one ends, or ends where it starts) is the same curve:
+// written once.
+template <class Curve>
+bool already_traced(const Curve& c, const std::vector<Curve>& bottom, const MapJob& job) {
+  if (c.points.empty()) return false;
+  for (const auto& k : bottom) {
+    if (k.kind != c.kind || k.points.empty()) continue;
+    for (const auto* end : {&k.points.front(), &k.points.back()})
+      if (same_point(c.points.front(), *end, job) || same_point(c.points.back(), *end, job)) return true;
+  }
+  return false;
+}
+
 template <class BoundaryRunT, class P, class Trace>
 BoundaryRunT along_edges(const MapJob& job, const P& base, Trace trace) {
   BoundaryRunT all;
   all.param = job.x.param;
   all.param2 = job.y.param;
   all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
+  std::size_t duplicates = 0;
+  decltype(all.curves) bottom;  // the curves from the bottom edge
   for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
     P p = base;
     set(p, job.x.param, job.x.from);
     set(p, job.y.param, at);
     BoundaryRunT part = trace(p, to);
-    for (auto& c : part.curves) all.curves.push_back(std::move(c));
+    const bool top = at != job.y.from;
+    for (auto& c : part.curves) {
+      if (top && already_traced(c, bottom, job)) {
+        ++duplicates;
+        continue;
+      }
+      if (!top) bottom.push_back(c);
+      all.curves.push_back(std::move(c));
+    }
     for (auto& n : part.notes) all.notes.push_back(std::move(n));
   }
+  if (duplicates > 0)
+    all.notes.push_back(fmt::format("{} curves traced from the top edge crossed the map along a curve from the "
+                                    "bottom edge: each curve is written once",
+                                    duplicates));
   all.notes.push_back(
       "curves found from the fold and Hopf points on the bottom and top edges of the map; a closed curve "
       "inside the map touching neither edge is not drawn");

@@ -16,7 +16,7 @@ rows() { grep -v '^#' "$1" | tail -n +2; }
 # A small (omega, mu) map across the balancing speed, coulomb friction from the scene.
 X=omega:150:600:40
 Y=mu:1e-4:0.1:30:log
-map() { "$bin" map "$scene" --x "$X" --y "$Y" --no-chart --no-boundaries --quiet "$@"; }
+map() { "$bin" map "$scene" --x "$X" --y "$Y" --no-chart --no-boundaries --quiet --long "$@"; }
 
 # --- threads: same bytes ---------------------------------------------------------------
 map --threads 1 -o "$work/t1"
@@ -66,14 +66,14 @@ check "fast and full abscissas agree to 1e-9 relative (or 1e-12 absolute)" "past
 # the sanitizer build.
 RX=omega:150:600:800
 RY=mu:1e-4:0.1:40:log
-resume_map() { "$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet "$@"; }
+resume_map() { "$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet --long "$@"; }
 resume_map -o "$work/whole" --threads 2
 tiles=$work/cut/.map_omega_mu.tiles
 interrupt() {  # signal, then wait for the run to be cut after a few tiles
   rm -rf "$work/cut"
   # The binary itself in the background (a function would run in a subshell that the
   # signal would hit instead).
-  "$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/cut" --threads 1 \
+  "$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet --long -o "$work/cut" --threads 1 \
     2>"$work/cut.err" &
   pid=$!
   wait_for_tiles "$tiles" 3
@@ -96,7 +96,7 @@ check "Ctrl-C says how to continue" "grep -q -- '--resume' '$work/cut.err'"
 resume_map -o "$work/cut" --resume --threads 2
 check "interrupted + resumed on 2 threads: same bytes" "cmp -s '$work/whole/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
 code=$(interrupt TERM)
-"$bin" map "$scene" --x omega:150:600:799 --y "$RY" --no-chart --no-boundaries --quiet -o "$work/cut" --resume 2>"$work/other.err"
+"$bin" map "$scene" --x omega:150:600:799 --y "$RY" --no-chart --no-boundaries --quiet --long -o "$work/cut" --resume 2>"$work/other.err"
 check "resuming a different map is refused (exit 2)" "[ $? -eq 2 ] && grep -q 'different map' '$work/other.err'"
 resume_map -o "$work/cut" --fresh
 check "--fresh starts over and gives the same bytes" "[ $? -eq 0 ] && cmp -s '$work/whole/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
@@ -106,12 +106,27 @@ check "--fresh starts over and gives the same bytes" "[ $? -eq 0 ] && cmp -s '$w
 check "not a terminal: no progress line" "! grep -q 'tiles (' '$work/p.err'"
 "$bin" map "$scene" --x "$X" --y "$Y" --no-chart --no-boundaries --progress -o "$work/p" 2>"$work/p.err"
 check "--progress forces progress with an ETA" "grep -q 'tiles (' '$work/p.err' && grep -q 'ETA' '$work/p.err'"
-"$bin" map "$scene" --x "$X" --y "$Y" --no-chart --no-boundaries --quiet -o "$work/p" 2>"$work/p.err"
+"$bin" map "$scene" --x "$X" --y "$Y" --no-chart --no-boundaries --quiet --long -o "$work/p" 2>"$work/p.err"
 check "--quiet: nothing on stderr" "[ ! -s '$work/p.err' ]"
 
 # --- charts and boundaries ---------------------------------------------------------------
 "$bin" map "$scene" --x omega:150:600:60 --y mu:1e-4:0.1:40:log --quiet -o "$work/c"
 check "chart run exits 0" "[ $? -eq 0 ]"
+check "without --long: the summary, no long csv" "[ -s '$work/c/summary_omega_mu.csv' ] && [ ! -e '$work/c/map_omega_mu.csv' ]"
+# Each curve once: no two curves of the same kind share an end point (to 1e-6 of the
+# map's extent; a curve from the bottom edge that reaches the top is the one the top edge
+# would start again; distinct curves meet only at codimension-two points, of other kinds).
+check "each boundary curve is written once" "/usr/bin/python3 - '$work/c/boundary_omega_mu.csv' <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith('#')))
+ends = {}
+for r in rows:
+    ends.setdefault(r['curve'], []).append(r)
+pts = [(k, c[0]['kind'], float(e['omega']), float(e['mu'])) for k, c in ends.items() for e in (c[0], c[-1])]
+bad = [(a, b) for i, a in enumerate(pts) for b in pts[i + 1:]
+       if a[0] != b[0] and a[1] == b[1] and abs(a[2] - b[2]) < 1e-6 * 450 and abs(a[3] - b[3]) < 1e-6 * 0.1]
+sys.exit(1 if bad else 0)
+PY"
 for f in stability_omega_mu.png stability_omega_mu.svg vibration_omega_mu.png vibration_omega_mu.svg boundary_omega_mu.csv; do
   check "writes $f" "[ -s '$work/c/$f' ]"
 done
@@ -122,7 +137,7 @@ bad() {  # name, expected message fragment, axes...
   local name=$1 text=$2
   shift 2
   rm -rf "$work/bad"
-  "$bin" map "$scene" "$@" --quiet -o "$work/bad" >/dev/null 2>"$work/bad.err"
+  "$bin" map "$scene" "$@" --quiet --long -o "$work/bad" >/dev/null 2>"$work/bad.err"
   local code=$?
   check "$name: exit 2 ($(head -c 110 "$work/bad.err" | tr '\n' ' '))" \
     "[ $code -eq 2 ] && grep -q -- '$text' '$work/bad.err' && [ ! -e '$work/bad' ]"

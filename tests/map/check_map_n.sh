@@ -16,7 +16,7 @@ ring=$src/data/scenes/ring11.toml
 sed 's/^count = 11 /count = 3 /' "$ring" >"$work/ring3.toml"
 sed 's/^count = 11 /count = 2 /' "$ring" >"$work/ring2.toml"
 check "the n = 3 and n = 2 ring scenes were made" "grep -q '^count = 3 ' '$work/ring3.toml' && grep -q '^count = 2 ' '$work/ring2.toml'"
-q() { "$bin" map "$@" --no-boundaries --quiet; }
+q() { "$bin" map "$@" --no-boundaries --quiet --long; }
 
 # --- n = 3: every cell against `equilibria` ----------------------------------------------
 # Below and above omega_n (~250 rad/s): the balanced set unstable, then stable.
@@ -67,7 +67,7 @@ check "total_mass ring: capacity the same for every n" \
 # killed after a few tiles (one column each), then resumed: the bytes of an uninterrupted run
 RX=omega:400:900:40
 q "$ring" --x $RX --y n:2:6:5 --no-chart -o "$work/whole" --threads 2
-"$bin" map "$ring" --x $RX --y n:2:6:5 --no-chart --no-boundaries --quiet -o "$work/cut" --threads 1 2>/dev/null &
+"$bin" map "$ring" --x $RX --y n:2:6:5 --no-chart --no-boundaries --quiet --long -o "$work/cut" --threads 1 2>/dev/null &
 pid=$!
 wait_for_tiles "$work/cut/.map_omega_n.tiles" 3
 kill -KILL $pid
@@ -83,7 +83,7 @@ bad() {  # name, message fragment, scene, axes...
   local name=$1 text=$2 scene=$3
   shift 3
   rm -rf "$work/bad"
-  "$bin" map "$scene" "$@" --quiet -o "$work/bad" >/dev/null 2>"$work/bad.err"
+  "$bin" map "$scene" "$@" --quiet --long -o "$work/bad" >/dev/null 2>"$work/bad.err"
   local code=$?
   check "$name: exit 2 ($(head -c 120 "$work/bad.err" | tr '\n' ' '))" \
     "[ $code -eq 2 ] && grep -q -- \"$text\" '$work/bad.err' && [ ! -e '$work/bad' ]"

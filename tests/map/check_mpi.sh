@@ -21,10 +21,10 @@ run_mpi() {  # ranks, args...
 }
 X=omega:150:600:300
 Y=mu:1e-4:0.1:40:log
-"$bin" map "$scene" --x "$X" --y "$Y" --quiet --no-chart -o "$work/one"
+"$bin" map "$scene" --x "$X" --y "$Y" --quiet --long --no-chart -o "$work/one"
 check "single process exits 0" "[ $? -eq 0 ]"
 for n in 2 3; do
-  run_mpi $n map "$scene" --x "$X" --y "$Y" --quiet --no-chart --threads 1 -o "$work/mpi$n"
+  run_mpi $n map "$scene" --x "$X" --y "$Y" --quiet --long --no-chart --threads 1 -o "$work/mpi$n"
   check "mpirun -n $n exits 0" "[ $? -eq 0 ]"
   for f in map_omega_mu.csv summary_omega_mu.csv boundary_omega_mu.csv; do
     check "mpirun -n $n: $f has the bytes of the single-process run" "cmp -s '$work/one/$f' '$work/mpi$n/$f'"
@@ -32,23 +32,23 @@ for n in 2 3; do
 done
 # Interrupted on one process, finished on two ranks.
 tiles=$work/cut/.map_omega_mu.tiles
-"$bin" map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --threads 1 -o "$work/cut" 2>/dev/null &
+"$bin" map "$scene" --x "$X" --y "$Y" --quiet --long --no-chart --no-boundaries --threads 1 -o "$work/cut" 2>/dev/null &
 pid=$!
 wait_for_tiles "$tiles" 3
 kill -KILL $pid
 wait $pid 2>/dev/null
 n=$(tile_count "$tiles")
 check "the single-process run was cut ($n of 38 tiles)" "[ $n -ge 3 ] && [ $n -lt 38 ]"
-run_mpi 2 map "$scene" --x "$X" --y "$Y" --quiet --no-chart --no-boundaries --resume -o "$work/cut"
+run_mpi 2 map "$scene" --x "$X" --y "$Y" --quiet --long --no-chart --no-boundaries --resume -o "$work/cut"
 check "mpirun -n 2 --resume exits 0" "[ $? -eq 0 ]"
 check "resumed across ranks: same bytes" "cmp -s '$work/one/map_omega_mu.csv' '$work/cut/map_omega_mu.csv'"
-run_mpi 2 map "$scene" --x omega:1:2:0 --y "$Y" --quiet -o "$work/bad" 2>/dev/null
+run_mpi 2 map "$scene" --x omega:1:2:0 --y "$Y" --quiet --long -o "$work/bad" 2>/dev/null
 check "bad axis under mpirun: exit 2, nothing written" "[ $? -eq 2 ] && [ ! -e '$work/bad' ]"
 # n balls, the ball count as an axis (model.md §13.8): the same bytes across ranks.
 ring=$src/data/scenes/ring11.toml
-"$bin" map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --no-chart -o "$work/n1" --threads 1
+"$bin" map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --long --no-chart -o "$work/n1" --threads 1
 for ranks in 2 3; do
-  run_mpi $ranks map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --no-chart -o "$work/n$ranks"
+  run_mpi $ranks map "$ring" --x omega:150:900:20 --y n:2:4:3 --quiet --long --no-chart -o "$work/n$ranks"
   for f in map_omega_n.csv summary_omega_n.csv; do
     check "n axis, mpirun -n $ranks: $f has the bytes of the single-process run" "cmp -s '$work/n1/$f' '$work/n$ranks/$f'"
   done

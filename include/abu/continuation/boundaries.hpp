@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,12 @@ struct BoundaryPoint {
   long double parameter = 0, parameter2 = 0;
   Coordinates<long double, 2> position = Coordinates<long double, 2>::Zero();
   long double frequency = 0;  ///< Hopf curves: omega_H [rad/s]
-  /// Hopf curves: the first Lyapunov coefficient l1 there (< 0 supercritical, > 0
-  /// subcritical; model.md (6.8)-(6.10)); 0 on fold curves and at the zero of a GH point.
-  long double lyapunov = 0;
+  /// Hopf curves: the first Lyapunov coefficient l1 (< 0 supercritical, > 0 subcritical;
+  /// its sign changes at GH; model.md (6.8)-(6.10)); nullopt on fold curves and at codimension-two points.
+  std::optional<double> lyapunov;
+  /// Hopf curves: the side of the curve on which the equilibrium is stable, in the first
+  /// parameter (+1 larger, -1 smaller, 0 neither); nullopt on fold curves.
+  std::optional<int> stable_side;
   /// GH points: located by a converged solve (false: interpolated, the corrector failed
   /// inside the segment; the CSV says so).
   bool located = true;

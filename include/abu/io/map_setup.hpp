@@ -46,6 +46,7 @@ struct MapOutput {
   const std::atomic<bool>* stop = nullptr;  ///< set by a signal: stop after the tiles in progress
   bool progress = false;                    ///< the progress line on stderr (rank 0)
   bool chart = true, boundaries = true;
+  bool long_csv = false;  ///< map_X_Y.csv, a row per equilibrium per cell (the summary is always written)
   std::string title;  ///< the charts' subtitle (the scene file)
 };
 
