@@ -69,9 +69,11 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
     const PointAnswer answer = point_answer(a, p);
     if (o.format == "csv")
-      return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "));
+      return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
+                                   creep_lines(a, p, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
+    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
+           creep_lines(a, p, "");
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -80,10 +82,13 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
   const PointAnswer answer = point_answer(a, p);
   if (o.format == "csv")
-    return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# "),
+    return equilibria_csv(a,
+                          provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
+                              creep_lines(a, p, "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit);
+  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
+         creep_lines(a, p, "");
 }
 }  // namespace
 

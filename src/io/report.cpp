@@ -9,6 +9,7 @@
 
 #include "abu/io/io.hpp"
 #include "abu/io/report_views.hpp"
+#include "abu/linear/kappa_sensitivity.hpp"
 
 namespace abu {
 
@@ -150,6 +151,45 @@ std::string balanced_set_comment(const A& a) {
 
 }  // namespace
 
+namespace {
+// The kappa sensitivity of every eigenvalue of every equilibrium (model.md (6.11)); empty
+// sensitivities (defined = false) for laws without kappa.
+template <class A, int N>
+std::vector<KappaSensitivity<N>> kappa_sensitivities(const A& a, const ParamsT<double, N>& p) {
+  std::vector<KappaSensitivity<N>> out;
+  const auto points = a.equilibria.points();
+  out.reserve(points.size());
+  const auto pl = p.template cast<long double>();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (p.law != FrictionLaw::coulomb && p.law != FrictionLaw::stribeck) {
+      out.emplace_back();
+      continue;
+    }
+    out.push_back(kappa_sensitivity(p, linearize(pl, at_rest<long double, N>(points[i].position)), a.spectra[i]));
+  }
+  return out;
+}
+}  // namespace
+
+template <class A, int N>
+std::string creep_lines(const A& a, const ParamsT<double, N>& p, std::string_view prefix) {
+  std::string out;
+  const auto ks = kappa_sensitivities(a, p);
+  const auto points = a.equilibria.points();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!ks[i].defined || ks[i].n_creep == 0) continue;
+    std::string which;
+    for (int k = 0; k < a.spectra[i].count; ++k)
+      if (ks[i].creep[std::size_t(k)]) which += fmt::format("{}{}", which.empty() ? "" : ", ", k + 1);
+    out += fmt::format("{}{} {}: creep modes (lambda ~ 1/kappa, d log|lambda| / d log kappa = -1 +- {}, model.md "
+                       "(6.11)): eigenvalues {}; their sign is physics, their rate is set by kappa\n",
+                       prefix, to_string(points[i].family), points[i].member, creep_tolerance, which);
+  }
+  return out;
+}
+template std::string creep_lines<Analysis, 2>(const Analysis&, const Params&, std::string_view);
+template std::string creep_lines<AnalysisN, any_balls>(const AnalysisN&, const ParamsN&, std::string_view);
+
 std::string_view equilibrium_columns_doc() {
   return "# columns: family = balanced|together|opposite (two balls) or balanced|aligned (n >= 3) (model.md §5, "
          "§13); pattern = sigma_i, '+' for a ball on the side of the line direction phi, '-' opposite "
@@ -193,6 +233,16 @@ std::string equilibria_csv(const AnalysisN& a, std::string_view header, int n_ba
   return equilibria_csv<AnalysisN>(a, header, n_balls);
 }
 
+namespace {
+// ", \"kappa_log_slope\": s, \"creep\": b" of eigenvalue k (model.md (6.11)); null / false where
+// the law has no kappa or the eigenvalue is zero.
+template <int N>
+std::string kappa_json(const KappaSensitivity<N>& ks, std::size_t k) {
+  if (!ks.defined || !ks.computed[k]) return ", \"kappa_log_slope\": null, \"creep\": false";
+  return fmt::format(", \"kappa_log_slope\": {}, \"creep\": {}", num(ks.log_slope[k], "kappa sensitivity"), ks.creep[k]);
+}
+}  // namespace
+
 template <class A, int N>
 std::string equilibria_json(const A& a, std::string_view command_line, std::string_view scene_file,
                             const ParamsT<double, N>& p) {
@@ -226,6 +276,7 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
   }
   out += "  \"equilibria\": [";
   const auto points = a.equilibria.points();
+  const auto ks = kappa_sensitivities(a, p);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& e = points[i];
     const auto& sp = a.spectra[i];
@@ -240,11 +291,13 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
                        num(q_abs(e), "|q|"), num(e.residual, "residual"), e.newton_iterations, e.converged,
                        e.is_set, e.on_balanced_set);
     out += fmt::format("\"stability\": \"{}\", \"spectral_abscissa\": {}, \"n_unstable\": {}, \"n_marginal\": {}, "
-                       "\"n_structural_zero\": {}, \"ill_conditioned\": {}, \"spectrum_converged\": {},\n     "
+                       "\"n_structural_zero\": {}, \"ill_conditioned\": {}, \"spectrum_converged\": {}, \"n_creep\": {},\n     "
                        "\"eigenvalues\": [",
                        to_string(sp.stability), num(sp.abscissa, "abscissa"), sp.n_unstable, sp.n_marginal,
-                       sp.n_structural, sp.ill_conditioned, sp.converged);
+                       sp.n_structural, sp.ill_conditioned, sp.converged,
+                       ks[i].defined ? std::to_string(ks[i].n_creep) : std::string("null"));
     const auto modes = mode_views(p, e.position, sp);
+    const KappaSensitivity<N>& kappa = ks[i];
     const auto mode_of = mode_of_eigenvalue(modes, sp.count);
     for (std::size_t k = 0; k < std::size_t(sp.count); ++k) {
       out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"error\": {}, \"condition\": {}, \"structural\": {}{}}}",
@@ -254,7 +307,7 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
                          // an eigenvalue 0 has none either (cond divides by |lambda|): null.
                          std::isfinite(sp.condition[k]) && !sp.structural[k] ? num(sp.condition[k], "condition")
                                                                               : std::string("null"),
-                         sp.structural[k], eigen_view_json(p, sp, int(k), modes, mode_of));
+                         sp.structural[k], eigen_view_json(p, sp, int(k), modes, mode_of) + kappa_json(kappa, k));
     }
     out += "]}";
   }

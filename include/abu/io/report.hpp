@@ -24,6 +24,12 @@ std::string equilibria_csv(const Analysis& a, std::string_view header);
 std::string equilibria_csv(const AnalysisN& a, std::string_view header, int n_balls);
 /// JSON; for n >= 3 balls with a `balanced_set` object (dimension, grid, samples,
 /// fraction normally stable, extreme normal abscissae).
+/// Comment lines (each starting with `prefix`) naming, per equilibrium, the creep modes of
+/// a coulomb or stribeck law: eigenvalues with d log|lambda| / d log kappa = -1 within
+/// creep_tolerance (model.md (6.11), linear/kappa_sensitivity.hpp). Empty for other laws.
+template <class A, int N>
+std::string creep_lines(const A& a, const ParamsT<double, N>& p, std::string_view prefix);
+
 std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
                             const Params& p);
 std::string equilibria_json(const AnalysisN& a, std::string_view command_line, std::string_view scene_file,
