@@ -24,7 +24,11 @@ struct ContinueOptions {
   std::string family;
   std::string state;
   bool all = false;
-  ContinuationOptions numerics;
+  ContinuationOptions numerics = [] {
+    ContinuationOptions n;
+    n.threads = 0;  // one per core: the branches are independent (the output does not depend on it)
+    return n;
+  }();
   BalancedSampling sampling;  // n >= 3 balls
   bool chart = true;
   std::string output_dir = "out";
@@ -168,6 +172,9 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--ds-min", o->numerics.ds_min, "Minimum step")->capture_default_str();
   sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
+  sub->add_option("--threads", o->numerics.threads,
+                  "Branches traced at once, two balls (0: one per core; the output does not depend on it)")
+      ->capture_default_str();
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "n >= 3 balls: samples of the balanced set per sheet, each continued as a branch (docs/model.md §13.5)")
       ->check(CLI::Range(1, 100000))
