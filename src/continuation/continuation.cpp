@@ -142,16 +142,16 @@ struct Traced {
   std::exception_ptr error;
 };
 
-// Calls work(k) for k = 0 .. count - 1 on up to `threads` threads (0: one per core); each k
-// once, in no particular order.
-template <class Work>
-void trace_concurrently(std::size_t count, int threads, const Work& work) {
+// Threads for `count` tasks: `threads`, 0 meaning one per core, at most one per task.
+std::size_t workers_for(std::size_t count, int threads) {
   const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min(count, threads > 0 ? std::size_t(threads) : hardware);
-  if (workers <= 1) {
-    for (std::size_t k = 0; k < count; ++k) work(k);
-    return;
-  }
+  return std::min(count, threads > 0 ? std::size_t(threads) : hardware);
+}
+
+// Calls work(k) for k = 0 .. count - 1 on `workers` threads; each k once, in no particular
+// order.
+template <class Work>
+void trace_concurrently(std::size_t count, std::size_t workers, const Work& work) {
   std::atomic<std::size_t> next{0};
   const auto loop = [&] {
     for (std::size_t k; (k = next.fetch_add(1)) < count;) work(k);
@@ -212,8 +212,22 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
     std::vector<std::size_t> todo;
     for (std::size_t i = first; i < last; ++i)
       if (!prefilter || !on_kept(starts[i])) todo.push_back(i);
+    const std::size_t workers = workers_for(todo.size(), options.threads);
+    if (workers <= 1) {  // one after the other: a start on a kept branch is not traced at all
+      for (const std::size_t i : todo) {
+        const Start& s = starts[i];
+        if (const Branch* on = on_kept(s)) {
+          if (s.end == 0)
+            run.notes.push_back(fmt::format("{} {} lies on the branch of {} {}; not traced again",
+                                            to_string(s.e.family), s.e.member, to_string(on->family), on->member));
+          continue;
+        }
+        run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options, run.stats));
+      }
+      return;
+    }
     std::vector<Traced> traced(todo.size());
-    trace_concurrently(todo.size(), options.threads, [&](std::size_t k) {
+    trace_concurrently(todo.size(), workers, [&](std::size_t k) {
       const Start& s = starts[todo[k]];
       try {
         traced[k].branch = trace_branch(eq, s.e, s.parameter, s.end, options, traced[k].stats);

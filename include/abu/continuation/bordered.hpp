@@ -20,6 +20,7 @@
 #include <limits>
 #include <string_view>
 
+#include "abu/core/small_lu.hpp"
 #include "abu/core/status.hpp"
 
 namespace abu::arclength {
@@ -55,6 +56,17 @@ concept System = requires(const S& s, const typename S::Vec& u) {
 template <class Vec>
 using Square = Eigen::Matrix<typename Vec::Scalar, Vec::RowsAtCompileTime, Vec::RowsAtCompileTime, 0,
                              Vec::MaxRowsAtCompileTime, Vec::MaxRowsAtCompileTime>;
+
+/// The LU factorization of a bordered matrix: for fixed sizes SmallLu (the same bits as
+/// Eigen's PartialPivLU, at a fraction of its cost: core/small_lu.hpp), else PartialPivLU.
+template <class M>
+auto factor(const M& B) {
+  if constexpr (M::RowsAtCompileTime != Eigen::Dynamic && M::RowsAtCompileTime <= 16) {
+    return SmallLu<M>(B);
+  } else {
+    return B.partialPivLu();
+  }
+}
 
 /// [J; d^T].
 template <class Vec, class Jacobian>
@@ -98,7 +110,7 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
     if (it > 0) c.jacobian = s.jacobian(c.u);
     Vec r(u_pred.size());
     r << s.residual(c.u), d.dot(c.u - u_pred);
-    const Vec step = bordered(c.jacobian, d).partialPivLu().solve(-r);
+    const Vec step = factor(bordered(c.jacobian, d)).solve(Vec(-r));
     if (!step.allFinite()) {
       c.status = Status::numerical_issue;
       c.reason = "a Newton step was not finite (singular bordered system)";
@@ -136,7 +148,7 @@ template <class Vec, class Jacobian>
 Vec tangent(const Jacobian& J, const Vec& previous) {
   Vec e = Vec::Zero(previous.size());
   e(previous.size() - 1) = 1;
-  Vec t = bordered(J, previous).partialPivLu().solve(e);
+  Vec t = factor(bordered(J, previous)).solve(e);
   t.normalize();
   if (t.dot(previous) < 0) t = -t;
   return t;
@@ -146,7 +158,7 @@ Vec tangent(const Jacobian& J, const Vec& previous) {
 /// sign where two branches cross (a branch point).
 template <class Vec, class Jacobian>
 typename Vec::Scalar bordered_determinant(const Jacobian& J, const Vec& t) {
-  return bordered(J, t).partialPivLu().determinant();
+  return factor(bordered(J, t)).determinant();
 }
 
 }  // namespace abu::arclength
