@@ -24,11 +24,7 @@ struct ContinueOptions {
   std::string family;
   std::string state;
   bool all = false;
-  ContinuationOptions numerics = [] {
-    ContinuationOptions n;
-    n.threads = 0;  // one per core: the branches are independent (the output does not depend on it)
-    return n;
-  }();
+  ContinuationOptions numerics;
   BalancedSampling sampling;  // n >= 3 balls
   bool chart = true;
   std::string output_dir = "out";
@@ -173,7 +169,9 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
   sub->add_option("--threads", o->numerics.threads,
-                  "Branches traced at once, two balls (0: one per core; the output does not depend on it)")
+                  "Branches traced at once, two balls (0: one per core; the output does not depend on it; on a busy "
+                  "machine more threads cost more CPU time: a branch that turns out to be one already traced is "
+                  "traced anyway)")
       ->capture_default_str();
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "n >= 3 balls: samples of the balanced set per sheet, each continued as a branch (docs/model.md §13.5)")
