@@ -7,7 +7,8 @@
 #     reference scene (tests/scenes/reference) and the default scene;
 #  4. the continuation of every branch of the default scene in omega (0.2 .. 8 omega_n) with
 #     its special points, against sweep grids; and the whole `stability-scan continue`
-#     process (median of 21 runs);
+#     process (median of 41 launches; ABU_BENCH_BEFORE=BINARY compares an older binary in
+#     the same run; docs/benchmarks-continuation.md);
 #  5. the 1000 x 1000 (omega, mu) stability map: cells/s and eigenproblems/s with 1 and all
 #     threads, the fast decision's disagreement with full eigenvalues, the whole
 #     `stability-scan map` run;
@@ -59,17 +60,13 @@ echo "## 3. accuracy against the 40-digit reference"
 $bench eigenvalues "$stiff.csv" data/scenes/default.toml tests/scenes/reference/*.toml
 /usr/bin/python3 tests/benchmarks/bench_errors.py "$stiff.csv"
 echo "## 4. continuation"
-build/tests/benchmarks/bench_continuation data/scenes/default.toml --repeat 21
-runs=()
-for i in $(seq 21); do
-  t0=$(date +%s%N)
-  build/stability-scan continue data/scenes/default.toml --set omega=49.98625566927664 --param omega \
-    --to 1999.4502267710656 --no-chart -o "$stiff.cont" 2>/dev/null
-  runs+=($(( ($(date +%s%N) - t0) / 1000 )))
-done
-median=$(printf '%s\n' "${runs[@]}" | sort -n | sed -n 11p)
-echo "whole process 'stability-scan continue' (parse, all branches, special points, CSVs; no chart): median $((median / 1000)).$(( (median % 1000) / 100 )) ms of 21"
-rm -rf "$stiff.cont"
+# The whole process too: launches of `stability-scan continue` (median wall and CPU time);
+# ABU_BENCH_BEFORE=/path/to/an/older/stability-scan adds that binary, launched in turn with
+# this one, for a before/after comparison on the same machine state.
+before=()
+[ -n "${ABU_BENCH_BEFORE:-}" ] && before=(--process "$ABU_BENCH_BEFORE")
+build/tests/benchmarks/bench_continuation data/scenes/default.toml --repeat 21 "${before[@]}" \
+  --process build/stability-scan --launches 41
 echo "## 5. stability map, 1000 x 1000"
 build/tests/benchmarks/bench_map data/scenes/default.toml --nx 1000 --ny 1000 --sample 20
 omega_grid=omega:49.98625566927664:1999.4502267710656   # 0.2 .. 8 omega_n, the baseline's grid

@@ -197,6 +197,11 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--ds-min", o->numerics.ds_min, "Minimum step")->capture_default_str();
   sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
+  sub->add_option("--threads", o->numerics.threads,
+                  "Branches traced at once, two balls (0: one per core; the output does not depend on it; on a busy "
+                  "machine more threads cost more CPU time: a branch that turns out to be one already traced is "
+                  "traced anyway)")
+      ->capture_default_str();
   sub->add_option("--set-samples", o->sampling.samples_per_sheet,
                   "n >= 3 balls: samples of the balanced set per sheet, each continued as a branch (docs/model.md §13.5)")
       ->check(CLI::Range(1, 100000))

@@ -11,6 +11,7 @@ std::optional<std::string> options_violation(const ContinuationOptions& o) {
   if (!(o.ds_max <= 0.5)) return fmt::format("--ds-max must be <= 0.5 of the interval (got {})", o.ds_max);
   if (o.max_steps < 1 || o.max_steps > 1000000)
     return fmt::format("--max-steps must be in [1, 1000000] (got {})", o.max_steps);
+  if (o.threads < 0 || o.threads > 1024) return fmt::format("--threads must be in [0, 1024] (got {})", o.threads);
   return std::nullopt;
 }
 

@@ -2,8 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <numbers>
+#include <thread>
 #include <tuple>
 
 #include "abu/continuation/arclength.hpp"
@@ -131,6 +135,33 @@ Branch trace_branch(const StaticEquations& eq, const Equilibrium& e, ld paramete
   return b;
 }
 
+// A start's branch traced on a worker: the branch, its statistics, or the exception it threw.
+struct Traced {
+  Branch branch;
+  ContinuationStats stats;
+  std::exception_ptr error;
+};
+
+// Threads for `count` tasks: `threads`, 0 meaning one per core, at most one per task.
+std::size_t workers_for(std::size_t count, int threads) {
+  const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+  return std::min(count, threads > 0 ? std::size_t(threads) : hardware);
+}
+
+// Calls work(k) for k = 0 .. count - 1 on `workers` threads; each k once, in no particular
+// order.
+template <class Work>
+void trace_concurrently(std::size_t count, std::size_t workers, const Work& work) {
+  std::atomic<std::size_t> next{0};
+  const auto loop = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < count;) work(k);
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(loop);
+  loop();
+  for (auto& t : pool) t.join();
+}
+
 // Does the branch pass through the configuration z at the scaled parameter of z?
 bool passes_through(const StaticEquations& eq, const Branch& b, const Vec5& z) {
   for (const auto& pt : b.points)
@@ -159,21 +190,66 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
   };
   std::vector<Start> starts;
   for (const auto& e : start_points(p, start, run.notes)) starts.push_back({e, run.from, 0});
+  const std::size_t near_starts = starts.size();
   if (!start.state)
     for (const auto& e : start_points(far, start, run.notes)) starts.push_back({e, ld(to), 1});
-  for (const auto& s : starts) {
+  // Each start's branch is traced independently of the others (trace_branch reads only
+  // the equations and its start), so the starts of one batch are traced concurrently and
+  // then kept or dropped in their order, exactly as one after the other: a start is
+  // dropped if it lies on a branch kept before it, and only kept branches count in the
+  // statistics. The output is the same whatever the thread count; a dropped start costs
+  // its (discarded) trace in CPU time, not in wall time. Two batches: the starts at the
+  // far end are first checked against the branches from the start value (most of them lie
+  // on one), and only the rest are traced.
+  const auto on_kept = [&](const Start& s) -> const Branch* {
     const Vec5 z = eq.scaled(s.e.position, s.parameter);
     const Branch* on = nullptr;
     for (const auto& b : run.branches)
       if (passes_through(eq, b, z)) on = &b;
-    if (on) {
-      if (s.end == 0)
-        run.notes.push_back(fmt::format("{} {} lies on the branch of {} {}; not traced again", to_string(s.e.family),
-                                        s.e.member, to_string(on->family), on->member));
-      continue;
+    return on;
+  };
+  const auto batch = [&](std::size_t first, std::size_t last, bool prefilter) {
+    std::vector<std::size_t> todo;
+    for (std::size_t i = first; i < last; ++i)
+      if (!prefilter || !on_kept(starts[i])) todo.push_back(i);
+    const std::size_t workers = workers_for(todo.size(), options.threads);
+    if (workers <= 1) {  // one after the other: a start on a kept branch is not traced at all
+      for (const std::size_t i : todo) {
+        const Start& s = starts[i];
+        if (const Branch* on = on_kept(s)) {
+          if (s.end == 0)
+            run.notes.push_back(fmt::format("{} {} lies on the branch of {} {}; not traced again",
+                                            to_string(s.e.family), s.e.member, to_string(on->family), on->member));
+          continue;
+        }
+        run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options, run.stats));
+      }
+      return;
     }
-    run.branches.push_back(trace_branch(eq, s.e, s.parameter, s.end, options, run.stats));
-  }
+    std::vector<Traced> traced(todo.size());
+    trace_concurrently(todo.size(), workers, [&](std::size_t k) {
+      const Start& s = starts[todo[k]];
+      try {
+        traced[k].branch = trace_branch(eq, s.e, s.parameter, s.end, options, traced[k].stats);
+      } catch (...) {
+        traced[k].error = std::current_exception();
+      }
+    });
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      const Start& s = starts[todo[k]];
+      if (const Branch* on = on_kept(s)) {
+        if (s.end == 0)
+          run.notes.push_back(fmt::format("{} {} lies on the branch of {} {}; not traced again", to_string(s.e.family),
+                                          s.e.member, to_string(on->family), on->member));
+        continue;
+      }
+      if (traced[k].error) std::rethrow_exception(traced[k].error);
+      run.stats += traced[k].stats;
+      run.branches.push_back(std::move(traced[k].branch));
+    }
+  };
+  batch(0, near_starts, false);
+  batch(near_starts, starts.size(), true);
   // A singular point one branch could not locate may be one another branch located: two
   // branches meeting where a fold and a branch point coincide (F_s of rank 2) are
   // approachable only along one of them. Adopt that location, and say so.

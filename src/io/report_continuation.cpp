@@ -1,9 +1,12 @@
 // Output formats of continuation runs (declared in report.hpp).
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
+#include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
 
@@ -68,14 +71,31 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
   out += fmt::format("branch,point,label,{},q1,q2,beta1,beta2,q_abs,family,stable,n_unstable", name);
   for (int k = 1; k <= 8; ++k) out += fmt::format(",re{},im{}", k, k);
   out += "\n";
+  // The rows (some 20 numbers each, most of the file) formatted in place: the same text as
+  // format_number's, without a string per number.
+  const auto cell = [&out](double v, std::string_view what) {
+    if (!std::isfinite(v)) throw NumericalError(fmt::format("non-finite {} ({}) would be written", what, v));
+    fmt::format_to(std::back_inserter(out), FMT_COMPILE(",{}"), v);
+  };
   for (std::size_t b = 0; b < run.branches.size(); ++b) {
     const auto& branch = run.branches[b];
     for (std::size_t i = 0; i < branch.points.size(); ++i) {
       const auto& pt = branch.points[i];
-      out += fmt::format("{},{},{},{},{},{},{},{}", b + 1, i, to_string(pt.label), num(double(pt.parameter), name),
-                         position_cells(pt.position, pt.family), to_string(pt.family), pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
-      for (const auto& l : pt.modes) out += fmt::format(",{},{}", num(l.real(), "eigenvalue"), num(l.imag(), "eigenvalue"));
-      out += "\n";
+      const auto& s = pt.position;
+      // q = 0 on balanced rows is printed as 0 (position_cells): the polish leaves ~1e-44.
+      const bool balanced = pt.family == Family::balanced;
+      const double q1 = balanced ? 0.0 : double(s(0)), q2 = balanced ? 0.0 : double(s(1));
+      fmt::format_to(std::back_inserter(out), FMT_COMPILE("{},{},{}"), b + 1, i, to_string(pt.label));
+      cell(double(pt.parameter), name);
+      cell(q1, "q1");
+      cell(q2, "q2");
+      cell(double(wrap(s(2))), "beta1");
+      cell(double(wrap(s(3))), "beta2");
+      cell(std::hypot(q1, q2), "|q|");
+      fmt::format_to(std::back_inserter(out), FMT_COMPILE(",{},{},{}"), to_string(pt.family),
+                     pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
+      for (const auto& l : pt.modes) cell(l.real(), "eigenvalue"), cell(l.imag(), "eigenvalue");
+      out += '\n';
     }
   }
   return out;

@@ -1,8 +1,12 @@
 #include "abu/linear/refinement.hpp"
 
+#include "abu/core/small_lu.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <type_traits>
@@ -63,11 +67,38 @@ using RealFormVector = Eigen::Matrix<double, bordered_real_size<N>, 1, Eigen::Co
 // The bordered matrix factored once, solved with it or its adjoint. Complex systems are
 // factored in their real form [[Re, -Im], [Im, Re]]: Eigen's complex LU pivots on |z|,
 // i.e. hypot, which made hypot the refinement's most expensive call. (The real form of
-// B^H is the transpose of B's real form.)
+// B^H is the transpose of B's real form.) Two balls (fixed sizes 5 and 10): SmallLu, the
+// same bits as Eigen's PartialPivLU at a fraction of its cost (core/small_lu.hpp).
+template <class M>
+class Factored {
+ public:
+  void compute(const M& B) {
+    if constexpr (fixed) {
+      small_.compute(B);
+    } else {
+      eigen_.compute(B);
+    }
+  }
+  template <class V>
+  V solve(const V& r, bool adjoint) const {
+    if constexpr (fixed) {
+      return adjoint ? small_.transpose_solve(r) : small_.solve(r);
+    } else {
+      return adjoint ? V(eigen_.transpose().solve(r)) : V(eigen_.solve(r));
+    }
+  }
+
+ private:
+  static constexpr bool fixed = M::RowsAtCompileTime != Eigen::Dynamic;
+  struct Unused {};
+  [[no_unique_address]] std::conditional_t<fixed, SmallLu<M>, Unused> small_;
+  [[no_unique_address]] std::conditional_t<fixed, Unused, Eigen::PartialPivLU<M>> eigen_;
+};
+
 template <int N>
 class BorderedSolver {
  public:
-  explicit BorderedSolver(const BorderedMatrix<double, N>& B) : real_(B) {}
+  explicit BorderedSolver(const BorderedMatrix<double, N>& B) { real_.compute(B); }
   explicit BorderedSolver(const BorderedMatrix<std::complex<double>, N>& B) {
     const Eigen::Index m = B.rows();
     RealFormMatrix<N> R(2 * m, 2 * m);
@@ -75,22 +106,21 @@ class BorderedSolver {
     complex_.compute(R);
   }
   BorderedVector<double, N> solve(const BorderedVector<double, N>& r, bool adjoint) const {
-    return adjoint ? BorderedVector<double, N>(real_.transpose().solve(r)) : BorderedVector<double, N>(real_.solve(r));
+    return real_.solve(r, adjoint);
   }
   BorderedVector<std::complex<double>, N> solve(const BorderedVector<std::complex<double>, N>& r, bool adjoint) const {
     const Eigen::Index m = r.rows();
     RealFormVector<N> rr(2 * m);
     rr << r.real(), r.imag();
-    const RealFormVector<N> v =
-        adjoint ? RealFormVector<N>(complex_.transpose().solve(rr)) : RealFormVector<N>(complex_.solve(rr));
+    const RealFormVector<N> v = complex_.solve(rr, adjoint);
     BorderedVector<std::complex<double>, N> out(m);
     for (Eigen::Index i = 0; i < m; ++i) out(i) = {v(i), v(i + m)};
     return out;
   }
 
  private:
-  Eigen::PartialPivLU<BorderedMatrix<double, N>> real_;
-  Eigen::PartialPivLU<RealFormMatrix<N>> complex_;
+  Factored<BorderedMatrix<double, N>> real_;
+  Factored<RealFormMatrix<N>> complex_;
 };
 
 }  // namespace
@@ -101,8 +131,13 @@ void equilibrate(const DofMatrix<ld, N>& magnitude, Coordinates<ld, N>& rows, Co
   const Eigen::Index d = dofs_of<N>(magnitude.rows());
   const DofMatrix<double, N> m = magnitude.template cast<double>();
   Coordinates<double, N> r = Coordinates<double, N>::Ones(d), c = Coordinates<double, N>::Ones(d);
-  const auto inverse_pow2 = [](double v) {  // the power of two nearest 1 / v
+  const auto inverse_pow2 = [](double v) {  // 2^(1 - e) for v = f 2^e, f in [0.5, 1)
     if (!(v > 0) || !std::isfinite(v)) return 1.0;
+    // Normal v: e and 2^(1 - e) straight from the exponent bits (frexp and ldexp, called
+    // some 50 times per eigenpair, were a tenth of eigenvalue tracking); the same value.
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    const int biased = int(bits >> 52);  // v > 0: no sign bit
+    if (biased > 1 && biased < 2046) return std::bit_cast<double>(std::uint64_t(2046 - biased) << 52);
     int e = 0;
     std::frexp(v, &e);
     return std::ldexp(1.0, 1 - e);

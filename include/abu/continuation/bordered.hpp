@@ -19,7 +19,9 @@
 #include <concepts>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
+#include "abu/core/small_lu.hpp"
 #include "abu/core/status.hpp"
 
 namespace abu::arclength {
@@ -55,6 +57,20 @@ concept System = requires(const S& s, const typename S::Vec& u) {
 template <class Vec>
 using Square = Eigen::Matrix<typename Vec::Scalar, Vec::RowsAtCompileTime, Vec::RowsAtCompileTime, 0,
                              Vec::MaxRowsAtCompileTime, Vec::MaxRowsAtCompileTime>;
+
+/// The LU factorization of a bordered matrix: for fixed sizes in double SmallLu (the same
+/// bits as Eigen's PartialPivLU, 25-30 % faster: core/small_lu.hpp), else PartialPivLU.
+/// (In long double, x87 code, Eigen's kernel is the faster one: 200 against 340 ns for
+/// 5 x 5, measured; both give the same bits.)
+template <class M>
+auto factor(const M& B) {
+  if constexpr (std::is_same_v<typename M::Scalar, double> && M::RowsAtCompileTime != Eigen::Dynamic &&
+                M::RowsAtCompileTime <= 16) {
+    return SmallLu<M>(B);
+  } else {
+    return B.partialPivLu();
+  }
+}
 
 /// [J; d^T].
 template <class Vec, class Jacobian>
@@ -98,7 +114,7 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
     if (it > 0) c.jacobian = s.jacobian(c.u);
     Vec r(u_pred.size());
     r << s.residual(c.u), d.dot(c.u - u_pred);
-    const Vec step = bordered(c.jacobian, d).partialPivLu().solve(-r);
+    const Vec step = factor(bordered(c.jacobian, d)).solve(Vec(-r));
     if (!step.allFinite()) {
       c.status = Status::numerical_issue;
       c.reason = "a Newton step was not finite (singular bordered system)";
@@ -136,7 +152,7 @@ template <class Vec, class Jacobian>
 Vec tangent(const Jacobian& J, const Vec& previous) {
   Vec e = Vec::Zero(previous.size());
   e(previous.size() - 1) = 1;
-  Vec t = bordered(J, previous).partialPivLu().solve(e);
+  Vec t = factor(bordered(J, previous)).solve(e);
   t.normalize();
   if (t.dot(previous) < 0) t = -t;
   return t;
@@ -146,7 +162,7 @@ Vec tangent(const Jacobian& J, const Vec& previous) {
 /// sign where two branches cross (a branch point).
 template <class Vec, class Jacobian>
 typename Vec::Scalar bordered_determinant(const Jacobian& J, const Vec& t) {
-  return bordered(J, t).partialPivLu().determinant();
+  return factor(bordered(J, t)).determinant();
 }
 
 }  // namespace abu::arclength
