@@ -43,7 +43,7 @@ TEST_CASE("non-ASCII text inside strings and comments is not refused by the pre-
   CHECK(why.find("table header") == std::string::npos);
 }
 
-TEST_CASE("nested arrays whose lines start with '[' are not table headers", "[robustness]") {
+TEST_CASE("nested arrays whose lines start with an opening bracket are not table headers", "[robustness]") {
   // Unknown key "x": refused by the scene rules, not by the pre-check.
   CHECK(refusal("x = [\n  [1, 2], # a comment\n  [3, 4],\n]\n").find("table header") == std::string::npos);
 }

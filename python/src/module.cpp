@@ -144,7 +144,7 @@ py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p) {
   d["degeneracy"] = a.equilibria.degeneracy;
   d["degeneracies"] = describe_degeneracy(a.equilibria.degeneracy);
   d["warnings"] = analysis_warnings(a, fmt::format("omega={}", p.omega));
-  d["table"] = equilibria_table(a, p);
+  d["table"] = equilibria_report(a, p, SpeedUnit::rad_per_s);
   return d;
 }
 

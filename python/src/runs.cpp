@@ -13,6 +13,7 @@
 
 #include "abu/continuation/branches_n.hpp"
 #include "abu/continuation/continuation.hpp"
+#include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/io/report.hpp"
@@ -81,13 +82,16 @@ py::dict branch_dict(const BranchT& b, int n) {
   for (py::ssize_t i = 0; i < P; ++i) {
     const auto& pt = b.points[std::size_t(i)];
     parameter.mutable_data()[i] = double(pt.parameter);
-    Q(i, 0) = double(pt.position(0));
-    Q(i, 1) = double(pt.position(1));
+    // q = 0 on balanced points is 0 exactly, as the CLI prints it (the polish leaves ~1e-44).
+    bool balanced = b.family == Family::balanced;
+    if constexpr (two) balanced = pt.family == Family::balanced;
+    Q(i, 0) = balanced ? 0.0 : double(pt.position(0));
+    Q(i, 1) = balanced ? 0.0 : double(pt.position(1));
     for (int k = 0; k < n; ++k) {
       B(i, k) = double(wrap_angle(pt.position(2 + k)));
       U(i, k) = double(pt.position(2 + k));
     }
-    q_abs.mutable_data()[i] = std::hypot(double(pt.position(0)), double(pt.position(1)));
+    q_abs.mutable_data()[i] = std::hypot(Q(i, 0), Q(i, 1));
     for (int k = 0; k < pt.spectrum.count && k < dim; ++k) L(i, k) = pt.spectrum.eigenvalues[std::size_t(k)];
     abscissa.mutable_data()[i] = pt.spectrum.abscissa;
     stable.mutable_data()[i] = pt.spectrum.stability == Stability::stable;
@@ -196,6 +200,7 @@ py::dict special_points_dict(const RunT& run, int n) {
         r.family = std::string(to_string(branch.family));
         if (sp.frequency) r.frequency = *sp.frequency;
       }
+      if (r.family == "balanced") r.position[0] = r.position[1] = 0.0;  // as the CLI prints it
       rows.push_back(std::move(r));
     }
     for (int end = 0; end < 2; ++end) {
@@ -313,6 +318,7 @@ py::dict continue_run(const Scene& scene, const std::string& param, double to, s
     {
       py::gil_scoped_release release;
       run = continue_branches(p, ref, to, options, sampling);
+      insert_special_rows(p, run);  // the branch CSV's rows at the special points, as the CLI writes them
     }
     py::dict d = run_dict(run, n);
     py::list intervals;
@@ -354,6 +360,7 @@ py::dict continue_run(const Scene& scene, const std::string& param, double to, s
   {
     py::gil_scoped_release release;
     run = continue_branches(p, ref, to, options, start);
+    insert_special_rows(p, run);  // the branch CSV's rows at the special points, as the CLI writes them
   }
   py::dict d = run_dict(run, 2);
   d["envelope"] = py::none();

@@ -10,7 +10,7 @@ from conftest import read_csv, number, same
 
 
 def test_two_ball_map_equals_cli(run_cli, default_scene, tmp_path):
-    run_cli("map", default_scene, "--x", "omega:50:2000:20", "--y", "mu:1e-4:0.1:7:log", "--threads", "2",
+    run_cli("map", default_scene, "--long", "--x", "omega:50:2000:20", "--y", "mu:1e-4:0.1:7:log", "--threads", "2",
             "--no-chart", "--no-boundaries", "--quiet", "-o", tmp_path)
     m = abu.map(abu.load_scene(default_scene), x=("omega", 50, 2000, 20), y=("mu", 1e-4, 0.1, 7, "log"), threads=2)
     assert (m.x_name, m.y_name) == ("omega", "mu") and m.n_stable.shape == (20, 7)
@@ -49,7 +49,7 @@ def test_thread_count_does_not_change_the_map(default_scene):
 
 def test_ball_count_axis_equals_cli(run_cli, source, tmp_path):
     ring = source / "data" / "scenes" / "ring11.toml"
-    run_cli("map", ring, "--x", "omega:150:1500:3", "--y", "n:2:4:3", "--set-samples", "8", "--threads", "2",
+    run_cli("map", ring, "--long", "--x", "omega:150:1500:3", "--y", "n:2:4:3", "--set-samples", "8", "--threads", "2",
             "--no-chart", "--no-boundaries", "--quiet", "-o", tmp_path)
     m = abu.map(abu.load_scene(ring), x=("omega", 150, 1500, 3), y=("n", 2, 4, 3), samples_per_sheet=8, threads=2)
     for row in read_csv(tmp_path / "summary_omega_n.csv"):

@@ -72,8 +72,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
       return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
                                    creep_lines(a, p, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
-           creep_lines(a, p, "");
+    return equilibria_report(a, p, unit);
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -87,8 +86,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
                               creep_lines(a, p, "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return answer_lines(answer, unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
-         creep_lines(a, p, "");
+  return equilibria_report(a, p, unit);
 }
 }  // namespace
 

@@ -502,4 +502,13 @@ std::string analysis_warnings(const AnalysisN& a, std::string_view where) {
   return analysis_warnings<AnalysisN>(a, where);
 }
 
+std::string equilibria_report(const Analysis& a, const Params& p, SpeedUnit unit) {
+  return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
+         creep_lines(a, p, "");
+}
+std::string equilibria_report(const AnalysisN& a, const ParamsN& p, SpeedUnit unit) {
+  return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
+         creep_lines(a, p, "");
+}
+
 }  // namespace abu

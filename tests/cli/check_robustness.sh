@@ -37,11 +37,12 @@ check "planted temporary links are not followed" "[ $? -eq 0 ] && [ \"\$(cat '$w
 # --- 1. commit as a group, rolled back on failure -----------------------------------------
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --no-chart -o "$work/grp" 2>/dev/null
 cp "$work/grp/branch_omega.csv" "$work/old_branch"; cp "$work/grp/special_omega.csv" "$work/old_special"
+ls -A "$work/grp" > "$work/grp.list"
 ABU_TEST_FAIL_RENAME=2 "$bin" continue "$scene" --set omega=210 --param omega --to 400 --no-chart -o "$work/grp" 2>"$work/grp.err"
 check "a rename failing halfway: exit 1, message" "[ $? -eq 1 ] && grep -q 'previous files are restored' '$work/grp.err'"
 check "... and both old files are back, unchanged" \
   "cmp -s '$work/old_branch' '$work/grp/branch_omega.csv' && cmp -s '$work/old_special' '$work/grp/special_omega.csv'"
-check "... and no temporary is left" "no_temporaries '$work/grp' && [ \$(ls -A '$work/grp' | wc -l) -eq 2 ]"
+check "... and no temporary is left" "no_temporaries '$work/grp' && ls -A '$work/grp' | cmp -s - '$work/grp.list'"
 
 # --- 1. standard output checked -----------------------------------------------------------
 if [ -w /dev/full ]; then
@@ -72,8 +73,10 @@ check "no boundary curve: exit 0, CSVs and a chart" \
   "[ $? -eq 0 ] && [ -s '$work/deg/boundary_omega_mu.csv' ] && [ -s '$work/deg/branch_omega.csv' ] && [ -s '$work/deg/boundary_omega_mu.png' ]"
 
 "$bin" sweep "$scene" --set U=0 --param omega --from 100 --to 1000 --steps 20 -o "$work/u0" 2>"$work/u0.err"
-check "U = 0 sweep (nothing on the log axis): exit 0, CSV and an empty chart with the note" \
-  "[ $? -eq 0 ] && [ -s '$work/u0/sweep_omega.csv' ] && [ -s '$work/u0/sweep_omega.png' ] && grep -q 'drawn empty with that note' '$work/u0.err'"
+# (plots/sweep.gp draws this case itself, with the note "no state with q != 0"; were it to
+# fail, the chart would be drawn empty with the failure's note: either way a chart, exit 0.)
+check "U = 0 sweep (nothing on the log axis): exit 0, CSV and a chart" \
+  "[ $? -eq 0 ] && [ -s '$work/u0/sweep_omega.csv' ] && [ -s '$work/u0/sweep_omega.png' ]"
 
 # --- 2. signals ----------------------------------------------------------------------------
 # $1: signal; the rest: the command. Runs it, signals it after 0.7 s, prints "CODE SECONDS".
@@ -93,7 +96,7 @@ check "SIGTERM stops sweep: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 1
 check "... no file, no temporary" "[ ! -e '$work/sig1/sweep_omega.csv' ] && no_temporaries '$work/sig1'"
 read code secs < <(stop_after INT "$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 --no-chart -o "$work/sig2")
 check "SIGINT stops continue: exit 130 within 3 s ($code, $secs s)" "[ $code -eq 130 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
-read code secs < <(stop_after TERM "$bin" map "$scene" --x omega:50:2000:400 --y mu:1e-4:0.1:400:log --threads 2 --no-chart --no-boundaries --quiet -o "$work/sig3")
+read code secs < <(stop_after TERM "$bin" map "$scene" --x omega:50:2000:400 --y mu:1e-4:0.1:400:log --method full --threads 2 --no-chart --no-boundaries --quiet -o "$work/sig3")
 check "SIGTERM stops map: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
 check "... says the tiles are kept" "grep -q 'tiles are kept' '$work/stop.err' && grep -q -- '--resume' '$work/stop.err'"
 check "... no temporary in the tile directory" "no_temporaries '$work/sig3'"

@@ -61,7 +61,7 @@ mkdir "$work/noplots"
 ABU_PLOTS_DIR=$work/noplots "$p/bin/stability-scan" sweep "$scene" --param omega --from 100 --to 1000 --steps 4 \
   -o "$work/sweep2" >"$work/sweep2.out" 2>&1
 status=$?
-check "ABU_PLOTS_DIR overrides: a directory without scripts fails the chart (exit 1)" "[ $status -eq 1 ]"
+check "ABU_PLOTS_DIR overrides: a directory without scripts fails the chart (exit 4, the CSVs written)" "[ $status -eq 4 ] && [ -s '$work/sweep2/sweep_omega.csv' ]"
 check "... naming the script and ABU_PLOTS_DIR" "grep -q 'noplots/sweep.gp not found' '$work/sweep2.out' && grep -q ABU_PLOTS_DIR '$work/sweep2.out'"
 
 # --- examples/consumer against the installed package ----------------------------------------

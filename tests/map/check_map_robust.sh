@@ -15,17 +15,17 @@ RX=omega:150:600:800
 RY=mu:1e-4:0.1:40:log
 tiles=$work/m/.map_omega_mu.tiles
 
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/whole" --threads 2
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/whole" --threads 2
 
 # --- a second writer is refused, naming the holder ----------------------------------------
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --threads 1 2>"$work/first.err" &
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --threads 1 2>"$work/first.err" &
 pid=$!
 wait_for_tiles "$tiles" 2
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --fresh 2>"$work/second.err"
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --fresh 2>"$work/second.err"
 code=$?
 check "a second map on the same tiles (--fresh) is refused with exit 2" "[ $code -eq 2 ]"
 check "... naming the holder's PID ($(head -c 150 "$work/second.err"))" "grep -q \"PID $pid\" '$work/second.err'"
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --resume 2>/dev/null
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --resume 2>/dev/null
 check "... and so is a second writer with --resume" "[ $? -eq 2 ]"
 wait $pid
 check "the first map finishes with exit 0" "[ $? -eq 0 ]"
@@ -33,13 +33,13 @@ check "... with the bytes of an undisturbed run" "cmp -s '$work/whole/map_omega_
 
 # --- resume keyed by content, not by the spelling of the command --------------------------
 rm -rf "$work/m"
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --threads 1 2>/dev/null &
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" --threads 1 2>/dev/null &
 pid=$!
 wait_for_tiles "$tiles" 3
 kill -TERM $pid
 wait $pid
 check "SIGTERM: exit 143" "[ $? -eq 143 ]"
-(cd "$src/data" && "$bin" map ./scenes/../scenes/default.toml --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet \
+(cd "$src/data" && "$bin" map ./scenes/../scenes/default.toml --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet \
   -o "$work/m" --resume 2>"$work/resume.err")
 check "resume with the scene path spelled differently: exit 0 ($(head -c 150 "$work/resume.err"))" "[ $? -eq 0 ]"
 check "... the same rows as an uninterrupted run" \
@@ -48,7 +48,7 @@ check "... the same rows as an uninterrupted run" \
 # --- a directory without a manifest is not an interrupted map -----------------------------
 rm -rf "$work/m"
 mkdir -p "$tiles"
-"$bin" map "$scene" --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" 2>"$work/empty.err"
+"$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" 2>"$work/empty.err"
 check "an empty tile directory (a failed first write) does not make the next run refuse" "[ $? -eq 0 ]"
 
 # --- too big for the disk: refused before any work ----------------------------------------

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "abu/continuation/boundaries.hpp"
+#include "abu/core/speed_units.hpp"
 #include "abu/continuation/boundaries_n.hpp"
 #include "abu/continuation/branches_n.hpp"
 #include "abu/continuation/continuation.hpp"
@@ -24,6 +25,12 @@ std::string equilibria_csv(const Analysis& a, std::string_view header);
 std::string equilibria_csv(const AnalysisN& a, std::string_view header, int n_balls);
 /// JSON; for n >= 3 balls with a `balanced_set` object (dimension, grid, samples,
 /// fraction normally stable, extreme normal abscissae).
+/// What `equilibria --format table` prints: the stated answer (report_views.hpp), the
+/// equilibria with their rotating-frame eigenvalues, the fixed-frame modes and the creep
+/// modes. The Python module's table is this text too.
+std::string equilibria_report(const Analysis& a, const Params& p, SpeedUnit unit);
+std::string equilibria_report(const AnalysisN& a, const ParamsN& p, SpeedUnit unit);
+
 /// Comment lines (each starting with `prefix`) naming, per equilibrium, the creep modes of
 /// a coulomb or stribeck law: eigenvalues with d log|lambda| / d log kappa = -1 within
 /// creep_tolerance (model.md (6.11), linear/kappa_sensitivity.hpp). Empty for other laws.
