@@ -394,6 +394,7 @@ std::vector<CampbellSample> campbell_samples(const ContinuationRun& run, const P
       p.omega = double(pt.parameter);
       Equilibrium e;
       e.family = pt.family;
+      e.pattern = pt.family == Family::opposite ? 2u : 0u;  // ball 2 opposite: "+-" (two balls)
       e.member = int(b) + 1;
       e.position = pt.position;
       CampbellSample s = sample_of(int(j), p, e, pt.spectrum);
