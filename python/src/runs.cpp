@@ -16,6 +16,7 @@
 #include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/io/equilibrium_start.hpp"
 #include "abu/io/report.hpp"
 #include "abu/io/report_simulation.hpp"
 #include "abu/io/scene.hpp"
@@ -370,43 +371,10 @@ py::dict continue_run(const Scene& scene, const std::string& param, double to, s
 // ---------------------------------------------------------------------------------------
 // Simulation
 
-// --from-equilibrium: the equilibrium FAMILY[:PATTERN] MEMBER at omega(0), displaced by
-// eps along its rightmost non-structural eigenmode (simulate_command.cpp's start).
-template <int N, class A>
-State<double, N> start_from_equilibrium(const ParamsT<double, N>& p, const A& analysis, const std::string& family,
-                                        std::string pattern, int member, double eps) {
-  const auto points = analysis.equilibria.points();
-  const int n = ball_count(p);
-  if (family == "together") pattern = std::string(std::size_t(n), '+');
-  if (family == "opposite") pattern = "+-";
-  std::string listed;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto& e = points[i];
-    const bool balanced = e.family == Family::balanced;
-    const std::string pat = balanced ? "" : pattern_string(e.pattern, n);
-    listed += fmt::format(" {}{}:{}", balanced ? "balanced" : "aligned", balanced ? "" : ":" + pat, e.member);
-    const bool match = family == "balanced" ? balanced : (!balanced && pat == pattern);
-    if (!match || e.member != member) continue;
-    const auto& sp = analysis.spectra[i];
-    int k = 0;
-    while (k < sp.count && sp.structural[std::size_t(k)]) ++k;
-    if (k >= sp.count) throw NumericalError("from_equilibrium: the equilibrium has no non-structural eigenvalue");
-    ModeVector<N> mode = sp.vectors[std::size_t(k)];
-    if (mode.size() != n + 2 || mode.isZero(0))
-      throw NumericalError("from_equilibrium: no eigenvector for the rightmost eigenvalue");
-    Coordinates<double, N> pos = e.position_si();
-    return perturbed_equilibrium(p, pos, sp.eigenvalues[std::size_t(k)], mode, eps);
-  }
-  throw InputError("from_equilibrium", 0, "",
-                   fmt::format("no such equilibrium at omega = {} rad/s; there are:{}", p.omega, listed));
-}
-
 struct SimulationRequest {
   double t_end = 1.0;
   std::optional<std::vector<double>> balls, state;
-  std::optional<std::string> family;  // from_equilibrium
-  std::string pattern;
-  int member = 1;
+  std::optional<EquilibriumChoice> equilibrium;  // from_equilibrium
   double perturb = 1e-3;
   std::optional<SpeedProfile> speed;
   SimulationOptions options;
@@ -419,7 +387,7 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
   const int n = ball_count(p);
   const SpeedProfile speed = q.speed ? *q.speed : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
   p.omega = speed.omega(0.0);
-  const int starts = int(q.balls.has_value()) + int(q.state.has_value()) + int(q.family.has_value());
+  const int starts = int(q.balls.has_value()) + int(q.state.has_value()) + int(q.equilibrium.has_value());
   if (starts != 1) throw InputError("simulate", 0, "", "give exactly one start: balls, state or from_equilibrium");
   State<double, N> x0;
   if (q.balls) x0 = start_at_rest(p, *q.balls);
@@ -431,14 +399,10 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
     x0 = State<double, N>::Zero(2 * n + 4);
     for (int i = 0; i < 2 * n + 4; ++i) x0(i) = (*q.state)[std::size_t(i)];
   }
-  if (q.family) {
+  if (q.equilibrium) {
     if (!(std::isfinite(q.perturb) && q.perturb >= 0 && q.perturb <= 1))
       throw InputError("perturb", 0, "", fmt::format("EPS must lie in [0, 1] (scaled units), got {}", q.perturb));
-    if constexpr (N == 2) {
-      x0 = start_from_equilibrium(p, analyze(p), *q.family, q.pattern, q.member, q.perturb);
-    } else {
-      x0 = start_from_equilibrium(p, analyze(p), *q.family, q.pattern, q.member, q.perturb);
-    }
+    x0 = start_from_equilibrium(p, analyze(p), *q.equilibrium, q.perturb, "from_equilibrium");
   }
   SimulationOptions so = q.options;
   const auto method = integration_method_from_string(q.method);
@@ -535,40 +499,7 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
   q.state = std::move(state);
   if (perturb && !from_equilibrium) throw InputError("perturb", 0, "", "perturb goes with from_equilibrium");
   if (from_equilibrium) {
-    // FAMILY[:K] or aligned:PATTERN[:K], as --from-equilibrium.
-    const std::string& text = *from_equilibrium;
-    std::vector<std::string> parts;
-    for (std::size_t s = 0;;) {
-      const auto colon = text.find(':', s);
-      parts.push_back(text.substr(s, colon == std::string::npos ? std::string::npos : colon - s));
-      if (colon == std::string::npos) break;
-      s = colon + 1;
-    }
-    const auto bad = [&] {
-      return InputError("from_equilibrium", 0, "",
-                        fmt::format("expected balanced[:K], together[:K], opposite[:K] or aligned:PATTERN[:K] (PATTERN "
-                                    "like +-+), got '{}'",
-                                    text));
-    };
-    std::size_t next = 1;
-    if (parts[0] == "aligned") {
-      if (parts.size() < 2 || parts[1].empty() || parts[1].find_first_not_of("+-") != std::string::npos) throw bad();
-      q.pattern = parts[1];
-      next = 2;
-    } else if (parts[0] != "balanced" && parts[0] != "together" && parts[0] != "opposite") {
-      throw bad();
-    }
-    if (parts.size() > next + 1) throw bad();
-    if (parts.size() == next + 1) {
-      try {
-        std::size_t used = 0;
-        q.member = std::stoi(parts[next], &used);
-        if (used != parts[next].size() || q.member < 1) throw bad();
-      } catch (const std::logic_error&) {
-        throw bad();
-      }
-    }
-    q.family = parts[0];
+    q.equilibrium = parse_equilibrium_choice(*from_equilibrium, "from_equilibrium");
     q.perturb = perturb.value_or(1e-3);
   }
   if (ramp && speed_profile) throw InputError("simulate", 0, "", "give ramp or speed_profile, not both");

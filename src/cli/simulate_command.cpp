@@ -19,6 +19,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/io/equilibrium_start.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report_simulation.hpp"
 #include "abu/scan/scan.hpp"
@@ -59,74 +60,6 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
   return v;
 }
 
-// --from-equilibrium F: balanced[:K] | together[:K] | opposite[:K] | aligned:PATTERN[:K].
-struct EquilibriumChoice {
-  std::string family, pattern;
-  int member = 1;
-};
-EquilibriumChoice parse_choice(const std::string& text) {
-  EquilibriumChoice c;
-  std::vector<std::string> parts;
-  for (std::size_t s = 0;;) {
-    const auto colon = text.find(':', s);
-    parts.push_back(text.substr(s, colon == std::string::npos ? std::string::npos : colon - s));
-    if (colon == std::string::npos) break;
-    s = colon + 1;
-  }
-  const auto bad = [&] {
-    return InputError("--from-equilibrium", 0, "",
-                      fmt::format("expected balanced[:K], together[:K], opposite[:K] or aligned:PATTERN[:K] (PATTERN "
-                                  "like +-+), got '{}'",
-                                  text));
-  };
-  c.family = parts[0];
-  std::size_t next = 1;
-  if (c.family == "aligned") {
-    if (parts.size() < 2 || parts[1].empty() || parts[1].find_first_not_of("+-") != std::string::npos) throw bad();
-    c.pattern = parts[1];
-    next = 2;
-  } else if (c.family != "balanced" && c.family != "together" && c.family != "opposite") {
-    throw bad();
-  }
-  if (parts.size() > next + 1) throw bad();
-  if (parts.size() == next + 1) {
-    const auto& m = parts[next];
-    const auto [end, ec] = std::from_chars(m.data(), m.data() + m.size(), c.member);
-    if (m.empty() || ec != std::errc() || end != m.data() + m.size() || c.member < 1) throw bad();
-  }
-  return c;
-}
-
-template <int N, class A>
-State<double, N> start_from_equilibrium(const ParamsT<double, N>& p, const A& analysis, const EquilibriumChoice& c,
-                                        double eps) {
-  const auto points = analysis.equilibria.points();
-  const int n = ball_count(p);
-  std::string pattern = c.pattern;
-  if (c.family == "together") pattern = std::string(std::size_t(n), '+');
-  if (c.family == "opposite") pattern = "+-";
-  std::string listed;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto& e = points[i];
-    const bool balanced = e.family == Family::balanced;
-    const std::string pat = balanced ? "" : pattern_string(e.pattern, n);
-    listed += fmt::format(" {}{}:{}", balanced ? "balanced" : "aligned", balanced ? "" : ":" + pat, e.member);
-    const bool match = c.family == "balanced" ? balanced : (!balanced && pat == pattern);
-    if (!match || e.member != c.member) continue;
-    const auto& sp = analysis.spectra[i];
-    int k = 0;
-    while (k < sp.count && sp.structural[std::size_t(k)]) ++k;  // the rightmost non-structural eigenvalue
-    if (k >= sp.count) throw NumericalError("--from-equilibrium: the equilibrium has no non-structural eigenvalue");
-    ModeVector<N> mode = sp.vectors[std::size_t(k)];
-    if (mode.size() != n + 2 || mode.isZero(0))
-      throw NumericalError("--from-equilibrium: no eigenvector for the rightmost eigenvalue");
-    Coordinates<double, N> pos = e.position_si();
-    return perturbed_equilibrium(p, pos, sp.eigenvalues[std::size_t(k)], mode, eps);
-  }
-  throw InputError("--from-equilibrium", 0, "",
-                   fmt::format("no such equilibrium at omega = {} rad/s; there are:{}", p.omega, listed));
-}
-
 template <int N>
 int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProfile& speed) {
   ParamsT<double, N> p = params_of<N>(scene);
@@ -152,12 +85,8 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     const double eps = o.perturb.value_or(1e-3);
     if (!(std::isfinite(eps) && eps >= 0 && eps <= 1))
       throw InputError("--perturb", 0, "", fmt::format("EPS must lie in [0, 1] (scaled units), got {}", eps));
-    const EquilibriumChoice choice = parse_choice(o.from_equilibrium);
-    if constexpr (N == 2) {
-      x0 = start_from_equilibrium(p, analyze(p), choice, eps);
-    } else {
-      x0 = start_from_equilibrium(p, analyze(p), choice, eps);
-    }
+    const EquilibriumChoice choice = parse_equilibrium_choice(o.from_equilibrium, "--from-equilibrium");
+    x0 = start_from_equilibrium(p, analyze(p), choice, eps, "--from-equilibrium");
   }
   SimulationOptions so = o.sim;
   so.method = *integration_method_from_string(o.method);

@@ -120,11 +120,13 @@ fs::path OutputTransaction::temporary_for(const fs::path& target) {
   return tmp;
 }
 
-fs::path OutputTransaction::stage(const fs::path& target, std::string_view content) {
-  const fs::path tmp = temporary_for(target);
-  // The temporary was created exclusively; O_NOFOLLOW again in case it was swapped.
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
-  if (fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(tmp.string()), std::strerror(errno)));
+namespace {
+// Opens `path` with `flags` (no O_CREAT: the file exists, created exclusively or a device)
+// and writes all of `content`, retrying interrupted and partial writes; throws with errno's
+// message naming the file.
+void write_all(const fs::path& path, int flags, std::string_view content) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(path.string()), std::strerror(errno)));
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
@@ -132,12 +134,19 @@ fs::path OutputTransaction::stage(const fs::path& target, std::string_view conte
     if (n <= 0) {
       const int err = errno;
       ::close(fd);
-      throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(tmp.string()), std::strerror(err)));
+      throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(path.string()), std::strerror(err)));
     }
     done += std::size_t(n);
   }
   if (::close(fd) != 0)
-    throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(tmp.string()), std::strerror(errno)));
+    throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(path.string()), std::strerror(errno)));
+}
+}  // namespace
+
+fs::path OutputTransaction::stage(const fs::path& target, std::string_view content) {
+  const fs::path tmp = temporary_for(target);
+  // The temporary was created exclusively; O_NOFOLLOW again in case it was swapped.
+  write_all(tmp, O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, content);
   return tmp;
 }
 
@@ -164,20 +173,7 @@ void copy_in_place(const fs::path& from, const fs::path& to) {
     }
     ::close(in);
   }
-  const int fd = ::open(to.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
-  if (fd < 0) throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(to.string()), std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = errno;
-      ::close(fd);
-      throw std::runtime_error(fmt::format("cannot write {}: {}", escaped(to.string()), std::strerror(err)));
-    }
-    done += std::size_t(n);
-  }
-  ::close(fd);
+  write_all(to, O_WRONLY | O_NOFOLLOW | O_CLOEXEC, content);
 }
 }  // namespace
 
