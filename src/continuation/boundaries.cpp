@@ -7,6 +7,7 @@
 
 #include "abu/continuation/arclength.hpp"
 #include "abu/continuation/bifurcation.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/model/static_equations.hpp"
 #include "curve_system.hpp"
 
@@ -72,6 +73,7 @@ class CurveTracer : public CurveSystem<N> {
     return arclength::box_crossing(to, {4, 5});
   }
   arclength::Evaluation<ld, test_count> evaluate(const Vec& y, const Vec& /*t*/, const Jacobian& /*DF*/, Stage stage) {
+    throw_if_stopped("two-parameter continuation");  // a stop request is seen at every curve point
     pending_ = tests(y, stage == Stage::start ? nullptr : &previous_);
     arclength::Evaluation<ld, test_count> e;
     if constexpr (Sys::hopf) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "abu/continuation/bifurcation.hpp"
+#include "abu/core/cancel.hpp"
 
 namespace abu {
 
@@ -78,6 +79,7 @@ BranchPoint BranchTracer::make_point(const Vec5& z, const Vec5& t, const Mat45& 
 
 arclength::Evaluation<ld, BranchTracer::test_count> BranchTracer::evaluate(const Vec5& z, const Vec5& t,
                                                                            const Mat45& DF, arclength::Stage stage) {
+  throw_if_stopped("continuation");  // a stop request (SIGINT/SIGTERM) is seen at every point
   arclength::Evaluation<ld, test_count> e;
   if (stage == arclength::Stage::start) {
     pending_ = make_point(z, t, DF, nullptr, nullptr);

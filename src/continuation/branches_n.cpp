@@ -14,6 +14,7 @@
 
 #include "abu/continuation/arclength.hpp"
 #include "abu/continuation/bifurcation.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/static_equations.hpp"
 #include "branch_ends.hpp"
@@ -63,6 +64,7 @@ class Tracer : public S {
   }
 
   arclength::Evaluation<ld, test_count> evaluate(const Vec& u, const Vec& t, const Jacobian& DF, arclength::Stage stage) {
+    throw_if_stopped("continuation");  // a stop request (SIGINT/SIGTERM) is seen at every point
     pending_ = make_point(u);
     pending_.tangent_parameter = double(t(t.size() - 1));
     pending_.branch_test = double(arclength::bordered_determinant(DF, t));

@@ -96,6 +96,16 @@ check "SIGTERM stops sweep: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 1
 check "... no file, no temporary" "[ ! -e '$work/sig1/sweep_omega.csv' ] && no_temporaries '$work/sig1'"
 read code secs < <(stop_after INT "$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 --no-chart -o "$work/sig2")
 check "SIGINT stops continue: exit 130 within 3 s ($code, $secs s)" "[ $code -eq 130 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
+# ... and it is the continuation that stops (the stop request seen at a branch point and
+# unwound), not the signal thread's fallback after 1 s.
+"$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 \
+  --no-chart -o "$work/sig2b" 2>"$work/sig2b.err" &
+pid=$!
+sleep 0.7
+kill -INT $pid
+wait $pid
+check "... the continuation itself sees the stop request ($(head -c 120 "$work/sig2b.err"))" \
+  "grep -q 'interrupted by SIGINT during continuation' '$work/sig2b.err'"
 read code secs < <(stop_after TERM "$bin" map "$scene" --x omega:50:2000:400 --y mu:1e-4:0.1:400:log --method full --threads 2 --no-chart --no-boundaries --quiet -o "$work/sig3")
 check "SIGTERM stops map: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
 check "... says the tiles are kept" "grep -q 'tiles are kept' '$work/stop.err' && grep -q -- '--resume' '$work/stop.err'"
