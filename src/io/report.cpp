@@ -9,9 +9,14 @@
 
 #include "abu/io/io.hpp"
 #include "abu/io/report_views.hpp"
+#include "equilibrium_text.hpp"
 #include "abu/linear/kappa_sensitivity.hpp"
 
 namespace abu {
+
+using detail::pattern_of;
+using detail::q_abs;
+using detail::state_label;
 
 namespace {
 
@@ -49,17 +54,6 @@ std::string beta_cells(const EquilibriumT<N>& e) {
   return s;
 }
 
-template <int N>
-std::string pattern_of(const EquilibriumT<N>& e) {
-  return e.family == Family::balanced ? std::string() : pattern_string(e.pattern, e.n_balls());
-}
-
-template <int N>
-std::string label(const EquilibriumT<N>& e) {
-  if (e.family == Family::aligned) return fmt::format("aligned {} {}", pattern_of(e), e.member);
-  return fmt::format("{} {}", to_string(e.family), e.member);
-}
-
 // Notes on one equilibrium that a reader of the numbers must know.
 template <int N>
 std::vector<std::string> notes(const EquilibriumT<N>& e, const SpectrumT<N>& sp) {
@@ -77,11 +71,6 @@ std::vector<std::string> notes(const EquilibriumT<N>& e, const SpectrumT<N>& sp)
                               "moves an eigenvalue by > 1e-8 of its modulus)", worst));
   }
   return out;
-}
-
-template <int N>
-double q_abs(const EquilibriumT<N>& e) {
-  return std::hypot(double(e.position(0)), double(e.position(1)));
 }
 
 std::string json_string(std::string_view s) {
@@ -214,7 +203,7 @@ std::string equilibria_csv(const A& a, std::string_view header, int n_balls) {
   out += balanced_set_comment(a);
   const auto points = a.equilibria.points();
   for (std::size_t i = 0; i < points.size(); ++i)
-    for (const auto& n : notes(points[i], a.spectra[i])) out += fmt::format("# {}: {}\n", label(points[i]), n);
+    for (const auto& n : notes(points[i], a.spectra[i])) out += fmt::format("# {}: {}\n", state_label(points[i]), n);
   out += "family,pattern,member,q1,q2" + beta_header(n_balls) + ",residual,spectral_abscissa,stable,n_structural_zero" +
          eigenvalue_header(2 * n_balls + 4) + "\n";
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -340,7 +329,7 @@ std::string equilibria_table(const A& a, const ParamsT<double, N>& p) {
     const auto& sp = a.spectra[i];
     std::string betas;
     for (int b = 0; b < e.n_balls(); ++b) betas += fmt::format("{}{:.12g}", b ? ", " : "", double(e.position(2 + b)));
-    out += fmt::format("\n{:<11} q = ({:.9g}, {:.9g}) m, |q| = {:.6g} m, beta = ({}) rad\n", label(e),
+    out += fmt::format("\n{:<11} q = ({:.9g}, {:.9g}) m, |q| = {:.6g} m, beta = ({}) rad\n", state_label(e),
                        double(e.position(0)), double(e.position(1)), q_abs(e), betas);
     out += fmt::format("{:<11} residual {:.2g}, {} Newton steps; {}{}, spectral abscissa {:.9g} 1/s, {} unstable\n", "",
                        e.residual, e.newton_iterations, e.on_balanced_set ? "normally " : "", to_string(sp.stability),
@@ -377,7 +366,7 @@ std::string sweep_csv(const SweepResult& s, std::string_view header) {
     const auto points = a.equilibria.points();
     for (std::size_t k = 0; k < points.size(); ++k)
       for (const auto& n : notes(points[k], a.spectra[k]))
-        out += fmt::format("# at {}={}: {}: {}\n", name, s.values[i], label(points[k]), n);
+        out += fmt::format("# at {}={}: {}: {}\n", name, s.values[i], state_label(points[k]), n);
   }
   out += fmt::format("step,{},family,pattern,member,q1,q2{},q_abs,residual,spectral_abscissa,stable,n_unstable,"
                      "n_structural_zero{}\n",
@@ -489,10 +478,10 @@ std::string analysis_warnings(const A& a, std::string_view where) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& e = points[i];
     if (!e.converged)
-      out += fmt::format("warning: {}: {}: Newton polish did not converge (residual {:.3g})\n", where, label(e),
+      out += fmt::format("warning: {}: {}: Newton polish did not converge (residual {:.3g})\n", where, state_label(e),
                          e.residual);
     if (!a.spectra[i].converged)
-      out += fmt::format("warning: {}: {}: eigenvalue refinement did not converge\n", where, label(e));
+      out += fmt::format("warning: {}: {}: eigenvalue refinement did not converge\n", where, state_label(e));
   }
   return out;
 }

@@ -1,4 +1,5 @@
 #include "abu/io/report_views.hpp"
+#include "equilibrium_text.hpp"
 
 #include <fmt/format.h>
 
@@ -13,6 +14,10 @@
 #include "abu/io/io.hpp"
 
 namespace abu {
+
+using detail::pattern_of;
+using detail::q_abs;
+using detail::state_label;
 
 namespace {
 
@@ -35,22 +40,6 @@ std::string json_string(std::string_view s) {
 
 std::string quantity(double value, std::string_view unit, std::string_view what) {
   return fmt::format("{{\"value\": {}, \"unit\": {}}}", num(value, what), json_string(unit));
-}
-
-template <int N>
-double q_abs(const EquilibriumT<N>& e) {
-  return std::hypot(double(e.position(0)), double(e.position(1)));
-}
-
-template <int N>
-std::string pattern_of(const EquilibriumT<N>& e) {
-  return e.family == Family::balanced ? std::string() : pattern_string(e.pattern, e.n_balls());
-}
-
-template <int N>
-std::string state_label(const EquilibriumT<N>& e) {
-  if (e.family == Family::aligned) return fmt::format("aligned {} {}", pattern_of(e), e.member);
-  return fmt::format("{} {}", to_string(e.family), e.member);
 }
 
 // "900 rad/s" or "900 rad/s = 8594.37 rpm".
