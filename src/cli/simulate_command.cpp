@@ -156,6 +156,26 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
   return code;
 }
 
+// The scene's [simulate] keys where the command line gave none (flags override keys).
+void apply_scene_settings(const Scene& scene, const CLI::App& sub, SimulateOptions& o) {
+  if (!scene.simulate) return;
+  const SimulateSettings& s = *scene.simulate;
+  if (s.t_end && sub.count("--t-end") == 0) o.sim.t_end = *s.t_end;
+  if (s.every && sub.count("--every") == 0) o.sim.every = *s.every;
+  if (s.rtol && sub.count("--rtol") == 0) o.sim.rtol = *s.rtol;
+  if (s.method && sub.count("--method") == 0) o.method = *s.method;
+  // A start on the command line replaces the scene's start, whichever kind either is.
+  if (o.balls.empty() && o.from_state.empty() && o.from_equilibrium.empty()) {
+    auto list = [](const std::vector<double>& v) {
+      std::string text;
+      for (double x : v) text += (text.empty() ? "" : ",") + fmt::format("{}", x);
+      return text;
+    };
+    o.balls = list(s.balls);
+    o.from_state = list(s.from_state);
+  }
+}
+
 }  // namespace
 
 Action add_simulate_command(CLI::App& app) {
@@ -203,8 +223,9 @@ Action add_simulate_command(CLI::App& app) {
   auto* progress = sub->add_flag("--progress", o->progress, "Progress on stderr even if not a terminal");
   auto* quiet = sub->add_flag("--quiet", o->quiet, "No progress and no summary on stderr");
   progress->excludes(quiet);
-  return [o]() -> int {
+  return [o, sub]() -> int {
     Scene scene = load(o->scene);
+    apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
     // --units converts --set omega; a run-up profile stays in rad/s (docs/views.md).
@@ -215,7 +236,9 @@ Action add_simulate_command(CLI::App& app) {
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
     const SpeedProfile speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)
                                : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
-                                                          : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+                               : scene.simulate && scene.simulate->speed
+                                   ? *scene.simulate->speed
+                                   : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
     if (scene.balls.size() == 2) return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);
   };

@@ -363,6 +363,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     s.x = load_state<N>(y, dim);
     r.samples.push_back(s);
     if (o.progress) o.progress(time);
+    if (o.stop_at_sample && o.stop_at_sample(time, y)) r.stopped_early = true;
   };
   if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
   record(0.0);
@@ -382,7 +383,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     r.stats.rejected += drv->e->failed_steps;
   };
   bool stop = false;
-  while (!stop && t < o.t_end) {
+  while (!stop && !r.stopped_early && t < o.t_end) {
     // Without recording, only the breakpoints and t_end stop the stepper.
     const double t_out = o.record ? std::min(double(k_out) * every, o.t_end) : o.t_end;
     const double target = std::min(t_out, breaks[next_break]);
@@ -422,6 +423,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     if (t == t_out) {
       record(t);
       ++k_out;
+      if (r.stopped_early) break;
     }
     if (t == breaks[next_break] && next_break + 1 < breaks.size()) {
       // omega' jumps here (model.md §9): restart the multistep history on the new segment.

@@ -31,6 +31,7 @@
 #include "abu/core/speed_units.hpp"
 #include "abu/core/suggest.hpp"
 #include "scene_reading.hpp"
+#include "simulate_table.hpp"
 #include "toml_guard.hpp"
 
 namespace abu {
@@ -139,7 +140,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   struct Part {
     const toml::table* table = nullptr;
     bool seen = false;
-  } rotor, friction, speed, ring;
+  } rotor, friction, speed, ring, simulate;
   toml::source_position ring_pos{};
   const toml::array* ball_array = nullptr;
   bool balls_seen = false;
@@ -151,6 +152,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                  : name == "friction" ? &friction
                  : name == "speed"    ? &speed
                  : name == "balls"    ? &ring
+                 : name == "simulate" ? &simulate
                                       : nullptr;
     if (name == "rolling") {
       rolling = read_bool(p, name, node, pos).value_or(true);
@@ -171,8 +173,9 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     } else {
       p.add(pos, name,
             unknown_name_rule(node.is_table() ? "unknown table" : "unknown key",
-                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed"}),
-                              "the top level has", "rolling, [rotor], [[ball]] or [balls], [friction], [speed]"));
+                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate"}),
+                              "the top level has",
+                              "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate]"));
     }
   }
   for (auto [part, name] : {std::pair{&rotor, "rotor"}, {&friction, "friction"}, {&speed, "speed"}})
@@ -298,6 +301,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     }
   }
 
+  // --- [simulate]: run-up and integration settings (simulate_table.hpp).
+  std::optional<SimulateSettings> simulate_settings;
+  if (simulate.table) simulate_settings = read_simulate_table(p, *simulate.table, file, int(balls.size()));
+
   p.throw_first();
 
   // --- Everything is valid: assemble. Per-ball coefficients override [friction]'s.
@@ -309,6 +316,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                                                : value(speed_slots, "omega");
   scene.law = *law;
   scene.kappa = value(friction_slots, "kappa");
+  scene.simulate = std::move(simulate_settings);
   if (ring_in) {
     scene.ring = make_ring(*ring_in, friction_slots, *law, rolling, file);
     scene.balls = ring_balls(*scene.ring);

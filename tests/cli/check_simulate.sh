@@ -104,4 +104,35 @@ if [ $code -eq 3 ]; then
 else
   fail "step budget exceeded: exit $code, expected 3"
 fi
+
+# --- the scene's [simulate] table gives the same run as the flags; flags override it --------
+cp "$scene" "$work/keys.toml"
+printf 't,omega\n0,200\n0.05,300\n0.1,300\n' >"$work/keys_profile.csv"
+cat >>"$work/keys.toml" <<'KEYS'
+
+[simulate]
+ramp = { omega0 = 200, omega1 = 300, alpha = 1000 }
+t_end = 0.12
+every = 1e-3
+rtol = 1e-7
+method = "bsimp"
+balls = [2, 4.5]
+KEYS
+body() { grep -v -e '^# command' -e '^# scene' "$1"; }
+"$bin" simulate "$work/keys.toml" --no-chart --quiet -o "$work/keys" 2>"$work/keys.err"
+check "scene [simulate] run exits 0" "[ $? -eq 0 ]"
+"$bin" simulate "$scene" --ramp 200:300:1000 --t-end 0.12 --every 1e-3 --rtol 1e-7 --method bsimp --balls 2,4.5 \
+  --no-chart --quiet -o "$work/flags" 2>"$work/flags.err"
+check "scene keys and flags give the same CSV" "cmp -s <(body '$work/keys/simulation.csv') <(body '$work/flags/simulation.csv')"
+"$bin" simulate "$work/keys.toml" --t-end 0.05 --balls 1,3 --method rk8pd --no-chart --quiet -o "$work/over" 2>/dev/null
+"$bin" simulate "$scene" --ramp 200:300:1000 --t-end 0.05 --every 1e-3 --rtol 1e-7 --method rk8pd --balls 1,3 \
+  --no-chart --quiet -o "$work/over2" 2>/dev/null
+check "flags override the scene's keys" "cmp -s <(body '$work/over/simulation.csv') <(body '$work/over2/simulation.csv')"
+sed -i 's/^ramp = .*/speed_profile = "keys_profile.csv"/' "$work/keys.toml"
+(cd / && "$bin" simulate "$work/keys.toml" --no-chart --quiet -o "$work/prof" 2>"$work/prof.err")
+"$bin" simulate "$scene" --speed-profile "$work/keys_profile.csv" --t-end 0.12 --every 1e-3 --rtol 1e-7 --method bsimp \
+  --balls 2,4.5 --no-chart --quiet -o "$work/prof2" 2>/dev/null
+check "speed_profile is read relative to the scene file" \
+  "cmp -s <(body '$work/prof/simulation.csv') <(body '$work/prof2/simulation.csv')"
+
 finish

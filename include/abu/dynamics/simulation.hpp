@@ -54,6 +54,10 @@ struct SimulationOptions {
   bool record = true;               ///< keep the samples and summarize (the benchmark turns it off)
   const std::atomic<bool>* interrupt = nullptr;  ///< polled after every step (Ctrl-C)
   std::function<void(double t)> progress;        ///< called at every sample
+  /// Called at every recorded sample with t and the 2n + 4 state values; returning true
+  /// ends the run there (status completed, SimulationResult::stopped_early): the settle
+  /// test of `basin` (model.md §15.5).
+  std::function<bool(double t, const double* x)> stop_at_sample;
 };
 
 enum class SimulationStatus { completed, interrupted, failed };
@@ -111,6 +115,7 @@ struct SimulationResult {
   SimulationSummary summary;
   State<double, N> x_end;       ///< the state at the last time reached
   double t_reached = 0;
+  bool stopped_early = false;   ///< options.stop_at_sample ended the run at t_reached
 };
 
 /// Balls at rest in the rotor frame at the given angles [rad], rotor at rest (q = q' = 0).

@@ -73,9 +73,22 @@
 #include <vector>
 
 #include "abu/core/params.hpp"
+#include "abu/dynamics/speed_profile.hpp"
 #include "abu/io/ball_ring.hpp"  // BallRing, ring_balls, set_ball_count (the [balls] ring)
 
 namespace abu {
+
+/// The optional [simulate] table: run-up and integration settings of `simulate` and
+/// `basin` (docs/guide.md, model.md §15). Command-line flags override each key.
+struct SimulateSettings {
+  std::optional<SpeedProfile> speed;  ///< ramp = {omega0, omega1, alpha} or speed_profile = "FILE"
+  std::optional<double> t_end;        ///< [s], > 0
+  std::optional<double> every;        ///< [s], > 0
+  std::optional<double> rtol;         ///< in (0, 0.1)
+  std::optional<std::string> method;  ///< auto, bdf, rk8pd, rk4imp, bsimp, rkf45
+  std::vector<double> balls;          ///< start: ball angles [rad] (one per ball)
+  std::vector<double> from_state;     ///< start: the 2n + 4 values
+};
 
 /// A validated scene, for any number of balls (2..12).
 struct Scene {
@@ -86,6 +99,7 @@ struct Scene {
   double kappa = 0.0;                ///< only meaningful for coulomb / stribeck
   std::vector<BallT<double>> balls;  ///< friction coefficients already resolved per ball
   std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion
+  std::optional<SimulateSettings> simulate;  ///< set iff the file has a [simulate] table
 };
 
 /// Reads and validates a scene file. Throws InputError (also for an unreadable file).
