@@ -409,8 +409,10 @@ void TileStore::lock() {
 }
 
 TileStore::TileStore(fs::path directory, const MapJob& job, Mode mode)
-    : directory_(std::move(directory)), tiles_(tile_count(job)) {
-  const std::string manifest = manifest_of(job);
+    : TileStore(std::move(directory), manifest_of(job), tile_count(job), mode) {}
+
+TileStore::TileStore(fs::path directory, const std::string& manifest, int tiles, Mode mode)
+    : directory_(std::move(directory)), tiles_(tiles) {
   const fs::path manifest_path = directory_ / "manifest";
   std::error_code ec;
   const bool existed = fs::exists(directory_, ec);

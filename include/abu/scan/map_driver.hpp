@@ -105,6 +105,9 @@ class TileStore {
   };
   /// Throws InputError (origin "--resume" / "-o") when the mode's rule is broken.
   TileStore(std::filesystem::path directory, const MapJob& job, Mode mode);
+  /// The same for any tiled job (`basin`, basin.hpp): `manifest` is everything that
+  /// determines its bytes, `tiles` how many tiles it has.
+  TileStore(std::filesystem::path directory, const std::string& manifest, int tiles, Mode mode);
   ~TileStore();
   TileStore(const TileStore&) = delete;
   TileStore& operator=(const TileStore&) = delete;

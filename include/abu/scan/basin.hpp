@@ -1,0 +1,88 @@
+// Basins of attraction (model.md §15.5): from a grid of initial ball positions (rotor at
+// rest, balls at rest in the rotor frame) every cell's trajectory is integrated until it
+// enters the neighbourhood of a stable equilibrium of the final speed (the settle test),
+// or to t_end, and classified by what it ended in (the outcomes of model.md §15.2).
+//
+// The grid: ball 1 x ball 2 over [0, 2 pi)^2, cells1 x cells2 cells, beta = 2 pi k / cells;
+// balls 3..n (if any) start at the fixed angles `fixed`. Tiles are whole columns (one
+// beta1 value each) and go through the map's TileStore (map_driver.hpp), so a basin is
+// threaded, resumable and locked like a map, with the same bytes whatever the thread count.
+//
+//   abu::BasinJob job;  job.params = p;  job.speed = abu::SpeedProfile::constant(400);
+//   job.sim.t_end = 20;  job.cells1 = job.cells2 = 16;
+//   const auto targets = abu::basin_targets(job);
+//   abu::BasinCell c = abu::compute_basin_cell(job, targets, 3, 5);   // beta = (3, 5) * 2 pi / 16
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "abu/core/params.hpp"
+#include "abu/dynamics/simulation.hpp"
+#include "abu/dynamics/speed_profile.hpp"
+#include "abu/scan/map_driver.hpp"
+
+namespace abu {
+
+struct BasinJob {
+  Params params;            ///< two balls (any_balls false)
+  ParamsN params_n;         ///< n >= 3 balls (any_balls true)
+  bool any_balls = false;
+  SpeedProfile speed;       ///< constant or a run-up; the attractors are those of its final speed
+  SimulationOptions sim;    ///< t_end, every (the settle test looks at every sample), rtol, method
+  int cells1 = 24, cells2 = 24;  ///< grid of beta1 x beta2 over [0, 2 pi)^2
+  std::vector<double> fixed;     ///< start angles of balls 3..n [rad]
+  /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
+  /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
+  double settle_radius = 1e-2;
+  int settle_samples = 5;
+  std::string provenance;   ///< "# " lines on top of the CSV (also the resume manifest's)
+  int n_balls() const;
+  double beta1(int i) const;
+  double beta2(int j) const;
+  double final_omega() const { return speed.omega(sim.t_end); }
+};
+
+/// A stable equilibrium of the final speed, or the balanced set of n >= 3 balls.
+struct BasinTarget {
+  std::string label;           ///< "balanced" or "aligned:+-..." (ball 1 is +)
+  int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set)
+  std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set
+  bool balanced_set = false;   ///< n >= 3: the whole (normally stable) balanced set
+};
+
+/// The attractors the settle test knows: the equilibria at the final speed whose spectrum
+/// is stable (model.md §6), and for n >= 3 the balanced set if every sample of it is
+/// normally stable (§13.5). Deterministic order (as the analysis lists them).
+std::vector<BasinTarget> basin_targets(const BasinJob& job);
+
+struct BasinCell {
+  int i = 0, j = 0;
+  double beta1 = 0, beta2 = 0;      ///< start angles [rad]
+  std::string attractor;            ///< balanced | aligned:PATTERN | periodic | stuck | not_settled
+  int member = 0;                   ///< which target of that label (settle test), 0 if by §15.2 only
+  bool by_settle_test = false;      ///< ended by entering a target's neighbourhood (else §15.2 at t_end)
+  double t_settle = -1;             ///< [s]: entry time (settle test) or §15.2 settle time; -1 if none
+  double t_end = 0;                 ///< [s]: the last time integrated
+  double q_abs_end = 0, max_q_abs = 0;  ///< [m]
+  std::vector<double> state_end;    ///< 2n + 4 values
+  unsigned long steps = 0, rejected = 0;
+};
+
+BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j);
+
+/// Long CSV: comment block, then `i,j,beta1_0,beta2_0,attractor,member,by_settle_test,
+/// t_settle,t_end,q_abs_end,max_q_abs,beta1_end..betan_end,steps,rejected` (model.md §15.5).
+std::string basin_csv_header(const BasinJob& job);
+std::string basin_row(const BasinCell& c);
+/// The resume manifest: everything that determines the bytes.
+std::string basin_manifest(const BasinJob& job);
+/// One tile = one column (i fixed, j = 0..cells2-1).
+TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>& targets, int tile);
+
+/// Runs `tiles` on options.threads threads, each finished tile to `sink` (as compute_tiles
+/// does for maps). Rethrows a worker's exception after all stopped.
+MapRunStats compute_basin_tiles(const BasinJob& job, const std::vector<BasinTarget>& targets,
+                                const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink);
+
+}  // namespace abu

@@ -1,0 +1,303 @@
+// `stability-scan basin SCENE`: basins of attraction (model.md §15.5). A grid of initial
+// ball positions (rotor at rest), each integrated until it enters the neighbourhood of a
+// stable equilibrium of the final speed (or to t_end) and classified; tiles through the
+// map's TileStore (threads, --resume, --fresh, Ctrl-C keeps finished tiles); the long CSV,
+// the fraction per attractor (CSV and JSON) and the classification map (PNG).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli.hpp"
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/dynamics/simulation.hpp"
+#include "abu/io/io.hpp"
+#include "abu/scan/basin.hpp"
+#include "commands.hpp"
+
+namespace abu::cli {
+
+namespace {
+
+struct BasinOptions {
+  SceneOptions scene;
+  std::string ramp, profile_file, grid = "24", fixed;
+  SimulationOptions sim;
+  std::string method = "auto";
+  double settle_radius = 1e-2;
+  int settle_samples = 5;
+  std::string output = "out/basin";
+  int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  bool resume = false, fresh = false, chart = true, progress = false, quiet = false;
+};
+
+std::vector<double> parse_reals(const std::string& text, const std::string& option) {
+  std::vector<double> v;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string_view item(text.data() + start, comma - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    double x = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
+    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x))
+      throw InputError(option, 0, "", fmt::format("expected a comma-separated list of finite reals, got '{}'", text));
+    v.push_back(x);
+    start = comma + 1;
+  }
+  return v;
+}
+
+// "N" or "N1xN2": cells per axis, 2..1000.
+std::pair<int, int> parse_grid(const std::string& text) {
+  const auto x = text.find('x');
+  auto one = [&](std::string_view s) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || ec != std::errc() || end != s.data() + s.size() || v < 2 || v > 1000)
+      throw InputError("--grid", 0, text, "expected N or N1xN2, cells per axis, integers in 2..1000");
+    return v;
+  };
+  if (x == std::string::npos) {
+    const int n = one(text);
+    return {n, n};
+  }
+  return {one(std::string_view(text).substr(0, x)), one(std::string_view(text).substr(x + 1))};
+}
+
+// The fraction table: balanced first, then the aligned patterns, periodic, stuck, not settled.
+int label_rank(const std::string& label) {
+  if (label == "balanced") return 0;
+  if (label.rfind("aligned:", 0) == 0) return 1;
+  if (label == "periodic") return 2;
+  if (label == "stuck") return 3;
+  return 4;
+}
+
+}  // namespace
+
+Action add_basin_command(CLI::App& app) {
+  auto o = std::make_shared<BasinOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "basin",
+      "Basins of attraction: from a grid of initial ball positions (rotor at rest) integrate to a settle criterion and "
+      "classify (balanced, aligned pattern, periodic, stuck, not settled); fraction per attractor, classification map "
+      "(model.md §15.5). Threads, resumable (--resume) like maps.");
+  add_scene_options(*sub, o->scene);
+  sub->add_option("--grid", o->grid, "Cells per axis of beta1 x beta2 over [0, 2 pi)^2: N or N1xN2")
+      ->capture_default_str();
+  sub->add_option("--fixed", o->fixed,
+                  "n >= 3 balls: start angles of balls 3..n [rad] (default evenly spaced, 2 pi (i - 1) / n)")
+      ->type_name("B3,B4,...");
+  sub->add_option("--t-end", o->sim.t_end, "Longest integration per cell [s] (default 10, or the scene's t_end)");
+  auto* ramp = sub->add_option("--ramp", o->ramp, "Run-up OMEGA0:OMEGA1:ALPHA (as simulate; default: the scene's "
+                                                  "[simulate] run-up, else the constant [speed])")
+                   ->type_name("W0:W1:ALPHA");
+  auto* prof = sub->add_option("--speed-profile", o->profile_file, "Speed profile FILE (as simulate)")->type_name("FILE");
+  ramp->excludes(prof);
+  sub->add_option("--every", o->sim.every, "Sample interval [s]: the settle test looks at every sample (default "
+                                            "t_end / 2000)")
+      ->type_name("DT");
+  sub->add_option("--rtol", o->sim.rtol, "Integration tolerance (model.md §15.1)")->capture_default_str();
+  sub->add_option("--method", o->method, "Integrator (auto: by the stiffness ratio, model.md §15.1)")
+      ->check(CLI::IsMember({"auto", "bdf", "rk8pd", "rk4imp", "bsimp", "rkf45"}))
+      ->capture_default_str();
+  sub->add_option("--settle-radius", o->settle_radius,
+                  "Scaled distance to a stable equilibrium that counts as arrived (model.md §15.5)")
+      ->capture_default_str();
+  sub->add_option("--settle-samples", o->settle_samples, "Consecutive samples inside the settle radius")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sub->add_option("--settle-tol", o->sim.settle_tolerance, "Scaled distance for 'settled' at t_end (model.md §15.2)")
+      ->capture_default_str();
+  sub->add_option("--threads", o->threads, "Worker threads (the output does not depend on it)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  auto* resume = sub->add_flag("--resume", o->resume, "Continue an interrupted basin from its tiles");
+  auto* fresh = sub->add_flag("--fresh", o->fresh, "Discard the tiles of an interrupted basin and start over");
+  resume->excludes(fresh);
+  sub->add_option("-o,--output", o->output, "Output directory: basin.csv, basin_fractions.csv, basin.json, basin.png")
+      ->capture_default_str();
+  sub->add_flag("--no-chart", [o](std::int64_t) { o->chart = false; }, "Do not draw the map");
+  auto* progress = sub->add_flag("--progress", o->progress, "Progress on stderr even if not a terminal");
+  auto* quiet = sub->add_flag("--quiet", o->quiet, "No progress and no summary on stderr");
+  progress->excludes(quiet);
+  return [o, sub]() -> int {
+    // Everything is checked before any work (exit 2, nothing written).
+    const Scene scene = load(o->scene);
+    check_output_directory(o->output);
+    BasinOptions b = *o;
+    b.sim.t_end = 10.0;
+    if (scene.simulate) {  // the scene's [simulate] keys where no flag is given
+      const SimulateSettings& s = *scene.simulate;
+      if (s.t_end) b.sim.t_end = *s.t_end;
+      if (s.every && sub->count("--every") == 0) b.sim.every = *s.every;
+      if (s.rtol && sub->count("--rtol") == 0) b.sim.rtol = *s.rtol;
+      if (s.method && sub->count("--method") == 0) b.method = *s.method;
+    }
+    if (sub->count("--t-end") > 0) b.sim.t_end = o->sim.t_end;
+    if (!(std::isfinite(b.sim.t_end) && b.sim.t_end > 0))
+      throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", b.sim.t_end));
+    if (!(b.sim.every >= 0 && std::isfinite(b.sim.every)))
+      throw InputError("--every", 0, "", "the sample interval must be > 0 s");
+    if (!(b.sim.rtol > 0 && b.sim.rtol < 0.1)) throw InputError("--rtol", 0, "", "the tolerance must lie in (0, 0.1)");
+    if (!(b.settle_radius > 0 && b.settle_radius < 1)) throw InputError("--settle-radius", 0, "", "must lie in (0, 1)");
+    if (!(b.sim.settle_tolerance > 0 && b.sim.settle_tolerance < 1))
+      throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
+    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && (!o->ramp.empty() || !o->profile_file.empty()))
+      throw InputError(!o->ramp.empty() ? "--ramp" : "--speed-profile", 0, "units",
+                       "a speed profile is given in rad/s; --units applies to --set omega only (drop --units)");
+    const int n = int(scene.balls.size());
+    BasinJob job;
+    job.speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)
+                : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
+                : scene.simulate && scene.simulate->speed ? *scene.simulate->speed
+                                                          : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+    const auto [c1, c2] = parse_grid(b.grid);
+    job.cells1 = c1;
+    job.cells2 = c2;
+    if (!b.fixed.empty()) {
+      if (n == 2) throw InputError("--fixed", 0, "", "a scene of two balls has no fixed balls (both are gridded)");
+      job.fixed = parse_reals(b.fixed, "--fixed");
+      if (int(job.fixed.size()) != n - 2)
+        throw InputError("--fixed", 0, "", fmt::format("give balls 3..{}: {} angles, got {}", n, n - 2, job.fixed.size()));
+    } else {
+      for (int i = 3; i <= n; ++i) job.fixed.push_back(2 * M_PI * (i - 1) / n);
+    }
+    job.sim = b.sim;
+    job.sim.method = *integration_method_from_string(b.method);
+    job.settle_radius = b.settle_radius;
+    job.settle_samples = b.settle_samples;
+    job.any_balls = n != 2;
+    std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
+    for (const auto& s : o->scene.overrides) line += " --set " + s;
+    line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),
+                        job.sim.t_end, job.sim.rtol, b.method, job.settle_radius, job.settle_samples);
+    if (job.any_balls) {
+      job.params_n = params_of<any_balls>(scene);
+      job.params_n.omega = job.speed.omega(0.0);
+      job.provenance = provenance_header(line, scene.file, job.params_n);
+    } else {
+      job.params = params_of<2>(scene);
+      job.params.omega = job.speed.omega(0.0);
+      job.provenance = provenance_header(line, scene.file, job.params);
+    }
+    job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
+                                  "in the rotor frame\n",
+                                  c1, c2);
+    if (!job.fixed.empty()) {
+      std::string f;
+      for (double x : job.fixed) f += fmt::format("{}{:.10g}", f.empty() ? "" : ",", x);
+      job.provenance += fmt::format("# fixed: balls 3..{} start at {} rad\n", n, f);
+    }
+
+    const std::vector<BasinTarget> targets = basin_targets(job);
+    {
+      std::string t;
+      for (const auto& x : targets) t += fmt::format("{}{}{}", t.empty() ? "" : ", ", x.label,
+                                                     x.balanced_set ? " (set)" : fmt::format(" {}", x.member));
+      job.provenance += fmt::format("# attractors of the settle test at omega = {:.10g} rad/s: {}\n", job.final_omega(),
+                                    t.empty() ? "none stable" : t);
+    }
+    namespace fs = std::filesystem;
+    const fs::path dir(b.output);
+    const fs::path csv_path = dir / "basin.csv", fractions_path = dir / "basin_fractions.csv",
+                   json_path = dir / "basin.json", png_path = dir / "basin.png";
+    const fs::path tiles_dir = dir / ".basin.tiles";
+    const TileStore store(tiles_dir, basin_manifest(job),
+                          job.cells1, b.resume ? TileStore::Mode::resume
+                                      : b.fresh ? TileStore::Mode::discard
+                                                : TileStore::Mode::fresh);
+    const std::vector<int> missing = store.missing();
+    ProgressMeter meter(job.cells1, job.cells1 - int(missing.size()), !b.quiet && (b.progress || isatty(STDERR_FILENO)));
+    MapRunOptions run;
+    run.threads = b.threads;
+    run.stop = &stop_flag();
+    run.progress = &meter;
+    set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
+                                   escaped(tiles_dir.string())));
+    const MapRunStats stats =
+        compute_basin_tiles(job, targets, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
+    meter.finish();
+    set_interrupt_note({});
+    if (stats.interrupted || stop_requested()) {
+      fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
+                 job.cells1 - int(store.missing().size()), job.cells1, tiles_dir.string());
+      return interrupted_exit_code();
+    }
+
+    // Assemble in tile order; count the attractors.
+    std::ostringstream rows, none;
+    for (int t = 0; t < job.cells1; ++t) store.append(t, rows, none);
+    std::map<std::pair<int, std::string>, long> count;
+    std::set<std::pair<int, std::string>> classes;  // of the chart: attractor/member
+    long cells = 0, early = 0;
+    {
+      std::istringstream in(rows.str());
+      for (std::string row; std::getline(in, row);) {
+        std::vector<std::string> f;
+        std::stringstream ss(row);
+        for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+        ++count[{label_rank(f[4]), f[4]}];
+        classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
+        early += f[6] == "1";
+        ++cells;
+      }
+    }
+    std::string fractions = job.provenance + "attractor,cells,fraction\n";
+    std::string json = fmt::format("{{\n  \"cells\": {},\n  \"grid\": [{}, {}],\n  \"omega_final\": {},\n  \"t_end\": {},\n"
+                                   "  \"by_settle_test\": {},\n  \"fractions\": {{",
+                                   cells, job.cells1, job.cells2, job.final_omega(), job.sim.t_end, early);
+    std::string labels;
+    bool first = true;
+    for (const auto& [key, k] : count) {
+      const double frac = double(k) / double(cells);
+      fractions += fmt::format("{},{},{:.6f}\n", key.second, k, frac);
+      json += fmt::format("{}\n    \"{}\": {:.6f}", first ? "" : ",", key.second, frac);
+      first = false;
+    }
+    json += "\n  }\n}\n";
+    for (const auto& c : classes) labels += (labels.empty() ? "" : " ") + c.second;
+    {
+      OutputTransaction out;
+      out.stage(csv_path, basin_csv_header(job) + rows.str());
+      out.stage(fractions_path, fractions);
+      out.stage(json_path, json);
+      out.commit();
+    }
+    store.remove();
+    int code = exit_ok;
+    if (b.chart) {
+      OutputTransaction chart;
+      if (run_gnuplot(plots_dir() / "basin.gp", {{"csv", csv_path.string()},
+                                                 {"png", chart.reserve(png_path).string()},
+                                                 {"labels", labels},
+                                                 {"cells1", std::to_string(job.cells1)},
+                                                 {"cells2", std::to_string(job.cells2)},
+                                                 {"title", fmt::format("{}: {}", escaped(scene.file), job.speed.describe())}}))
+        chart.commit();
+    }
+    if (!b.quiet) {
+      fmt::print(stderr, "{} cells ({} ended by the settle test), {} tiles computed in {:.2f} s\n", cells, early,
+                 stats.tiles, stats.seconds);
+      for (const auto& [key, k] : count)
+        fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.second, k, 100.0 * double(k) / double(cells));
+      fmt::print(stderr, "wrote {}, {}, {}{}\n", csv_path.string(), fractions_path.string(), json_path.string(),
+                 b.chart && fs::exists(png_path) ? ", " + png_path.string() : "");
+    }
+    return code;
+  };
+}
+
+}  // namespace abu::cli

@@ -1,0 +1,275 @@
+// Basins of attraction (model.md §15.5): see basin.hpp.
+#include "abu/scan/basin.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/model/model.hpp"
+#include "abu/scan/scan.hpp"
+
+namespace abu {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// The sign of each ball along the line of q, ball 1 is + (as model.md §15.2 writes it).
+std::string line_pattern(const std::vector<double>& position, int n) {
+  const double phi = std::atan2(position[1], position[0]);
+  const double ref = std::cos(position[2] - phi) >= 0 ? 1.0 : -1.0;
+  std::string s;
+  for (int i = 0; i < n; ++i) s += std::cos(position[std::size_t(2 + i)] - phi) * ref >= 0 ? '+' : '-';
+  return s;
+}
+
+template <class EquilibriumSpan, class Spectra>
+std::vector<BasinTarget> targets_of(const EquilibriumSpan& points, const Spectra& spectra, int n) {
+  std::vector<BasinTarget> out;
+  bool any_set = false, set_stable = true;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto& e = points[k];
+    const bool stable = spectra[k].stability == Stability::stable;
+    if (e.on_balanced_set) {
+      any_set = true;
+      set_stable = set_stable && stable;
+      continue;
+    }
+    if (!stable) continue;
+    BasinTarget t;
+    const auto pos = e.position_si();
+    t.position.assign(pos.data(), pos.data() + pos.size());
+    t.label = e.family == Family::balanced ? "balanced" : "aligned:" + line_pattern(t.position, n);
+    for (const auto& o : out) t.member += o.label == t.label;
+    ++t.member;
+    out.push_back(std::move(t));
+  }
+  if (!(any_set && set_stable)) return out;
+  std::vector<BasinTarget> all{BasinTarget{std::string("balanced"), 0, {}, true}};  // the balanced set first
+  for (auto& t : out) all.push_back(std::move(t));
+  return all;
+}
+
+template <int N>
+const ParamsT<double, N>& params_for(const BasinJob& job) {
+  if constexpr (N == 2)
+    return job.params;
+  else
+    return job.params_n;
+}
+
+template <int N>
+BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
+  ParamsT<double, N> p = params_for<N>(job);
+  const int n = ball_count(p);
+  p.omega = job.speed.omega(0.0);
+  BasinCell c;
+  c.i = i;
+  c.j = j;
+  c.beta1 = job.beta1(i);
+  c.beta2 = job.beta2(j);
+  std::vector<double> beta{c.beta1, c.beta2};
+  beta.insert(beta.end(), job.fixed.begin(), job.fixed.end());
+  const State<double, N> x0 = start_at_rest(p, beta);
+
+  const double L = displacement_scale(p), w = job.final_omega();
+  double capacity = p.rotor.unbalance;
+  for (const auto& b : p.balls) capacity += b.mass * b.race_radius;
+  const double t_change = job.speed.end_of_change();
+  // Scaled distance (model.md §15.2's scaling) of x to a target at rest.
+  const auto distance = [&](const BasinTarget& t, const double* x) {
+    double d = 0;
+    for (int k = 0; k < 2; ++k) d = std::max(d, std::abs(x[n + 2 + k]) / (L * w));
+    for (int k = 0; k < n; ++k) d = std::max(d, std::abs(x[n + 4 + k]) / w);
+    if (t.balanced_set) {
+      double w1 = p.rotor.unbalance, w2 = 0;
+      for (int k = 0; k < n; ++k) {
+        const double a = p.balls[std::size_t(k)].mass * p.balls[std::size_t(k)].race_radius;
+        w1 += a * std::cos(x[2 + k]);
+        w2 += a * std::sin(x[2 + k]);
+      }
+      return std::max({d, std::hypot(x[0], x[1]) / L, std::hypot(w1, w2) / capacity});
+    }
+    for (int k = 0; k < 2; ++k) d = std::max(d, std::abs(x[k] - t.position[std::size_t(k)]) / L);
+    for (int k = 0; k < n; ++k)
+      d = std::max(d, std::abs(std::remainder(x[2 + k] - t.position[std::size_t(2 + k)], kTwoPi)));
+    return d;
+  };
+  SimulationOptions o = job.sim;
+  o.record = true;
+  o.interrupt = &stop_flag();
+  o.progress = nullptr;
+  const BasinTarget* inside = nullptr;
+  int run = 0;
+  double t_entry = -1;
+  o.stop_at_sample = [&](double t, const double* x) {
+    if (t < t_change) return false;  // the attractors are those of the final, constant speed
+    const BasinTarget* now = nullptr;
+    for (const auto& target : targets)
+      if (distance(target, x) <= job.settle_radius) {
+        now = &target;
+        break;
+      }
+    if (now != inside) {
+      inside = now;
+      run = 0;
+      t_entry = t;
+    }
+    return inside && ++run >= job.settle_samples;
+  };
+  const SimulationResult<N> r = simulate(p, job.speed, x0, o);
+  if (r.status == SimulationStatus::interrupted) throw Interrupted(stop_signal(), "basin cell");
+  if (r.status == SimulationStatus::failed)
+    throw NumericalError(fmt::format("basin cell ({}, {}) from beta1 = {:.9g}, beta2 = {:.9g} rad: {}", i, j, c.beta1,
+                                     c.beta2, r.reason));
+  c.t_end = r.t_reached;
+  c.state_end.assign(r.x_end.data(), r.x_end.data() + r.x_end.size());
+  c.q_abs_end = std::hypot(r.x_end(0), r.x_end(1));
+  c.max_q_abs = r.summary.max_q_abs;
+  c.steps = r.stats.steps;
+  c.rejected = r.stats.rejected;
+  if (r.stopped_early && inside) {
+    c.attractor = inside->label;
+    c.member = inside->member;
+    c.by_settle_test = true;
+    c.t_settle = t_entry;
+    return c;
+  }
+  switch (r.summary.outcome) {
+    case SimulationOutcome::balanced: c.attractor = "balanced"; break;
+    case SimulationOutcome::aligned: c.attractor = "aligned:" + r.summary.pattern; break;
+    case SimulationOutcome::rest: c.attractor = "stuck"; break;
+    case SimulationOutcome::periodic: c.attractor = "periodic"; break;
+    case SimulationOutcome::not_settled: c.attractor = "not_settled"; break;
+  }
+  if (r.summary.settle_time) c.t_settle = *r.summary.settle_time;
+  return c;
+}
+
+}  // namespace
+
+int BasinJob::n_balls() const { return any_balls ? ball_count(params_n) : 2; }
+double BasinJob::beta1(int i) const { return kTwoPi * i / cells1; }
+double BasinJob::beta2(int j) const { return kTwoPi * j / cells2; }
+
+std::vector<BasinTarget> basin_targets(const BasinJob& job) {
+  if (!job.any_balls) {
+    Params p = job.params;
+    p.omega = job.final_omega();
+    const Analysis a = analyze(p);
+    return targets_of(a.equilibria.points(), a.spectra, 2);
+  }
+  ParamsN p = job.params_n;
+  p.omega = job.final_omega();
+  const AnalysisN a = analyze(p);
+  return targets_of(a.equilibria.points(), a.spectra, ball_count(p));
+}
+
+BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
+  return job.any_balls ? cell<any_balls>(job, targets, i, j) : cell<2>(job, targets, i, j);
+}
+
+std::string basin_csv_header(const BasinJob& job) {
+  std::string h = job.provenance;
+  h += "i,j,beta1_0,beta2_0,attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
+  for (int k = 1; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_end", k);
+  h += ",steps,rejected\n";
+  return h;
+}
+
+std::string basin_row(const BasinCell& c) {
+  std::string row = fmt::format("{},{},{:.10g},{:.10g},{},{},{},{},{:.10g},{:.6e},{:.6e}", c.i, c.j, c.beta1, c.beta2,
+                                c.attractor, c.member == 0 ? std::string() : std::to_string(c.member),
+                                c.by_settle_test ? 1 : 0, c.t_settle >= 0 ? fmt::format("{:.6g}", c.t_settle) : "",
+                                c.t_end, c.q_abs_end, c.max_q_abs);
+  const int n = (int(c.state_end.size()) - 4) / 2;
+  // End angles wrapped to [0, 2 pi): where the balls came to lie on the race.
+  for (int k = 0; k < n; ++k) {
+    double b = std::fmod(c.state_end[std::size_t(2 + k)], kTwoPi);
+    if (b < 0) b += kTwoPi;
+    row += fmt::format(",{:.8f}", b);
+  }
+  row += fmt::format(",{},{}\n", c.steps, c.rejected);
+  return row;
+}
+
+std::string basin_manifest(const BasinJob& job) {
+  std::string out = fmt::format("abu basin tiles: 1 column per tile, {} tiles\n", job.cells1);
+  out += fmt::format("# grid {} x {}, fixed", job.cells1, job.cells2);
+  for (double f : job.fixed) out += fmt::format(" {:.17g}", f);
+  out += fmt::format("\n# speed {}, t_end {:.17g}, every {:.17g}, rtol {:.17g}, method {}\n", job.speed.describe(),
+                     job.sim.t_end, job.sim.every, job.sim.rtol, to_string(job.sim.method));
+  out += fmt::format("# settle radius {:.17g}, samples {}, settle tolerance {:.17g}\n", job.settle_radius,
+                     job.settle_samples, job.sim.settle_tolerance);
+  for (const auto& p : job.speed.points()) out += fmt::format("# profile {:.17g} {:.17g}\n", p.t, p.omega);
+  // The header, without the lines that name the command and the scene file's path.
+  std::size_t start = 0;
+  const std::string h = basin_csv_header(job);
+  while (start < h.size()) {
+    const std::size_t end = std::min(h.find('\n', start), h.size());
+    const std::string line = h.substr(start, end - start);
+    if (line.rfind("# command:", 0) != 0 && line.rfind("# scene:", 0) != 0) out += line + '\n';
+    start = end + 1;
+  }
+  return out;
+}
+
+TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>& targets, int tile) {
+  TileText text;
+  for (int j = 0; j < job.cells2; ++j) {
+    throw_if_stopped("basin tile");
+    text.rows += basin_row(compute_basin_cell(job, targets, tile, j));
+    ++text.cells;
+  }
+  return text;
+}
+
+MapRunStats compute_basin_tiles(const BasinJob& job, const std::vector<BasinTarget>& targets,
+                                const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink) {
+  MapRunStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  std::exception_ptr error;
+  const auto stopped = [&] { return failed.load() || (options.stop && options.stop->load()); };
+  const auto worker = [&] {
+    try {
+      for (std::size_t k = next++; k < tiles.size() && !stopped(); k = next++) {
+        TileText text = compute_basin_tile(job, targets, tiles[k]);
+        const long cells = text.cells;
+        {
+          std::lock_guard lock(mutex);
+          ++stats.tiles;
+          stats.cells += cells;
+        }
+        sink(tiles[k], std::move(text));
+        if (options.progress) options.progress->tile_done(cells);
+      }
+    } catch (const Interrupted&) {
+      // Stopped inside a tile: that tile is not written, the finished ones stay.
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!error) error = std::current_exception();
+      failed = true;
+    }
+  };
+  const int n_threads = std::max(1, std::min<int>(options.threads, int(tiles.size())));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < n_threads; ++t) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.interrupted = stats.tiles < int(tiles.size());
+  return stats;
+}
+
+}  // namespace abu
