@@ -37,6 +37,7 @@ set cbrange [0.5 : (K > 1 ? K : 2) + 0.5]
 set cbtics ()
 do for [k = 1:K] { eval(sprintf('set cbtics add ("%s" %d)', word(labels, k), k)) }
 set terminal pngcairo size 900, 760 font ',10'
+set termoption noenhanced
 set output png
 set title title noenhanced
 set xlabel 'start angle of ball 1, beta1 [rad]'
