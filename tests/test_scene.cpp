@@ -800,3 +800,40 @@ TEST_CASE("scene ring: one-ball symbols address balls 1..n of a three-ball scene
     CHECK(g.rule() == "ball index out of range: the scene has 3 balls (m1..m3)");
   }
 }
+
+TEST_CASE("the simulate table gives the run-up and the integration settings", "[scene][simulate]") {
+  const abu::Scene none = abu::parse_scene(kBase, "base");
+  CHECK_FALSE(none.simulate.has_value());
+  const std::string text = std::string(kBase) +
+                           "\n[simulate]\nramp = { omega0 = 100, omega1 = 400, alpha = 200 }\nt_end = 2.5\n"
+                           "every = 1e-3\nrtol = 1e-9\nmethod = \"rk8pd\"\nballs = [2, 4.5]\n";
+  const abu::Scene s = abu::parse_scene(text, "sim.toml");
+  REQUIRE(s.simulate.has_value());
+  REQUIRE(s.simulate->speed.has_value());
+  // 100 -> 400 rad/s at 200 rad/s^2: the ramp ends at t = 1.5 s, then the speed is held.
+  CHECK(s.simulate->speed->omega(0.75) == Approx(250.0).epsilon(1e-15));
+  CHECK(s.simulate->speed->end_of_change() == Approx(1.5).epsilon(1e-15));
+  CHECK(s.simulate->speed->omega(3.0) == 400.0);
+  CHECK(s.simulate->t_end == 2.5);
+  CHECK(s.simulate->every == 1e-3);
+  CHECK(s.simulate->rtol == 1e-9);
+  CHECK(s.simulate->method == "rk8pd");
+  CHECK(s.simulate->balls == std::vector<double>{2.0, 4.5});
+  CHECK(s.simulate->from_state.empty());
+  CHECK(s.omega == 900.0);  // [speed] is unchanged: the run-up is for simulate and basin only
+}
+
+TEST_CASE("a speed profile of the simulate table is read relative to the scene file", "[scene][simulate]") {
+  const fs::path dir = fs::temp_directory_path() / fs::path("abu_simulate_table_test");
+  fs::create_directories(dir);
+  {
+    std::ofstream(dir / "profile.csv") << "t,omega\n0,120\n0.5,300\n";
+    std::ofstream(dir / "scene.toml") << kBase << "\n[simulate]\nspeed_profile = \"profile.csv\"\n";
+  }
+  const abu::Scene s = abu::load_scene((dir / "scene.toml").string());
+  fs::remove_all(dir);
+  REQUIRE(s.simulate.has_value());
+  REQUIRE(s.simulate->speed.has_value());
+  CHECK(s.simulate->speed->points().size() == 2);
+  CHECK(s.simulate->speed->omega(0.25) == Approx(210.0).epsilon(1e-15));
+}
