@@ -312,6 +312,10 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--cycle-steps", o->cycle.continuation.max_steps, "Continuation steps per cycle branch")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  sub->add_option("--cycle-rtol", o->cycle.rtol,
+                  "Integrator tolerance of the cycles' flows and transition matrices (scaled state)")
+      ->check(CLI::Range(1e-15, 1e-3))
+      ->capture_default_str();
   sub->add_option("--cycle-intervals", o->cycle.intervals, "Shooting intervals per period")
       ->check(CLI::Range(4, 10000))
       ->capture_default_str();
