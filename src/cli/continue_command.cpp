@@ -3,6 +3,7 @@
 // Hopf points found are continued in two parameters (stability boundaries).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <sstream>
 
@@ -147,6 +148,12 @@ std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& p
                      c + 1, name, b.hopf_parameter, b.hopf_frequency, b.lyapunov, name, b.real_part_slope,
                      b.orbits.size());
     s += b.reason.empty() ? std::string("; ended at the end of the interval\n") : "; ended: " + escaped(b.reason) + "\n";
+    const auto incomplete = std::count_if(b.orbits.begin(), b.orbits.end(), [](const CycleOrbit& o) {
+      return o.multipliers.size() != 8 || o.ball_min.size() != 2;
+    });
+    if (incomplete > 0)
+      s += fmt::format("# cycle {}: {} orbits not written: their multipliers or their samples could not be computed\n",
+                       c + 1, incomplete);
     for (const CycleSpecial& sp : b.specials)
       s += fmt::format("# cycle {}: {} at {} = {}, period {} s, amplitude {} m ({})\n", c + 1, sp.label, name, sp.parameter,
                        sp.period, sp.amplitude, sp.note);
@@ -157,7 +164,7 @@ std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& p
   for (std::size_t c = 0; c < cycles.size(); ++c)
     for (std::size_t i = 0; i < cycles[c].orbits.size(); ++i) {
       const CycleOrbit& o = cycles[c].orbits[i];
-      if (o.multipliers.size() != 8 || o.ball_min.size() != 2) continue;  // (not written: no partial rows)
+      if (o.multipliers.size() != 8 || o.ball_min.size() != 2) continue;  // no partial rows (counted above)
       s += fmt::format("{},{},{},{},{},{},{},{},{},{},{}", c + 1, i, o.parameter, o.period, o.amplitude, o.stable() ? 1 : 0,
                        o.trivial_distance, o.ball_min[0], o.ball_max[0], o.ball_min[1], o.ball_max[1]);
       for (std::size_t k = 0; k < 8; ++k) {

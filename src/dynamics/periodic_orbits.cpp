@@ -350,7 +350,10 @@ class CycleProblem {
         if (j != trivial) ns *= f.values[i] * f.values[j] - 1.0;
     }
     out.tests = {t(param_index()), pd.real(), ns.real()};
-    sample(u, orbit);
+    if (!sample(u, orbit)) {
+      out.retry = true;  // (taken anyway below the retry floor: the CSV then skips the row, the note says so)
+      out.reason = "the orbit could not be sampled for its amplitude (the integrator failed)";
+    }
     orbit.state0.resize(kDim);
     for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
     pending_ = orbit;
@@ -400,7 +403,7 @@ class CycleProblem {
 
   // Samples the orbit uniformly (samples_per_interval per interval): max |q| and the
   // ball angles' extremes, each refined by a parabola through its neighbours.
-  void sample(const Vec& u, CycleOrbit& orbit) {
+  bool sample(const Vec& u, CycleOrbit& orbit) {
     const double h = period(u) / m_;
     const int k = o_.samples_per_interval;
     std::vector<double> targets;
@@ -418,12 +421,13 @@ class CycleProblem {
         b2.push_back(s[3]);
       }, why);
     }
-    if (qabs.size() != std::size_t(m_ * k)) return;
+    if (qabs.size() != std::size_t(m_ * k)) return false;
     orbit.amplitude = cyclic_max(qabs);
     orbit.ball_max = {cyclic_max(b1), cyclic_max(b2)};
     for (auto* v : {&b1, &b2})
       for (double& x : *v) x = -x;
     orbit.ball_min = {-cyclic_max(b1), -cyclic_max(b2)};
+    return true;
   }
 
   CycleOptions o_;
@@ -493,9 +497,7 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
     z *= std::sqrt(0.5 * room / std::abs(dp));
     dp = -z * z * w * hopf.lyapunov / pred.slope;
   }
-  Params pd = p;
   const State8 dxdp = -jacobian(p, xH).partialPivLu().solve(parameter_derivative(p, xH, ref));
-  (void)pd;
   const int M = o.intervals;
   Eigen::VectorXd u(problem.size()), hopf_u(problem.size());
   for (int j = 0; j < M; ++j) {
