@@ -5,9 +5,11 @@
 # Reads the CSVs of `stability-scan continue --cycles`; re-run with
 #   gnuplot -e "branches='out/branch_omega.csv'; cycles='out/cycles_omega.csv'; png='c.png'; param='omega'; unit='rad/s'; title='x'; subtitle='y'" plots/cycles.gp
 # Columns by header name: branch CSV: branch, the parameter's symbol, q_abs, stable;
-# cycles CSV: cycle, the parameter's symbol, amplitude, stable.
+# cycles CSV: cycle, the parameter's symbol, amplitude, stable; cycle specials CSV (optional,
+# `specials`): label, the parameter's symbol, amplitude (LPC, PD, NS marked).
 if (!exists("branches")) branches = 'out/branch_omega.csv'
 if (!exists("cycles")) cycles = 'out/cycles_omega.csv'
+if (!exists("specials")) specials = ''
 if (!exists("png")) png = 'cycles.png'
 if (!exists("param")) param = 'omega'
 if (!exists("unit")) unit = 'rad/s'
@@ -45,9 +47,19 @@ set grid
 set key top left box opaque
 set format x '%.10g'
 
+# The cycles' special points, if there are any (a file without rows would only draw a warning).
+n_sp = 0
+if (specials ne '') {
+  set datafile nocolumnheaders
+  stats specials using (1) nooutput
+  set datafile columnheaders
+  n_sp = STATS_records - 1
+}
+special_plot = n_sp > 0 ? ", specials using (column(param)):(column(\"amplitude\")):(strcol(\"label\")) with labels point pt 5 ps 1.3 lc rgb '#000000' offset 1.5,0.5 left title 'LPC / PD / NS'" : ''
 stable_eq(y) = column("stable") == 1 ? y : NaN
 unstable_eq(y) = column("stable") != 1 ? y : NaN
 plot branches using (column(param)):(stable_eq(column("q_abs"))) with lines lw 3 lc rgb '#1f77b4' title 'equilibria, stable', \
      branches using (column(param)):(unstable_eq(column("q_abs"))) with lines lw 2 dt 2 lc rgb '#1f77b4' title 'equilibria, unstable', \
      cycles using (column(param)):(column("stable") == 1 ? column("amplitude") : NaN) with points pt 7 ps 0.9 lc rgb '#2ca02c' title 'cycles, stable', \
-     cycles using (column(param)):(column("stable") != 1 ? column("amplitude") : NaN) with points pt 6 ps 0.9 lc rgb '#d62728' title 'cycles, unstable'
+     cycles using (column(param)):(column("stable") != 1 ? column("amplitude") : NaN) with points pt 6 ps 0.9 lc rgb '#d62728' title 'cycles, unstable' \
+     @special_plot

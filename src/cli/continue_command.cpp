@@ -385,11 +385,13 @@ Action add_continue_command(CLI::App& app) {
     if (o->cycles) {
       const std::vector<CycleBranch> cycles = follow_cycles(p, run, o->cycle);
       const auto cycles_file = out.stage(dir / fmt::format("cycles_{}.csv", name), cycles_csv(cycles, param, header));
-      out.stage(dir / fmt::format("cycle_special_{}.csv", name), cycle_specials_csv(cycles, param, header));
+      const auto cycle_specials =
+          out.stage(dir / fmt::format("cycle_special_{}.csv", name), cycle_specials_csv(cycles, param, header));
       if (o->chart)
         run_gnuplot(plots_dir() / "cycles.gp",
                     {{"branches", branches.string()},
                      {"cycles", cycles_file.string()},
+                     {"specials", cycle_specials.string()},
                      {"png", out.reserve(dir / fmt::format("cycles_{}.png", name)).string()},
                      {"param", name},
                      {"unit", std::string(unit(param.quantity))},
