@@ -3,6 +3,7 @@
 // Hopf points found are continued in two parameters (stability boundaries).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/suggest.hpp"
+#include "abu/dynamics/periodic_orbits.hpp"
 #include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
@@ -33,6 +35,8 @@ struct ContinueOptions {
   BalancedSampling sampling;  // n >= 3 balls
   bool chart = true;
   std::string output_dir = "out";
+  bool cycles = false;  // follow the periodic orbits of every Hopf point (model.md §17)
+  CycleOptions cycle;
 };
 
 // True if setting `a` changes a value `b` also sets (m and m1, or m2 and m2): two axes or
@@ -103,6 +107,105 @@ void stage_boundaries(OutputTransaction& out, const BoundaryRunT& boundaries, co
       if (boundaries.curves[c].stop[std::size_t(end)] == StopReason::step_underflow)
         fmt::print(stderr, "warning: curve {}: {}\n", c + 1, boundaries.curves[c].stop_detail[std::size_t(end)]);
   fmt::print(stderr, "{} boundary curves -> {}\n", boundaries.curves.size(), dir.string());
+}
+
+// The cycle branches of every Hopf point of `run` (mirror images, the same parameter
+// on the other balanced branch, skipped), model.md §17.
+std::vector<CycleBranch> follow_cycles(const Params& p, const ContinuationRun& run, const CycleOptions& o) {
+  std::vector<CycleBranch> out;
+  std::vector<long double> done;
+  for (const auto& b : run.branches)
+    for (const auto& s : b.specials) {
+      if (s.label != Label::HB || !s.converged) continue;
+      const bool seen = std::any_of(done.begin(), done.end(), [&](long double d) {
+        return std::abs(d - s.parameter) <= 1e-9L * std::max(std::abs(d), 1e-300L);
+      });
+      if (seen) continue;
+      done.push_back(s.parameter);
+      fmt::print(stderr, "cycles from the Hopf point at {} = {:.10g} ...\n", to_string(run.param), double(s.parameter));
+      out.push_back(continue_cycles(p, run.param, s, run.from, run.to, o));
+    }
+  return out;
+}
+
+// cycles_NAME.csv: one row per orbit, columns by name (docs/guide.md, model.md §17).
+std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& param, const std::string& header) {
+  const std::string name = to_string(param);
+  std::string s = header;
+  s += fmt::format(
+      "# periodic orbits (limit cycles) born at the Hopf points, by multiple shooting (docs/model.md §17), rotating frame\n"
+      "# columns: cycle (1-based, one per Hopf point), point, {} [{}], period [s], amplitude = max |q| over the orbit [m]\n"
+      "#   (|q| is the fixed-frame whirl radius), stable (1: every nontrivial Floquet multiplier inside the unit circle),\n"
+      "#   trivial_distance = |mu - 1| of the flow direction's multiplier (0 exactly; its size is the orbit's accuracy),\n"
+      "#   beta<i>_min, beta<i>_max [rad] the range of ball i's angle over the orbit,\n"
+      "#   mult_re<k>, mult_im<k>, mult_logmod<k>: the 8 Floquet multipliers by modulus, descending (ln|mu|: moduli\n"
+      "#   below 1e-308 show as 0 in mult_re/mult_im; -1e308: exactly 0),\n"
+      "#   q1_0 .. dbeta2_0: the state at the orbit's phase origin (SI, model.md (2.2)): a start for `simulate --from-state`\n",
+      name, unit(param.quantity));
+  for (std::size_t c = 0; c < cycles.size(); ++c) {
+    const CycleBranch& b = cycles[c];
+    s += fmt::format("# cycle {}: Hopf point {} = {} (omega_H = {} rad/s, l1 = {}, dRe(lambda)/d{} = {}); {} orbits",
+                     c + 1, name, b.hopf_parameter, b.hopf_frequency, b.lyapunov, name, b.real_part_slope,
+                     b.orbits.size());
+    s += b.reason.empty() ? std::string("; ended at the end of the interval\n") : "; ended: " + escaped(b.reason) + "\n";
+    const auto incomplete = std::count_if(b.orbits.begin(), b.orbits.end(), [](const CycleOrbit& o) {
+      return o.multipliers.size() != 8 || o.ball_min.size() != 2;
+    });
+    if (incomplete > 0)
+      s += fmt::format("# cycle {}: {} orbits not written: their multipliers or their samples could not be computed\n",
+                       c + 1, incomplete);
+    for (const CycleSpecial& sp : b.specials)
+      s += fmt::format("# cycle {}: {} at {} = {}, period {} s, amplitude {} m ({})\n", c + 1, sp.label, name, sp.parameter,
+                       sp.period, sp.amplitude, sp.note);
+  }
+  s += fmt::format("cycle,point,{},period,amplitude,stable,trivial_distance,beta1_min,beta1_max,beta2_min,beta2_max", name);
+  for (int k = 1; k <= 8; ++k) s += fmt::format(",mult_re{0},mult_im{0},mult_logmod{0}", k);
+  s += ",q1_0,q2_0,beta1_0,beta2_0,dq1_0,dq2_0,dbeta1_0,dbeta2_0\n";
+  for (std::size_t c = 0; c < cycles.size(); ++c)
+    for (std::size_t i = 0; i < cycles[c].orbits.size(); ++i) {
+      const CycleOrbit& o = cycles[c].orbits[i];
+      if (o.multipliers.size() != 8 || o.ball_min.size() != 2) continue;  // no partial rows (counted above)
+      s += fmt::format("{},{},{},{},{},{},{},{},{},{},{}", c + 1, i, o.parameter, o.period, o.amplitude, o.stable() ? 1 : 0,
+                       o.trivial_distance, o.ball_min[0], o.ball_max[0], o.ball_min[1], o.ball_max[1]);
+      for (std::size_t k = 0; k < 8; ++k) {
+        const double lm = std::isfinite(o.log_moduli[k]) ? o.log_moduli[k] : -1e308;
+        s += fmt::format(",{},{},{}", o.multipliers[k].real(), o.multipliers[k].imag(), lm);
+      }
+      for (double v : o.state0) s += fmt::format(",{}", v);
+      s += "\n";
+    }
+  return s;
+}
+
+// cycle_special_NAME.csv: the LPC, PD and NS points of the cycle branches.
+std::string cycle_specials_csv(const std::vector<CycleBranch>& cycles, const ParamRef& param, const std::string& header) {
+  std::string s = header;
+  s += "# special points of the cycle branches: LPC fold of cycles, PD period doubling, NS Neimark-Sacker (docs/model.md §17.5);\n"
+       "#   located at the zero of the test function, interpolated between the two converged orbits around it\n";
+  s += fmt::format("cycle,label,{},period,amplitude\n", to_string(param));
+  for (std::size_t c = 0; c < cycles.size(); ++c)
+    for (const CycleSpecial& sp : cycles[c].specials)
+      s += fmt::format("{},{},{},{},{}\n", c + 1, sp.label, sp.parameter, sp.period, sp.amplitude);
+  return s;
+}
+
+// Exit 3 for a cycle branch that did not reach the end of its interval for a numerical
+// reason (the first orbit, the corrector at the minimum step, out of steps).
+int cycles_exit(const std::vector<CycleBranch>& cycles) {
+  int code = exit_ok;
+  for (std::size_t c = 0; c < cycles.size(); ++c) {
+    const CycleBranch& b = cycles[c];
+    const bool failed = b.orbits.empty() || b.end == arclength::End::step_underflow ||
+                        b.end == arclength::End::max_steps || b.end == arclength::End::edge_not_reached;
+    fmt::print(stderr, "cycle {}: {} orbits, {} LPC/PD/NS{}\n", c + 1, b.orbits.size(), b.specials.size(),
+               b.reason.empty() ? std::string() : "; " + escaped(b.reason));
+    if (failed) {
+      fmt::print(stderr, "stability-scan: numerical failure: cycle {} (Hopf point at {}): {}\n", c + 1, b.hopf_parameter,
+                 escaped(b.reason));
+      code = exit_numerical;
+    }
+  }
+  return code;
 }
 
 // The run's one-line account (`what`: "N branches" and more), and its exit code: a
@@ -209,11 +312,28 @@ Action add_continue_command(CLI::App& app) {
   sub->add_flag("!--no-chart", o->chart, "Skip the PNG chart");
   sub->add_option("-o,--output-dir", o->output_dir, "Directory for branch_NAME.csv, special_NAME.csv and the chart")
       ->capture_default_str();
+  sub->add_flag("--cycles", o->cycles,
+                "Also follow the periodic orbits born at every Hopf point (two balls): cycles_NAME.csv with periods, "
+                "amplitudes and Floquet multipliers, cycle_special_NAME.csv (LPC, PD, NS), cycles_NAME.png "
+                "(docs/model.md §17)");
+  sub->add_option("--cycle-steps", o->cycle.continuation.max_steps, "Continuation steps per cycle branch")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sub->add_option("--cycle-rtol", o->cycle.rtol,
+                  "Integrator tolerance of the cycles' flows and transition matrices (scaled state)")
+      ->check(CLI::Range(1e-15, 1e-3))
+      ->capture_default_str();
+  sub->add_option("--cycle-intervals", o->cycle.intervals, "Shooting intervals per period")
+      ->check(CLI::Range(4, 10000))
+      ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->to = omega_input(o->scene, o->to);
     if (o->param2 == "omega") o->to2 = omega_input(o->scene, o->to2);
+    if (o->cycles && scene.balls.size() != 2)
+      throw InputError("--cycles", 0, "", fmt::format("periodic orbits are followed for two balls only (the scene has {})",
+                                                      scene.balls.size()));
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
@@ -261,8 +381,27 @@ Action add_continue_command(CLI::App& app) {
                        "boundary.gp",
                        fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)),
                        chart_subtitle(scene, o->scene.overrides));
+    int cycle_code = exit_ok;
+    if (o->cycles) {
+      const std::vector<CycleBranch> cycles = follow_cycles(p, run, o->cycle);
+      const auto cycles_file = out.stage(dir / fmt::format("cycles_{}.csv", name), cycles_csv(cycles, param, header));
+      const auto cycle_specials =
+          out.stage(dir / fmt::format("cycle_special_{}.csv", name), cycle_specials_csv(cycles, param, header));
+      if (o->chart)
+        run_gnuplot(plots_dir() / "cycles.gp",
+                    {{"branches", branches.string()},
+                     {"cycles", cycles_file.string()},
+                     {"specials", cycle_specials.string()},
+                     {"png", out.reserve(dir / fmt::format("cycles_{}.png", name)).string()},
+                     {"param", name},
+                     {"unit", std::string(unit(param.quantity))},
+                     {"title", fmt::format("{}: equilibria and periodic orbits in {}", scene.file, name)},
+                     {"subtitle", chart_subtitle(scene, o->scene.overrides)}});
+      cycle_code = cycles_exit(cycles);
+    }
     out.commit();
-    return finish(run, fmt::format("{} branches", run.branches.size()), dir);
+    const int code = finish(run, fmt::format("{} branches", run.branches.size()), dir);
+    return code != exit_ok ? code : cycle_code;
   };
 }
 

@@ -1,0 +1,97 @@
+// Periodic orbits (limit cycles) of the two-ball model at constant speed, born at the
+// Hopf points of an equilibrium continuation and followed in one parameter with the
+// project's pseudo-arclength engine (continuation/arclength.hpp), by multiple shooting
+// (docs/model.md §17: the choice argued, the equations, the multipliers, LPC/PD/NS).
+//
+// Unknowns (scaled, model.md §17.2): the states y_1..y_M at M equally spaced times of
+// the orbit (y = D^-1 x, D = diag(L, L, 1, 1, L w_H, L w_H, w_H, w_H)), the period
+// T / T_H and the parameter mapped to [0, 1] over the requested interval. Equations:
+// phi(y_j, T / M) - y_{j+1} = 0 (cyclic) and a phase condition on y_1. Each flow and its
+// transition matrix come from GSL odeiv2 on the variational equations (bsimp with the
+// analytic Jacobian when the spectrum is stiff, else rk8pd). The Floquet multipliers
+// are the eigenvalues of the product of the M transition matrices, computed factor by
+// factor (linear/floquet.hpp).
+//
+//   abu::ContinuationRun run = abu::continue_branches(p, ref, 2000.0, options);
+//   for (const abu::SpecialPoint& hb : hopf points of run)
+//     abu::CycleBranch c = abu::continue_cycles(p, ref, hb, run.from, run.to, abu::CycleOptions{});
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "abu/continuation/arclength.hpp"
+#include "abu/continuation/continuation.hpp"
+#include "abu/core/params.hpp"
+#include "abu/core/status.hpp"
+
+namespace abu {
+
+struct CycleOptions {
+  int intervals = 40;          ///< M shooting intervals per period
+  double rtol = 1e-13;         ///< integrator tolerance on the scaled state and transition matrices
+  /// Scaled amplitude |z| ||D^-1 q_H|| of the first orbit (model.md (17.3)): small enough
+  /// for the normal form, large enough to stay off the Hopf point's singular Jacobian.
+  double first_amplitude = 2e-3;
+  double max_period_factor = 50;  ///< the branch ends where T > this * 2 pi / w_H (homoclinic approach)
+  int samples_per_interval = 16;  ///< for the amplitude and the ball angle range
+  ContinuationOptions continuation{0.02, 1e-7, 0.1, 300, 1};
+};
+
+/// One converged orbit.
+struct CycleOrbit {
+  double parameter = 0;
+  double period = 0;     ///< [s]
+  double amplitude = 0;  ///< max |q| over the orbit [m] (rotating frame: |q| is the fixed-frame whirl radius, §2)
+  std::vector<double> ball_min, ball_max;  ///< range of each ball angle beta_i over the orbit [rad]
+  /// All 2n + 4 multipliers, by modulus, descending; log_moduli keeps moduli below 1e-308.
+  std::vector<std::complex<double>> multipliers;
+  std::vector<double> log_moduli;
+  double trivial_distance = 0;  ///< |mu - 1| of the multiplier closest to 1 (the flow direction)
+  int unstable = 0;             ///< nontrivial multipliers with |mu| > 1
+  bool stable() const { return unstable == 0; }
+  Status floquet_status;
+  std::vector<double> state0;   ///< x(0) in SI (model.md (2.2)), the orbit's phase origin
+};
+
+/// A located special point of a cycle branch: LPC (fold of cycles), PD (a multiplier
+/// crosses -1), NS (a complex pair crosses the unit circle).
+struct CycleSpecial {
+  std::string label;  ///< "LPC", "PD", "NS"
+  double parameter = 0, period = 0, amplitude = 0;
+  std::string note;
+};
+
+struct CycleBranch {
+  // The Hopf point it starts from.
+  double hopf_parameter = 0, hopf_frequency = 0, lyapunov = 0;
+  double real_part_slope = 0;  ///< d Re(lambda) / dp at the Hopf point [1/s per unit of p]
+  /// |z|^2 = -slope (p - p_H) / (w_H l1): the normal form's amplitude law (model.md (17.3))
+  std::vector<CycleOrbit> orbits;
+  std::vector<CycleSpecial> specials;
+  arclength::End end = arclength::End::max_steps;
+  Status status;
+  std::string reason;  ///< where and why it ended when not at the interval's end
+  long steps = 0, newton_iterations = 0, flow_evaluations = 0;
+};
+
+/// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in
+/// `param` and follows it within [from, to] (either order).
+CycleBranch continue_cycles(const Params& p, ParamRef param, const SpecialPoint& hopf, double from, double to,
+                            const CycleOptions& options);
+
+/// The normal-form prediction at a Hopf point: the orbit x_H + 2 Re(z q e^{i w t}) at
+/// p_H + dp, q the critical eigenvector with <q, q> = 1 (model.md (17.3)); false if the
+/// Hopf point is degenerate (l1 = 0 or the crossing not transversal).
+struct HopfPrediction {
+  std::vector<std::complex<double>> eigenvector;  ///< q, SI state order
+  double slope = 0;                               ///< d Re lambda / dp
+  /// The predicted max |q| for a given p: sqrt(-slope (p - p_H) / (w l1)) * (the largest
+  /// 2|Re(q_12 e^{i theta})|), the coefficient being `amplitude_coefficient`.
+  double amplitude_coefficient = 0;
+  bool ok = false;
+};
+HopfPrediction predict_from_hopf(const Params& p, ParamRef param, const SpecialPoint& hopf);
+
+}  // namespace abu

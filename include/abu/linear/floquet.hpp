@@ -1,0 +1,66 @@
+// The eigenvalues of a product of matrices P = A_m ... A_2 A_1 without forming P: the
+// Floquet multipliers of a periodic orbit from its short-interval transition matrices
+// (docs/model.md §17.4), accurate when most of them are tiny (stiff ball modes give
+// multipliers of 1e-300 and below, which the eigenvalues of an explicitly multiplied P
+// lose entirely: their absolute error is eps |P|).
+//
+// Method (an equivalent of the periodic Schur decomposition of Bojanczyk, Golub and
+// Van Dooren, model.md §17.4): orthogonal iteration on the cyclic product carried out
+// factor by factor,
+//     A_k Q_{k-1} = Q_k R_k   (QR, k = 1..m),   then Q_0 <- Q_m,
+// until W = Q_0^T Q_m is block upper triangular: a boundary between the leading j
+// columns and the rest converges like |mu_{j+1} / mu_j| per sweep. Every transformation
+// is orthogonal and applied to one factor, and dropping the converged lower blocks of W
+// perturbs the last factor by |W_21| |A_m|, so the multipliers are exact for factors
+// perturbed by a few eps relative to each factor (the backward error of periodic QR),
+// not to their product. The eigenvalues of each diagonal block (a cluster of
+// comparable moduli, a complex pair) are those of the product of the factors' diagonal
+// blocks, multiplied out after scaling each by its norm (the scales kept as logarithms,
+// so moduli far below 1e-308 keep their log).
+//
+//   std::vector<Eigen::MatrixXd> factors = ...;          // A_1 first
+//   abu::ProductEigenvalues e = abu::product_eigenvalues(factors);
+//   if (e.status.ok()) ... e.values[0] (largest modulus), e.log_moduli[0] ...
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "abu/core/status.hpp"
+
+namespace abu {
+
+struct ProductEigenvalueOptions {
+  /// A block of W = Q_0^T Q_m below this (Frobenius) counts as zero: the backward error
+  /// it leaves in the last factor, relative to its norm.
+  double tolerance = 1e-13;
+  /// Sweeps of orthogonal iteration at most; a boundary still above the tolerance then
+  /// (moduli within a factor (tolerance)^(1/max_sweeps) of each other, or a complex
+  /// pair) joins its neighbours in one cluster.
+  int max_sweeps = 120;
+};
+
+struct ProductEigenvalues {
+  /// The eigenvalues of A_m ... A_1, sorted by modulus, descending (a complex pair:
+  /// positive imaginary part first). A modulus below the smallest double shows as 0;
+  /// its logarithm is in log_moduli.
+  std::vector<std::complex<double>> values;
+  std::vector<double> log_moduli;  ///< ln |value|, finite for nonsingular factors (-inf: singular)
+  /// arg value in (-pi, pi] [rad], to full accuracy also where value is subnormal or 0.
+  std::vector<double> arguments;
+  /// Sizes of the clusters whose eigenvalues came from one small explicit product (1: a
+  /// real eigenvalue separated from every other by the iteration), largest modulus first.
+  std::vector<int> clusters;
+  int sweeps = 0;
+  /// Largest |W_21| over the boundaries kept: the backward error in the last factor.
+  double backward_error = 0;
+  Status status;  ///< numerical_issue: empty or mis-sized input, a non-finite entry
+};
+
+/// Eigenvalues of factors.back() * ... * factors.front(), all square of one size.
+ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
+                                       const ProductEigenvalueOptions& options = {});
+
+}  // namespace abu

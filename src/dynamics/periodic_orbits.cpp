@@ -1,0 +1,541 @@
+// Periodic orbits by multiple shooting, continued with the arclength engine
+// (periodic_orbits.hpp, docs/model.md §17).
+#include "abu/dynamics/periodic_orbits.hpp"
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <array>
+#include <functional>
+#include <optional>
+
+#include "abu/core/cancel.hpp"
+#include "abu/core/gsl_errors.hpp"
+#include "abu/linear/floquet.hpp"
+#include "abu/model/model.hpp"
+
+namespace abu {
+namespace {
+
+constexpr int kDim = 8;       // 2 n + 4, n = 2
+constexpr int kColumns = 9;   // the transition matrix and the parameter sensitivity
+constexpr int kAugmented = kDim * (1 + kColumns);
+using State8 = State<double, 2>;
+using Matrix8 = StateMatrix<double, 2>;
+
+// The scaled flow y = D^-1 x (model.md §17.2) and its variational equations
+// Phi' = J~ Phi, z' = J~ z + D^-1 f_p * span (z: dy/d(scaled parameter)).
+struct FlowContext {
+  Params p;
+  ParamRef ref;
+  Eigen::Matrix<double, kDim, 1> scale;  // D
+  double span = 1;                       // d p / d (scaled parameter)
+  bool variational = true;
+  long evaluations = 0;
+  State8 unscale(const double* y) const {
+    State8 x;
+    for (int i = 0; i < kDim; ++i) x(i) = scale(i) * y[i];
+    return x;
+  }
+  Matrix8 scaled_jacobian(const State8& x) const {
+    Matrix8 J = jacobian(p, x);
+    return scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+  }
+};
+
+int flow_rhs(double, const double y[], double dydt[], void* params) {
+  auto& c = *static_cast<FlowContext*>(params);
+  ++c.evaluations;
+  const State8 x = c.unscale(y);
+  const State8 f = vector_field(c.p, x);
+  for (int i = 0; i < kDim; ++i) dydt[i] = f(i) / c.scale(i);
+  if (c.variational) {
+    const Matrix8 J = c.scaled_jacobian(x);
+    const State8 fp = parameter_derivative(c.p, x, c.ref);
+    for (int k = 0; k < kColumns; ++k) {
+      const Eigen::Map<const Eigen::Matrix<double, kDim, 1>> col(y + kDim * (1 + k));
+      Eigen::Map<Eigen::Matrix<double, kDim, 1>> out(dydt + kDim * (1 + k));
+      out.noalias() = J * col;
+      if (k == kColumns - 1)
+        for (int i = 0; i < kDim; ++i) out(i) += fp(i) * c.span / c.scale(i);
+    }
+  }
+  for (int i = 0; i < (c.variational ? kAugmented : kDim); ++i)
+    if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
+  return GSL_SUCCESS;
+}
+
+// For the implicit stepper: J~ on the state and on every variational column (the
+// columns' dependence on the state, second derivatives of f, is left out: it changes
+// the stepper's Newton-like stage solves, not the solution the error control accepts).
+int flow_jacobian(double, const double y[], double* dfdy, double dfdt[], void* params) {
+  auto& c = *static_cast<FlowContext*>(params);
+  const int dim = c.variational ? kAugmented : kDim;
+  const Matrix8 J = c.scaled_jacobian(c.unscale(y));
+  std::fill(dfdy, dfdy + dim * dim, 0.0);
+  for (int b = 0; b < dim / kDim; ++b)
+    for (int i = 0; i < kDim; ++i)
+      for (int j = 0; j < kDim; ++j) dfdy[(b * kDim + i) * dim + b * kDim + j] = J(i, j);
+  std::fill(dfdt, dfdt + dim, 0.0);
+  if (!J.allFinite()) return GSL_EBADFUNC;
+  return GSL_SUCCESS;
+}
+
+// One GSL stepper/control/evolve set for a system size.
+class Integrator {
+ public:
+  Integrator(const gsl_odeiv2_step_type* type, int dim, double rtol)
+      : dim_(dim), step_(gsl_odeiv2_step_alloc(type, std::size_t(dim))),
+        control_(gsl_odeiv2_control_standard_new(rtol, rtol, 1.0, 0.0)),
+        evolve_(gsl_odeiv2_evolve_alloc(std::size_t(dim))) {}
+  ~Integrator() {
+    gsl_odeiv2_evolve_free(evolve_);
+    gsl_odeiv2_control_free(control_);
+    gsl_odeiv2_step_free(step_);
+  }
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
+  // Integrates y over [0, h] (stopping at every target in between); false with why.
+  bool run(FlowContext& c, double* y, double h, const std::vector<double>& targets,
+           const std::function<void(const double*)>& at_target, std::string_view& why) {
+    gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(dim_), &c};
+    gsl_odeiv2_evolve_reset(evolve_);
+    gsl_odeiv2_step_reset(step_);
+    double t = 0, dt = std::min(first_step_, h);
+    for (double target : targets) {
+      while (t < target) {
+        const int st = gsl_odeiv2_evolve_apply(evolve_, control_, step_, &sys, &t, target, &dt, y);
+        if (st != GSL_SUCCESS) {
+          why = "the integrator failed (a non-finite field or a step below rounding)";
+          return false;
+        }
+        if (++steps_ > 50'000'000) {
+          why = "the integrator needed more than 5e7 steps";
+          return false;
+        }
+      }
+      if (at_target) at_target(y);
+    }
+    first_step_ = std::max(dt, 1e-12 * h);
+    return true;
+  }
+
+ private:
+  int dim_;
+  gsl_odeiv2_step* step_;
+  gsl_odeiv2_control* control_;
+  gsl_odeiv2_evolve* evolve_;
+  double first_step_ = 1e-6;
+  long steps_ = 0;
+};
+
+// Parabola through three equally spaced samples: the extreme value.
+double parabolic_peak(double a, double b, double c) {
+  const double den = a - 2 * b + c;
+  if (den == 0) return b;
+  const double s = 0.5 * (a - c) / den;
+  if (std::abs(s) > 1) return b;
+  return b - 0.25 * (a - c) * s;
+}
+
+// The largest of cyclic uniform samples, refined by a parabola.
+double cyclic_max(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  const std::size_t k = std::size_t(std::max_element(v.begin(), v.end()) - v.begin());
+  return parabolic_peak(v[(k + n - 1) % n], v[k], v[(k + 1) % n]);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// The normal form at a Hopf point (model.md (17.3)).
+
+HopfPrediction predict_from_hopf(const Params& p0, ParamRef ref, const SpecialPoint& hopf) {
+  HopfPrediction out;
+  Params p = p0;
+  set(p, ref, double(hopf.parameter));
+  Coordinates<double, 2> s = hopf.position.cast<double>();
+  const State8 x = at_rest<double, 2>(s);
+  const Matrix8 J = jacobian(p, x);
+  const double w = hopf.frequency;
+  const Eigen::MatrixXd Jd = J, Jt = J.transpose();
+  Eigen::EigenSolver<Eigen::MatrixXd> er(Jd), el(Jt);
+  if (er.info() != Eigen::Success || el.info() != Eigen::Success) return out;
+  Eigen::Index ir = 0, il = 0;
+  const std::complex<double> iw(0, w);
+  const Eigen::Matrix<std::complex<double>, kDim, 1> lr = er.eigenvalues(), ll = el.eigenvalues();
+  for (Eigen::Index i = 1; i < kDim; ++i) {
+    if (std::abs(lr(i) - iw) < std::abs(lr(ir) - iw)) ir = i;
+    if (std::abs(ll(i) + iw) < std::abs(ll(il) + iw)) il = i;
+  }
+  const Eigen::Matrix<std::complex<double>, kDim, kDim> vr = er.eigenvectors(), vl = el.eigenvectors();
+  Eigen::VectorXcd q = vr.col(ir);
+  q /= q.norm();
+  Eigen::VectorXcd pl = vl.col(il);
+  const std::complex<double> c = pl.dot(q);  // p^H q
+  if (std::abs(c) == 0) return out;
+  pl /= std::conj(c);
+  // dJ/dp along the equilibrium branch: x_eq'(p) = -J^-1 f_p, central differences of J.
+  const State8 fp = parameter_derivative(p, x, ref);
+  const State8 dx = -J.partialPivLu().solve(fp);
+  const double h = 1e-6 * std::max(std::abs(double(hopf.parameter)), 1e-12);
+  Params pa = p, pb = p;
+  set(pa, ref, double(hopf.parameter) + h);
+  set(pb, ref, double(hopf.parameter) - h);
+  const State8 xa = x + h * dx, xb = x - h * dx;
+  const Eigen::MatrixXd dJ = (Eigen::MatrixXd(jacobian(pa, xa)) - Eigen::MatrixXd(jacobian(pb, xb))) / (2 * h);
+  const std::complex<double> dlambda = pl.dot(dJ.cast<std::complex<double>>() * q);
+  out.slope = dlambda.real();
+  out.eigenvector.assign(q.data(), q.data() + q.size());
+  const Eigen::Vector2cd a = q.head<2>();
+  const double major = 2 * std::sqrt(0.5 * (a.squaredNorm() + std::abs(a.dot(a.conjugate()))));
+  const double l1 = hopf.lyapunov;
+  if (!(l1 != 0 && out.slope != 0 && w > 0)) return out;
+  out.amplitude_coefficient = std::sqrt(std::abs(out.slope / (w * l1))) * major;
+  out.ok = std::isfinite(out.amplitude_coefficient);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// The shooting problem for the engine.
+
+namespace {
+
+struct Evaluated {
+  Eigen::VectorXd u;
+  Eigen::VectorXd residual;
+  Eigen::MatrixXd jacobian;
+  std::vector<Eigen::MatrixXd> transitions;
+  bool ok = false;
+  std::string_view why;
+};
+
+class CycleProblem {
+ public:
+  using Vec = Eigen::VectorXd;
+  using Jacobian = Eigen::MatrixXd;
+  static constexpr std::size_t test_count = 3;  // LPC, PD, NS
+  static constexpr bool tangent_at_solution = true;
+
+  CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
+               const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
+      : o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
+        full_(type, kAugmented, o.rtol), plain_(type, kDim, o.rtol) {
+    ctx_.p = p;
+    ctx_.ref = ref;
+    ctx_.scale = scale;
+    ctx_.span = to - from;
+  }
+
+  int size() const { return kDim * m_ + 2; }
+  int period_index() const { return kDim * m_; }
+  int param_index() const { return kDim * m_ + 1; }
+  double parameter(const Vec& u) const { return from_ + u(param_index()) * (to_ - from_); }
+  double period(const Vec& u) const { return u(period_index()) * period_h_; }
+
+  void set_phase(const Vec& u) {
+    y_ref_ = u.head<kDim>();
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    double f[kDim];
+    flow_rhs(0, y_ref_.data(), f, &ctx_);
+    f_ref_ = Eigen::Map<Eigen::Matrix<double, kDim, 1>>(f);
+    const double n = f_ref_.norm();
+    if (n > 0) f_ref_ /= n;
+  }
+
+  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
+  const Evaluated& at(const Vec& u) const {
+    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+    throw_if_stopped("cycle continuation");
+    Evaluated& e = cache_;
+    e.u = u;
+    e.ok = true;
+    e.why = {};
+    const int n = size();
+    e.residual = Vec::Zero(n - 1);
+    e.jacobian = Jacobian::Zero(n - 1, n);
+    e.transitions.assign(std::size_t(m_), Eigen::MatrixXd::Identity(kDim, kDim));
+    const double T = period(u), h = T / m_;
+    ctx_.variational = true;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    if (!(h > 0) || !std::isfinite(h)) {
+      e.ok = false;
+      e.why = "the period is not positive";
+      e.residual.setConstant(1e300);
+      return e;
+    }
+    std::vector<double> y(kAugmented);
+    for (int j = 0; j < m_; ++j) {
+      std::fill(y.begin(), y.end(), 0.0);
+      for (int i = 0; i < kDim; ++i) y[std::size_t(i)] = u(kDim * j + i), y[std::size_t(kDim * (1 + i) + i)] = 1.0;
+      std::string_view why;
+      if (!full_.run(ctx_, y.data(), h, {h}, {}, why)) {
+        e.ok = false;
+        e.why = why;
+        e.residual.setConstant(1e300);
+        return e;
+      }
+      const int next = (j + 1) % m_;
+      for (int i = 0; i < kDim; ++i) e.residual(kDim * j + i) = y[std::size_t(i)] - u(kDim * next + i);
+      const Eigen::Map<const Eigen::Matrix<double, kDim, kDim>> phi(y.data() + kDim);
+      e.transitions[std::size_t(j)] = phi;
+      e.jacobian.block(kDim * j, kDim * j, kDim, kDim) = phi;
+      e.jacobian.block(kDim * j, kDim * next, kDim, kDim) -= Eigen::MatrixXd::Identity(kDim, kDim);
+      // d/d(T / T_H): the field at the end times dh/d(T/T_H) = T_H / M.
+      double f[kDim];
+      ctx_.variational = false;
+      flow_rhs(0, y.data(), f, &ctx_);
+      ctx_.variational = true;
+      for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, period_index()) = f[i] * period_h_ / m_;
+      for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, param_index()) = y[std::size_t(kDim * kColumns + i)];
+    }
+    e.residual(n - 2) = (u.head<kDim>() - y_ref_).dot(f_ref_);
+    e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
+    flows_ += m_;
+    return e;
+  }
+
+  Vec residual(const Vec& u) const { return at(u).residual; }
+  Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
+  double residual_size(const Vec& u) const {
+    const Evaluated& e = at(u);
+    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
+  }
+  arclength::NewtonSettings newton() const {
+    // The residual is an integration to rtol: Newton stops at its noise level, not at eps.
+    arclength::NewtonSettings s;
+    s.max_iterations = 10;
+    s.step_tolerance = 10 * o_.rtol;
+    s.stall_tolerance = 1e7 * o_.rtol;
+    s.residual_tolerance = 1e3 * o_.rtol;
+    return s;
+  }
+
+  arclength::Crossing crossing(const Vec&, const Vec& to) const {
+    if (!(to(period_index()) > 0)) return arclength::Crossing::leaving("the period went to zero");
+    if (to(period_index()) > o_.max_period_factor)
+      return arclength::Crossing::leaving(fmt::format("the period exceeded {:g} times 2 pi / omega_H (a homoclinic "
+                                                      "approach?)", o_.max_period_factor));
+    return arclength::box_crossing(to, {param_index()});
+  }
+
+  // The orbit at u: Floquet multipliers, amplitude, ball ranges; the test functions.
+  arclength::Evaluation<double, 3> evaluate(const Vec& u, const Vec& t, const Jacobian&, arclength::Stage) {
+    const Evaluated& e = at(u);
+    arclength::Evaluation<double, 3> out;
+    CycleOrbit orbit;
+    orbit.parameter = parameter(u);
+    orbit.period = period(u);
+    const ProductEigenvalues f = product_eigenvalues(e.transitions);
+    orbit.floquet_status = f.status;
+    orbit.multipliers = f.values;
+    orbit.log_moduli = f.log_moduli;
+    std::size_t trivial = 0;
+    for (std::size_t i = 0; i < f.values.size(); ++i)
+      if (std::abs(f.values[i] - 1.0) < std::abs(f.values[trivial] - 1.0)) trivial = i;
+    orbit.trivial_distance = f.values.empty() ? 1.0 : std::abs(f.values[trivial] - 1.0);
+    std::complex<double> pd = 1, ns = 1;
+    for (std::size_t i = 0; i < f.values.size(); ++i) {
+      if (i == trivial) continue;
+      if (f.log_moduli[i] > 0) ++orbit.unstable;
+      pd *= 1.0 + f.values[i];
+      for (std::size_t j = i + 1; j < f.values.size(); ++j)
+        if (j != trivial) ns *= f.values[i] * f.values[j] - 1.0;
+    }
+    out.tests = {t(param_index()), pd.real(), ns.real()};
+    if (!sample(u, orbit)) {
+      out.retry = true;  // (taken anyway below the retry floor: the CSV then skips the row, the note says so)
+      out.reason = "the orbit could not be sampled for its amplitude (the integrator failed)";
+    }
+    orbit.state0.resize(kDim);
+    for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
+    pending_ = orbit;
+    pending_tests_ = out.tests;
+    pending_pair_ = ns_is_complex(f, trivial);
+    return out;
+  }
+
+  void locate(unsigned changed, const arclength::Segment<Vec>&) {
+    static constexpr const char* labels[] = {"LPC", "PD", "NS"};
+    for (unsigned k = 0; k < 3; ++k) {
+      if (!(changed & (1u << k))) continue;
+      const double a = last_tests_[k], b = pending_tests_[k];
+      const double theta = a / (a - b);
+      CycleSpecial s;
+      s.label = labels[k];
+      s.parameter = last_.parameter + theta * (pending_.parameter - last_.parameter);
+      s.period = last_.period + theta * (pending_.period - last_.period);
+      s.amplitude = last_.amplitude + theta * (pending_.amplitude - last_.amplitude);
+      s.note = "interpolated between two converged orbits (the test function's zero)";
+      if (k == 2 && !pending_pair_) {
+        // Two real multipliers with product 1 (a neutral saddle cycle), not a torus.
+        continue;
+      }
+      specials_.push_back(s);
+    }
+  }
+
+  void commit(Vec& u, Vec&, arclength::Stage) {
+    orbits_.push_back(pending_);
+    last_ = pending_;
+    last_tests_ = pending_tests_;
+    set_phase(u);
+  }
+
+  std::vector<CycleOrbit> orbits_;
+  std::vector<CycleSpecial> specials_;
+  long flows() const { return flows_; }
+  const FlowContext& context() const { return ctx_; }
+
+ private:
+  static bool ns_is_complex(const ProductEigenvalues& f, std::size_t trivial) {
+    for (std::size_t i = 0; i < f.values.size(); ++i)
+      if (i != trivial && std::abs(f.log_moduli[i]) < 0.05 && f.values[i].imag() != 0) return true;
+    return false;
+  }
+
+  // Samples the orbit uniformly (samples_per_interval per interval): max |q| and the
+  // ball angles' extremes, each refined by a parabola through its neighbours.
+  bool sample(const Vec& u, CycleOrbit& orbit) {
+    const double h = period(u) / m_;
+    const int k = o_.samples_per_interval;
+    std::vector<double> targets;
+    for (int i = 1; i <= k; ++i) targets.push_back(h * i / k);
+    std::vector<double> qabs, b1, b2;
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    for (int j = 0; j < m_; ++j) {
+      double y[kDim];
+      for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
+      std::string_view why;
+      plain_.run(ctx_, y, h, targets, [&](const double* s) {
+        qabs.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
+        b1.push_back(s[2]);
+        b2.push_back(s[3]);
+      }, why);
+    }
+    if (qabs.size() != std::size_t(m_ * k)) return false;
+    orbit.amplitude = cyclic_max(qabs);
+    orbit.ball_max = {cyclic_max(b1), cyclic_max(b2)};
+    for (auto* v : {&b1, &b2})
+      for (double& x : *v) x = -x;
+    orbit.ball_min = {-cyclic_max(b1), -cyclic_max(b2)};
+    return true;
+  }
+
+  CycleOptions o_;
+  double from_, to_, period_h_;
+  int m_;
+  mutable FlowContext ctx_;
+  mutable Integrator full_;
+  Integrator plain_;
+  mutable Evaluated cache_;
+  mutable long flows_ = 0;
+  Eigen::Matrix<double, kDim, 1> y_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
+  Eigen::Matrix<double, kDim, 1> f_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
+  CycleOrbit pending_, last_;
+  std::array<double, 3> pending_tests_{}, last_tests_{};
+  bool pending_pair_ = false;
+};
+
+static_assert(arclength::Problem<CycleProblem>);
+
+}  // namespace
+
+CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& hopf, double from, double to,
+                            const CycleOptions& o) {
+  quiet_gsl_errors();
+  CycleBranch out;
+  out.hopf_parameter = double(hopf.parameter);
+  out.hopf_frequency = hopf.frequency;
+  out.lyapunov = hopf.lyapunov;
+  if (from > to) std::swap(from, to);
+  const auto fail = [&](Outcome why_kind, std::string why) {
+    out.status.merge(why_kind, "see reason");
+    out.reason = std::move(why);
+    return out;
+  };
+  if (hopf.label != Label::HB || !(hopf.frequency > 0))
+    return fail(Outcome::numerical_issue, "not a Hopf point with a positive frequency");
+  const HopfPrediction pred = predict_from_hopf(p0, ref, hopf);
+  out.real_part_slope = pred.slope;
+  if (!pred.ok)
+    return fail(Outcome::numerical_issue, fmt::format("degenerate Hopf point at {} = {:.10g}: l1 = {:g}, dRe(lambda)/dp = {:g}",
+                                                      to_string(ref), out.hopf_parameter, hopf.lyapunov, pred.slope));
+  Params p = p0;
+  const double pH = out.hopf_parameter, w = hopf.frequency;
+  set(p, ref, pH);
+  const Coordinates<double, 2> s = hopf.position.cast<double>();
+  const State8 xH = at_rest<double, 2>(s);
+  // Scaling D (model.md §17.2).
+  Eigen::Matrix<double, kDim, 1> D;
+  const double L = displacement_scale(p);
+  D << L, L, 1, 1, L * w, L * w, w, w;
+  // Stiff (ball modes far faster than the orbit): the implicit extrapolation stepper.
+  const Eigen::MatrixXd JH = jacobian(p, xH);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(JH, false);
+  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
+  const gsl_odeiv2_step_type* type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
+
+  CycleProblem problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+  // The first orbit from the normal form: scaled size first_amplitude.
+  Eigen::VectorXcd q(kDim);
+  for (int i = 0; i < kDim; ++i) q(i) = pred.eigenvector[std::size_t(i)];
+  const double qs = (D.cwiseInverse().cast<std::complex<double>>().asDiagonal() * q).norm();
+  double z = o.first_amplitude / qs;
+  double dp = -z * z * w * hopf.lyapunov / pred.slope;
+  if (pH + dp < from || pH + dp > to) {
+    const double room = dp > 0 ? to - pH : pH - from;
+    if (!(room > 0)) return fail(Outcome::numerical_issue, "the cycles are born outside the parameter interval");
+    z *= std::sqrt(0.5 * room / std::abs(dp));
+    dp = -z * z * w * hopf.lyapunov / pred.slope;
+  }
+  const State8 dxdp = -jacobian(p, xH).partialPivLu().solve(parameter_derivative(p, xH, ref));
+  const int M = o.intervals;
+  Eigen::VectorXd u(problem.size()), hopf_u(problem.size());
+  for (int j = 0; j < M; ++j) {
+    const double phase = 2 * std::numbers::pi * j / M;
+    const Eigen::VectorXcd osc = q * std::polar(1.0, phase);
+    for (int i = 0; i < kDim; ++i) {
+      u(kDim * j + i) = (xH(i) + dp * dxdp(i) + 2 * z * osc(i).real()) / D(i);
+      hopf_u(kDim * j + i) = xH(i) / D(i);
+    }
+  }
+  u(problem.period_index()) = hopf_u(problem.period_index()) = 1;
+  u(problem.param_index()) = (pH + dp - from) / (to - from);
+  hopf_u(problem.param_index()) = (pH - from) / (to - from);
+  problem.set_phase(u);
+  // Corrected at a fixed projection on the normal form's direction (its amplitude), the
+  // parameter free: well conditioned, where a fixed parameter is not (near omega_H the
+  // amplitude at fixed p is determined only through l1 |z|^2, model.md §17.3).
+  const Eigen::VectorXd fix = (u - hopf_u).normalized();
+  const auto first = arclength::correct(problem, u, fix);
+  if (!first.converged())
+    return fail(first.status, fmt::format("the first orbit near {} = {:.10g} (from the normal form) did not converge: {}",
+                                          to_string(ref), pH + dp, first.reason));
+  problem.set_phase(first.u);
+  const arclength::Start<CycleProblem> st =
+      arclength::start(problem, first.u, Eigen::VectorXd(first.u - hopf_u), false);
+  const auto r = arclength::trace(problem, st.u, st.tangent, st.jacobian, o.continuation);
+  out.orbits = std::move(problem.orbits_);
+  out.specials = std::move(problem.specials_);
+  out.end = r.end;
+  out.steps = r.stats.steps;
+  out.newton_iterations = r.stats.newton_iterations;
+  out.flow_evaluations = problem.flows();
+  if (r.end != arclength::End::end_of_interval) {
+    out.status.merge(r.status == Outcome::converged ? Outcome::converged : r.status, "see reason");
+    const double last = out.orbits.empty() ? pH : out.orbits.back().parameter;
+    out.reason = fmt::format("{} after {} = {:.10g}: {}", to_string(r.end), to_string(ref), last, r.reason);
+  }
+  return out;
+}
+
+}  // namespace abu

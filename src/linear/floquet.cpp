@@ -1,0 +1,144 @@
+// Eigenvalues of a product of matrices by factor-wise orthogonal iteration (floquet.hpp,
+// docs/model.md §17.4).
+#include "abu/linear/floquet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
+namespace abu {
+namespace {
+
+// A_k Q_{k-1} = Q_k R_k with diag(R_k) >= 0 (the sign choice makes W = Q_0^T Q_m tend to
+// the identity on converged real eigenvalues, so that the test below sees a fixed matrix).
+void qr_step(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q_in, Eigen::MatrixXd& q_out, Eigen::MatrixXd& r,
+             Eigen::MatrixXd& work) {
+  work.noalias() = a * q_in;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(work);
+  q_out = qr.householderQ();
+  r = qr.matrixQR().triangularView<Eigen::Upper>();
+  for (Eigen::Index j = 0; j < r.rows(); ++j)
+    if (r(j, j) < 0) {
+      r.row(j) *= -1;
+      q_out.col(j) *= -1;
+    }
+}
+
+}  // namespace
+
+ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
+                                       const ProductEigenvalueOptions& options) {
+  ProductEigenvalues out;
+  if (factors.empty()) {
+    out.status.merge(Outcome::numerical_issue, "no factors");
+    return out;
+  }
+  const Eigen::Index n = factors.front().rows();
+  for (const Eigen::MatrixXd& a : factors) {
+    if (a.rows() != n || a.cols() != n || n == 0) {
+      out.status.merge(Outcome::numerical_issue, "the factors are not square matrices of one size");
+      return out;
+    }
+    if (!a.allFinite()) {
+      out.status.merge(Outcome::numerical_issue, "a factor has a non-finite entry");
+      return out;
+    }
+  }
+  const std::size_t m = factors.size();
+  std::vector<Eigen::MatrixXd> r(m, Eigen::MatrixXd(n, n));
+  Eigen::MatrixXd q0 = Eigen::MatrixXd::Identity(n, n), qa(n, n), qb(n, n), work(n, n), w(n, n);
+  // history[s][j]: |W_21| at boundary j (leading j + 1 columns) after sweep s.
+  std::vector<std::vector<double>> history;
+  std::vector<char> kept(std::size_t(std::max<Eigen::Index>(n - 1, 0)), 0);
+  const double tol = options.tolerance;
+  for (int sweep = 1;; ++sweep) {
+    qa = q0;
+    for (std::size_t k = 0; k < m; ++k) {
+      qr_step(factors[k], qa, qb, r[k], work);
+      std::swap(qa, qb);
+    }
+    w.noalias() = q0.transpose() * qa;
+    std::vector<double> b(kept.size());
+    for (Eigen::Index j = 1; j < n; ++j) b[std::size_t(j - 1)] = w.bottomLeftCorner(n - j, j).norm();
+    history.push_back(b);
+    out.sweeps = sweep;
+    // A boundary is kept once below the tolerance in two consecutive sweeps (a complex
+    // pair's rotation could pass close to 0 once); it is given up when its observed rate
+    // over the last four sweeps would not bring it there within the budget.
+    bool undecided = false;
+    for (std::size_t j = 0; j < kept.size(); ++j) {
+      kept[j] = sweep >= 2 && b[j] <= tol && history[history.size() - 2][j] <= tol;
+      if (kept[j]) continue;
+      if (sweep < 6) {
+        undecided = true;
+        continue;
+      }
+      const double before = history[history.size() - 5][j];
+      const double rate = before > 0 ? std::pow(b[j] / before, 0.25) : 1.0;
+      const double needed = rate < 1 && b[j] > 0 ? std::log(tol / b[j]) / std::log(rate) + 1 : 1e300;
+      if (sweep + needed <= options.max_sweeps) undecided = true;
+    }
+    if (!undecided || sweep >= options.max_sweeps) break;
+    q0 = qa;  // the next sweep starts where this one ended (orthogonal iteration)
+  }
+  // The last sweep: Q_k^T A_k Q_{k-1} = R_k (k < m), Q_0^T A_m Q_{m-1} = W R_m.
+  const Eigen::MatrixXd last = w * r[m - 1];
+  std::vector<std::pair<double, std::complex<double>>> found;  // (log modulus, unit-modulus direction or 0)
+  Eigen::Index a = 0;
+  for (Eigen::Index j = 1; j <= n; ++j) {
+    if (j < n && !kept[std::size_t(j - 1)]) continue;
+    const Eigen::Index s = j - a;
+    if (j < n) out.backward_error = std::max(out.backward_error, history.back()[std::size_t(j - 1)]);
+    out.clusters.push_back(int(s));
+    // The cluster's block of the product, multiplied out with the running norm factored off.
+    Eigen::MatrixXd p = Eigen::MatrixXd::Identity(s, s);
+    double log_scale = 0;
+    bool singular = false;
+    for (std::size_t k = 0; k < m && !singular; ++k) {
+      const Eigen::MatrixXd block = k + 1 < m ? Eigen::MatrixXd(r[k].block(a, a, s, s)) : Eigen::MatrixXd(last.block(a, a, s, s));
+      p = block * p;
+      const double norm = p.norm();
+      if (!(norm > 0)) {
+        singular = true;
+        break;
+      }
+      p /= norm;
+      log_scale += std::log(norm);
+    }
+    if (singular) {
+      for (Eigen::Index i = 0; i < s; ++i) found.emplace_back(-std::numeric_limits<double>::infinity(), 0.0);
+    } else if (s == 1) {
+      found.emplace_back(log_scale + std::log(std::abs(p(0, 0))), p(0, 0) < 0 ? -1.0 : 1.0);
+    } else {
+      Eigen::EigenSolver<Eigen::MatrixXd> es(p, false);
+      if (es.info() != Eigen::Success) {
+        out.status.merge(Outcome::numerical_issue, "the eigenvalues of a cluster's product did not converge");
+        return out;
+      }
+      for (Eigen::Index i = 0; i < s; ++i) {
+        const std::complex<double> v = es.eigenvalues()(i);
+        const double modulus = std::abs(v);
+        if (modulus > 0)
+          found.emplace_back(log_scale + std::log(modulus), v / modulus);
+        else
+          found.emplace_back(-std::numeric_limits<double>::infinity(), 0.0);
+      }
+    }
+    a = j;
+  }
+  std::stable_sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
+    if (x.first != y.first) return x.first > y.first;
+    return x.second.imag() > y.second.imag();
+  });
+  for (const auto& [log_modulus, direction] : found) {
+    out.log_moduli.push_back(log_modulus);
+    out.arguments.push_back(std::arg(direction));
+    out.values.push_back(std::isfinite(log_modulus) ? std::exp(log_modulus) * direction : std::complex<double>(0.0));
+  }
+  return out;
+}
+
+}  // namespace abu
