@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The contract of `continue --cycles` (docs/model.md §17, docs/guide.md §7): bad input exit 2
+# The contract of `continue --cycles` (docs/model.md §17, docs/guide.md §8): bad input exit 2
 # with nothing written; a cycle branch cut short exit 3 with its orbits written; the CSV's
 # columns by name, multipliers sorted by modulus, no NaN; and, with a reference directory
 # given, one orbit against the independent reference (tests/reference/cycle_reference.py).
