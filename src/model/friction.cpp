@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <stdexcept>
 #include <type_traits>
 
 namespace abu {
@@ -50,6 +51,11 @@ T stribeck_level(const BallT<T>& b, const T& v) {
   return b.mu_c + (b.mu_s - b.mu_c) * exp(-x * x);
 }
 
+// LuGre's force depends on the bristle state z_i too (model.md §12): it has its own
+// (3n + 4) field in model/lugre.hpp, and every command that uses the (2n + 4) model
+// refuses a LuGre scene before it gets here.
+constexpr const char* kLugreHere = "friction law 'lugre' reached the (2n + 4) model (use model/lugre.hpp)";
+
 }  // namespace
 
 template <class T, int N>
@@ -66,6 +72,7 @@ T friction_force(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       const T normal = b.mass * b.race_radius * p.omega * p.omega;
       return -normal * stribeck_level(b, beta_dot) * smooth_sign(p.kappa, beta_dot);
     }
+    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
   }
   return T(0);
 }
@@ -88,6 +95,7 @@ T friction_slope(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       return -normal * (level_dv * smooth_sign(p.kappa, beta_dot) +
                         stribeck_level(b, beta_dot) * smooth_sign_dv(p.kappa, beta_dot));
     }
+    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
   }
   return T(0);
 }
@@ -138,6 +146,7 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
         default: return zero;
       }
     }
+    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
   }
   return zero;
 }
