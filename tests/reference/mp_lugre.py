@@ -50,8 +50,9 @@ class Lugre:
         self.sigma0, self.sigma1, self.sigma2, self.mu_c, self.mu_s, self.v_s = (float(values[k]) for k in LUGRE_KEYS)
 
 
-def load(path):
-    """A LuGre scene with [[ball]] tables (per-ball LuGre keys override [friction]'s)."""
+def load(path, omega=None):
+    """A LuGre scene with [[ball]] tables (per-ball LuGre keys override [friction]'s);
+    omega: the value of `--set omega=V` (the double the C++ parses)."""
     with open(path, "rb") as fh:
         doc = tomllib.load(fh)
     fr = doc["friction"]
@@ -65,7 +66,7 @@ def load(path):
         balls.append(ref.Ball(bt["mass"], bt["race_radius"], bt["radius"], bt.get("rolling", rolling)))
         lugre.append(Lugre({k: bt.get(k, fr.get(k)) for k in LUGRE_KEYS}))
     r = doc["rotor"]
-    p = ref.Params(r["mass"], r["stiffness"], r.get("damping", 0.0), r["unbalance"], doc["speed"]["omega"], balls,
+    p = ref.Params(r["mass"], r["stiffness"], r.get("damping", 0.0), r["unbalance"], doc["speed"]["omega"] if omega is None else omega, balls,
                    "none", None, source=str(path))
     p.lugre = lugre
     return p
@@ -300,12 +301,19 @@ def main():
     ap.add_argument("--compare", metavar="CSV")
     ap.add_argument("--at-balls")
     ap.add_argument("--rtol", type=float, default=1e-8)
+    ap.add_argument("--set", dest="overrides", action="append", default=[], help="omega=V only")
     a = ap.parse_args()
     try:
+        omega = None
+        for ov in a.overrides:
+            name, _, value = ov.partition("=")
+            if name.strip() != "omega":
+                raise ref.InputError(f"--set {ov}: the LuGre reference overrides omega only")
+            omega = float(value)
         if a.compare:
             if not a.scene:
                 raise ref.InputError("--compare CSV SCENE")
-            p = load(a.scene)
+            p = load(a.scene, omega)
             fails, count = compare(a.compare, p, mpf(a.rtol))
             for f in fails:
                 print("FAIL", f)
@@ -314,7 +322,7 @@ def main():
             return 1 if fails else 0
         if not a.scene:
             raise ref.InputError("a scene is required")
-        p = load(a.scene)
+        p = load(a.scene, omega)
         at = [float(b) for b in a.at_balls.split(",")] if a.at_balls else None
         print_rows(p, reference_rows(p, at))
         return 0
