@@ -1,5 +1,6 @@
 #include "abu/model/friction.hpp"
 
+#include "abu/core/errors.hpp"
 #include "abu/core/taylor.hpp"
 
 #include <cmath>
@@ -52,9 +53,11 @@ T stribeck_level(const BallT<T>& b, const T& v) {
 }
 
 // LuGre's force depends on the bristle state z_i too (model.md §12): it has its own
-// (3n + 4) field in model/lugre.hpp, and every command that uses the (2n + 4) model
-// refuses a LuGre scene before it gets here.
-constexpr const char* kLugreHere = "friction law 'lugre' reached the (2n + 4) model (use model/lugre.hpp)";
+// (3n + 4) field in model/lugre.hpp. The CLI commands that use the (2n + 4) model refuse
+// a LuGre scene up front; any other caller (the Python API) gets NotSupportedError here.
+constexpr const char* kLugreHere =
+    "friction law 'lugre' (model.md §12) is analysed by 'equilibria' only; this analysis uses the (2n + 4) "
+    "model of the smooth laws";
 
 }  // namespace
 
@@ -72,7 +75,7 @@ T friction_force(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       const T normal = b.mass * b.race_radius * p.omega * p.omega;
       return -normal * stribeck_level(b, beta_dot) * smooth_sign(p.kappa, beta_dot);
     }
-    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return T(0);
 }
@@ -95,7 +98,7 @@ T friction_slope(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       return -normal * (level_dv * smooth_sign(p.kappa, beta_dot) +
                         stribeck_level(b, beta_dot) * smooth_sign_dv(p.kappa, beta_dot));
     }
-    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return T(0);
 }
@@ -146,7 +149,7 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
         default: return zero;
       }
     }
-    case FrictionLaw::lugre: throw std::logic_error(kLugreHere);
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return zero;
 }
