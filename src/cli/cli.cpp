@@ -159,6 +159,15 @@ Scene load(const SceneOptions& options) {
   return scene;
 }
 
+void refuse_lugre(const Scene& scene, std::string_view command) {
+  if (scene.law != FrictionLaw::lugre) return;
+  throw InputError(scene.file, scene.law_line, "friction.law",
+                   fmt::format("friction law 'lugre' is not supported by '{}' yet (model.md §12: a 3n + 4 state whose "
+                               "equilibria form a family); use 'equilibria' (its z = 0 equilibria, and stuck states "
+                               "with --at-balls)",
+                               command));
+}
+
 namespace {
 // Integers on the command line are decimal: CLI11 reads "010" as octal 8 (strtoll base 0,
 // also inside its range checks). An option's value of digits with leading zeros ("--steps

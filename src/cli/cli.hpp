@@ -38,6 +38,10 @@ double omega_input(const SceneOptions& options, double typed);
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
 
+/// Commands built on the (2n + 4) model refuse a LuGre scene (model.md §12: its state is
+/// 3n + 4 and its equilibria a family): InputError at the scene's `law` key, exit 2.
+void refuse_lugre(const Scene& scene, std::string_view command);
+
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();
 

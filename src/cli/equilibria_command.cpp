@@ -2,13 +2,21 @@
 // spectrum, as a table, CSV or JSON.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string_view>
+#include <vector>
 
 #include "cli.hpp"
+#include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_lugre.hpp"
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -23,7 +31,61 @@ struct EquilibriaOptions {
   BalancedSampling sampling;
   bool chart = true;  // no chart to draw: --no-chart is accepted like everywhere
   std::string mode_shapes;  // --mode-shapes DIR
+  std::string at_balls;     // --at-balls b1,..,bn: a LuGre stuck state [rad]
 };
+
+// --at-balls "b1,b2,..": one finite angle [rad] per ball.
+std::vector<double> parse_ball_angles(std::string_view text, int n) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string_view item = text.substr(start, comma - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() || !std::isfinite(v))
+      throw InputError("--at-balls", 0, "",
+                       fmt::format("expected {} comma-separated finite angles in rad (got '{}')", n, text));
+    out.push_back(v);
+    start = comma + 1;
+  }
+  if (int(out.size()) != n)
+    throw InputError("--at-balls", 0, "",
+                     fmt::format("the scene has {} balls: give {} angles beta_1..beta_{} [rad] (got {})", n, n, n,
+                                 out.size()));
+  return out;
+}
+
+// A LuGre scene (model.md §12): the z = 0 equilibria of §5 / §13 (found with the friction
+// left out: they do not depend on it) and the stuck state of --at-balls, each with both
+// one-sided normal spectra.
+std::string render_lugre(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+  const ParamsN p = params_of<any_balls>(scene);
+  const int n = p.n_balls();
+  std::vector<LugreRow> rows;
+  ParamsN free = p;
+  free.law = FrictionLaw::none;
+  const EquilibriumSetN set = find_equilibria(free, o.sampling);
+  for (const auto& e : set.points()) {
+    throw_if_stopped("equilibria (lugre)");
+    if (!e.converged && !(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: the Newton polish of a {} point did not converge (residual {:.3g}): "
+                                       "it is not an equilibrium",
+                                       p.omega, to_string(e.family), e.residual));
+    rows.push_back({std::string(to_string(e.family)),
+                    e.family == Family::balanced ? std::string() : pattern_string(e.pattern, n), e.member,
+                    analyze_lugre_rest(p, e.position, true)});
+  }
+  if (!o.at_balls.empty())
+    rows.push_back({"stuck", "", 1, analyze_lugre_rest(p, lugre_configuration(p, parse_ball_angles(o.at_balls, n)),
+                                                       false)});
+  warnings = lugre_warnings(rows);
+  if (o.format == "csv") return lugre_equilibria_csv(rows, p, provenance_header(command_line(), scene.file, p));
+  if (o.format == "json") return lugre_equilibria_json(rows, p, command_line(), scene.file);
+  return lugre_equilibria_table(rows, p);
+}
 
 // A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
 // (rounding level is 1e-16) is a numerical failure, exit 3, not a row (issue 12).
@@ -61,6 +123,16 @@ void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& 
 // general one (§13); both write the same formats.
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
   const SpeedUnit unit = o.scene.speed_unit();
+  if (scene.law == FrictionLaw::lugre) {
+    if (!o.mode_shapes.empty())
+      throw InputError("--mode-shapes", 0, "", "not available for friction law 'lugre' yet (model.md §12)");
+    return render_lugre(scene, o, warnings);
+  }
+  if (!o.at_balls.empty())
+    throw InputError("--at-balls", 0, "",
+                     fmt::format("a stuck state is an equilibrium only with friction law 'lugre' (model.md §12.3); "
+                                 "this scene's law is '{}'",
+                                 to_string(scene.law)));
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);
     const Analysis a = analyze(p);
@@ -108,6 +180,10 @@ Action add_equilibria_command(CLI::App& app) {
                   "angle")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  sub->add_option("--at-balls", options->at_balls,
+                  "LuGre scenes (model.md §12): also analyse the stuck state with these ball angles "
+                  "beta_1,..,beta_n [rad] (q from (5.4), z from (12.5)), both one-sided spectra")
+      ->type_name("B1,..,BN");
   sub->add_flag("!--no-chart", options->chart,
                 "Do not draw the --mode-shapes chart (its CSV is still written)");
   sub->add_option("--mode-shapes", options->mode_shapes,

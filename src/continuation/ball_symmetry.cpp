@@ -19,7 +19,8 @@ std::vector<int> ball_classes(const ParamsN& p) {
   const auto same = [](const BallT<double>& a, const BallT<double>& b) {
     return a.mass == b.mass && a.race_radius == b.race_radius && a.radius == b.radius &&
            a.inertia_factor == b.inertia_factor && a.mu == b.mu && a.d == b.d && a.mu_c == b.mu_c &&
-           a.mu_s == b.mu_s && a.v_s == b.v_s;
+           a.mu_s == b.mu_s && a.v_s == b.v_s && a.sigma0 == b.sigma0 && a.sigma1 == b.sigma1 &&
+           a.sigma2 == b.sigma2;
   };
   std::vector<int> class_of(std::size_t(p.n_balls()));
   for (int i = 0; i < p.n_balls(); ++i) {

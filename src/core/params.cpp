@@ -12,12 +12,14 @@ std::string_view to_string(FrictionLaw law) {
     case FrictionLaw::viscous: return "viscous";
     case FrictionLaw::coulomb: return "coulomb";
     case FrictionLaw::stribeck: return "stribeck";
+    case FrictionLaw::lugre: return "lugre";
   }
   return "?";
 }
 
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name) {
-  for (auto law : {FrictionLaw::none, FrictionLaw::viscous, FrictionLaw::coulomb, FrictionLaw::stribeck})
+  for (auto law : {FrictionLaw::none, FrictionLaw::viscous, FrictionLaw::coulomb, FrictionLaw::stribeck,
+                   FrictionLaw::lugre})
     if (to_string(law) == name) return law;
   return std::nullopt;
 }
@@ -29,7 +31,7 @@ struct SymbolEntry {
   std::string_view unit;
 };
 // One spelling for CLI, scene overrides and CSV headers (model.md §1 symbols).
-constexpr std::array<SymbolEntry, 14> kSymbols{{
+constexpr std::array<SymbolEntry, 17> kSymbols{{
     {"omega", Quantity::omega, "rad/s"},
     {"U", Quantity::unbalance, "kg m"},
     {"k", Quantity::stiffness, "N/m"},
@@ -43,6 +45,9 @@ constexpr std::array<SymbolEntry, 14> kSymbols{{
     {"mu_c", Quantity::mu_c, "-"},
     {"mu_s", Quantity::mu_s, "-"},
     {"v_s", Quantity::v_s, "rad/s"},
+    {"sigma0", Quantity::sigma0, "1/rad"},
+    {"sigma1", Quantity::sigma1, "s/rad"},
+    {"sigma2", Quantity::sigma2, "s/rad"},
     {"kappa", Quantity::kappa, "s/rad"},
 }};
 
@@ -62,7 +67,10 @@ bool is_per_ball(Quantity q) {
     case Quantity::d:
     case Quantity::mu_c:
     case Quantity::mu_s:
-    case Quantity::v_s: return true;
+    case Quantity::v_s:
+    case Quantity::sigma0:
+    case Quantity::sigma1:
+    case Quantity::sigma2: return true;
     default: return false;
   }
 }
@@ -94,7 +102,7 @@ std::string to_string(ParamRef ref) {
 std::string_view unit(Quantity q) { return entry(q).unit; }
 
 std::string_view param_symbols_help() {
-  return "omega U k c M_r kappa (global); m l r mu d mu_c mu_s v_s (every ball) or with a "
+  return "omega U k c M_r kappa (global); m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2 (every ball) or with a "
          "1-based ball index: m1 m2 l1 l2 mu1 mu2 ...";
 }
 
@@ -104,7 +112,10 @@ bool law_uses(FrictionLaw law, Quantity q) {
     case Quantity::d: return law == FrictionLaw::viscous;
     case Quantity::mu_c:
     case Quantity::mu_s:
-    case Quantity::v_s: return law == FrictionLaw::stribeck;
+    case Quantity::v_s: return law == FrictionLaw::stribeck || law == FrictionLaw::lugre;
+    case Quantity::sigma0:
+    case Quantity::sigma1:
+    case Quantity::sigma2: return law == FrictionLaw::lugre;
     case Quantity::kappa: return law == FrictionLaw::coulomb || law == FrictionLaw::stribeck;
     default: return true;
   }
@@ -164,6 +175,7 @@ std::optional<std::string> range_violation(Quantity q, double value) {
     case Quantity::ball_radius:
     case Quantity::kappa:
     case Quantity::v_s:
+    case Quantity::sigma0:
       if (!(value > 0.0)) return fmt::format("must be > 0 (got {})", value);
       return std::nullopt;
     case Quantity::unbalance:
@@ -172,6 +184,8 @@ std::optional<std::string> range_violation(Quantity q, double value) {
     case Quantity::d:
     case Quantity::mu_c:
     case Quantity::mu_s:
+    case Quantity::sigma1:
+    case Quantity::sigma2:
       if (value < 0.0) return fmt::format("must be >= 0 (got {})", value);
       return std::nullopt;
   }

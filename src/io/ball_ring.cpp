@@ -49,7 +49,7 @@ RingInput read_ring(Problems& p, const toml::table& table) {
     return true;
   };
   read_table(p, table, "balls", ring.slots,
-             "count, mass, total_mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, override", other);
+             "count, mass, total_mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2, override", other);
 
   if (!count_seen) {
     p.add_missing(table.source().begin, "balls.count", "missing required key");

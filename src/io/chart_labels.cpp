@@ -53,6 +53,14 @@ std::string chart_subtitle(const Scene& scene, const std::vector<std::string>& o
                          ball_range(scene, "mu_s", "", [](const auto& b) { return b.mu_s; }),
                          scene.balls.front().v_s, scene.kappa);
       break;
+    case FrictionLaw::lugre:
+      out += fmt::format(" {}, {}, {}, {}, {}, v_s = {:.4g} rad/s",
+                         ball_range(scene, "sigma0", "1/rad", [](const auto& b) { return b.sigma0; }),
+                         ball_range(scene, "sigma1", "s/rad", [](const auto& b) { return b.sigma1; }),
+                         ball_range(scene, "sigma2", "s/rad", [](const auto& b) { return b.sigma2; }),
+                         ball_range(scene, "mu_c", "", [](const auto& b) { return b.mu_c; }),
+                         ball_range(scene, "mu_s", "", [](const auto& b) { return b.mu_s; }), scene.balls.front().v_s);
+      break;
   }
   out += fmt::format(";  omega_n = sqrt(k / (M_r + sum m)) = {:.5g} rad/s ({:.5g} rpm)", natural_frequency(scene),
                      natural_frequency(scene) * 30 / 3.14159265358979323846);

@@ -498,6 +498,10 @@ std::string describe_parameters(const ParamsT<double, N>& p) {
       case FrictionLaw::stribeck:
         s += fmt::format(" mu_c{}={} mu_s{}={} v_s{}={}", n, b.mu_c, n, b.mu_s, n, b.v_s);
         break;
+      case FrictionLaw::lugre:
+        s += fmt::format(" sigma0_{}={} sigma1_{}={} sigma2_{}={} mu_c{}={} mu_s{}={} v_s{}={}", n, b.sigma0, n,
+                         b.sigma1, n, b.sigma2, n, b.mu_c, n, b.mu_s, n, b.v_s);
+        break;
     }
   }
   return s;

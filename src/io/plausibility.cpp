@@ -107,7 +107,7 @@ std::vector<std::string> implausible_values(const Scene& scene) {
     out.push_back(fmt::format("omega = {} rad/s (speed.omega) is {} omega_n (omega_n = {} rad/s): rpm typed as rad/s "
                               "(1 rpm = 0.1047 rad/s)?",
                               g(scene.omega), g(scene.omega / omega_n), g(omega_n)));
-  if (scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck) {
+  if (scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck || scene.law == FrictionLaw::lugre) {
     const bool coulomb = scene.law == FrictionLaw::coulomb;
     const auto check = [&](std::string_view symbol, auto get) {
       for (const auto& v : ball_values(scene, symbol, symbol, get, fmt::format("friction.{}", symbol)))

@@ -157,6 +157,13 @@ std::string parameters_object(const ParamsT<double, N>& p) {
         s += fmt::format(", \"mu_c{}\": {}, \"mu_s{}\": {}, \"v_s{}\": {}", n, quantity(b.mu_c, "-", "mu_c"), n,
                          quantity(b.mu_s, "-", "mu_s"), n, quantity(b.v_s, "rad/s", "v_s"));
         break;
+      case FrictionLaw::lugre:
+        s += fmt::format(", \"sigma0_{}\": {}, \"sigma1_{}\": {}, \"sigma2_{}\": {}", n,
+                         quantity(b.sigma0, "1/rad", "sigma0"), n, quantity(b.sigma1, "s/rad", "sigma1"), n,
+                         quantity(b.sigma2, "s/rad", "sigma2"));
+        s += fmt::format(", \"mu_c{}\": {}, \"mu_s{}\": {}, \"v_s{}\": {}", n, quantity(b.mu_c, "-", "mu_c"), n,
+                         quantity(b.mu_s, "-", "mu_s"), n, quantity(b.v_s, "rad/s", "v_s"));
+        break;
     }
   }
   return s + "}";

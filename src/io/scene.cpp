@@ -54,7 +54,7 @@ namespace {
 
 using namespace scene_reading;
 
-constexpr std::string_view kLawNames = "none, viscous, coulomb or stribeck";
+constexpr std::string_view kLawNames = "none, viscous, coulomb, stribeck or lugre";
 
 std::string law_mismatch(FrictionLaw law, Quantity q) {
   std::string used;
@@ -79,6 +79,45 @@ void check_fit(Problems& p, const BallInput& b) {
   else
     p.add(r->pos, r->key,
           fmt::format("must be < race_radius (got radius {} >= race_radius {}){}", *r->value, *l->value, which));
+}
+
+// LuGre's levels (model.md §12.1): g(v) = mu_c + (mu_s - mu_c) exp(-(v/v_s)^2) divides the
+// bristle rate, so mu_c > 0 keeps it away from 0 at every speed, and mu_c <= mu_s makes
+// |z| <= mu_s / sigma0 invariant (§12.1). Judged per ball on its effective values, and
+// reported at the key that set the offending one (the ball's own, else [friction]'s).
+std::optional<std::string> lugre_level_violation(double mu_c, double mu_s) {
+  if (!(mu_c > 0.0)) return fmt::format("must be > 0 for friction law 'lugre' (got {}): the Stribeck level g(v) "
+                                        "divides the bristle rate (model.md §12.1)", mu_c);
+  if (mu_c > mu_s)
+    return fmt::format("must be <= mu_s for friction law 'lugre' (got mu_c {} > mu_s {}): the Coulomb level "
+                       "cannot exceed the breakaway level (model.md §12.1)", mu_c, mu_s);
+  return std::nullopt;
+}
+
+void check_lugre_levels(Problems& p, const std::vector<BallInput>& balls, const std::vector<Slot>& friction_slots) {
+  auto effective = [&](const BallInput& b, std::string_view name) -> const Slot* {
+    const Slot* own = find(b.slots, name);
+    return own && own->seen ? own : find(friction_slots, name);
+  };
+  for (const BallInput& b : balls) {
+    const Slot* c = effective(b, "mu_c");
+    const Slot* s = effective(b, "mu_s");
+    if (!c || !s || !c->seen || !s->seen || !c->value || !s->value) continue;  // reported elsewhere
+    if (auto bad = lugre_level_violation(*c->value, *s->value)) {
+      // mu_c <= 0 at mu_c; mu_c > mu_s at mu_s if only the ball's own mu_s differs from [friction]'s.
+      const bool own_s_only = s != find(friction_slots, "mu_s") && c == find(friction_slots, "mu_c");
+      const Slot* at = *c->value > 0.0 && own_s_only ? s : c;
+      // A ring's ball is named (its keys are the template's or an override's); a [[ball]]
+      // table's key or [friction]'s names the place already.
+      const std::string which = b.ring_index ? fmt::format(" (ball {} of the ring)", b.ring_index) : std::string();
+      const std::string rule =
+          at == s ? fmt::format("must be >= mu_c for friction law 'lugre' (got mu_s {} < mu_c {}): the breakaway level "
+                                "cannot be below the Coulomb level (model.md §12.1)",
+                                *s->value, *c->value)
+                  : *bad;
+      p.add(at->pos, at->key, rule + which);
+    }
+  }
 }
 
 int count_lines(std::string_view text) {
@@ -250,11 +289,13 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   add_coefficient_slots(friction_slots, true);
   std::optional<FrictionLaw> law;
   bool law_seen = false;
+  int law_line = 0;
   if (friction.table) {
     auto other = [&](std::string_view key_name, const toml::node& node, const std::string& key,
                      toml::source_position pos) {
       if (key_name != "law") return false;
       law_seen = true;
+      law_line = int(pos.line);
       const auto* s = node.as_string();
       if (!s) {
         p.add(pos, key, fmt::format("must be a string ({}), got {}", kLawNames, describe(node)));
@@ -267,7 +308,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       }
       return true;
     };
-    read_table(p, *friction.table, "friction", friction_slots, "law, mu, d, kappa, mu_c, mu_s, v_s", other);
+    read_table(p, *friction.table, "friction", friction_slots, "law, mu, d, kappa, mu_c, mu_s, v_s, sigma0, sigma1, sigma2", other);
     if (!law_seen) p.add_missing(friction.table->source().begin, "friction.law", "missing required key");
   }
   if (law) {
@@ -301,6 +342,8 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     }
   }
 
+  if (law == FrictionLaw::lugre) check_lugre_levels(p, balls, friction_slots);
+
   // --- [simulate]: run-up and integration settings (simulate_table.hpp).
   std::optional<SimulateSettings> simulate_settings;
   if (simulate.table) simulate_settings = read_simulate_table(p, *simulate.table, file, int(balls.size()));
@@ -315,6 +358,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   scene.omega = find(speed_slots, "rpm")->seen ? to_rad_per_s(value(speed_slots, "rpm"), SpeedUnit::rpm)
                                                : value(speed_slots, "omega");
   scene.law = *law;
+  scene.law_line = law_line;
   scene.kappa = value(friction_slots, "kappa");
   scene.simulate = std::move(simulate_settings);
   if (ring_in) {
@@ -360,6 +404,16 @@ void set_checked(Scene& scene, ParamRef ref, double value, const std::string& or
   if (is_per_ball(ref.quantity) && ref.ball >= int(n)) throw InputError(origin, 0, key, index_out_of_range(key, n));
   if (!law_uses(scene.law, ref.quantity)) throw InputError(origin, 0, key, law_mismatch(scene.law, ref.quantity));
   if (auto bad = range_violation(ref.quantity, value)) throw InputError(origin, 0, key, *bad);
+  if (scene.law == FrictionLaw::lugre && (ref.quantity == Quantity::mu_c || ref.quantity == Quantity::mu_s)) {
+    const std::size_t from = ref.ball < 0 ? 0 : std::size_t(ref.ball);
+    const std::size_t to = ref.ball < 0 ? n : from + 1;
+    for (std::size_t i = from; i < to; ++i) {
+      const auto& b = scene.balls[i];
+      const double mu_c = ref.quantity == Quantity::mu_c ? value : b.mu_c;
+      const double mu_s = ref.quantity == Quantity::mu_s ? value : b.mu_s;
+      if (auto bad = lugre_level_violation(mu_c, mu_s)) throw InputError(origin, 0, key, *bad + fmt::format(" (ball {})", i + 1));
+    }
+  }
 
   // The balls this touches: one, all, or (for a global quantity) none.
   std::size_t first = 0, last = 0;

@@ -24,7 +24,7 @@ namespace abu::scene_reading {
 
 inline constexpr double kRollingJ = 7.0 / 5.0;  // solid sphere: 1 + (2/5 m r^2) / (m r^2)
 inline constexpr double kSlidingJ = 1.0;        // point mass that slides
-inline constexpr std::string_view kBallKeysHelp = "mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s";
+inline constexpr std::string_view kBallKeysHelp = "mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2";
 
 // The friction coefficients; their TOML keys are their model.md symbols. kappa is
 // global (the law's sharpness), the others may be overridden per ball.
@@ -34,7 +34,9 @@ struct Coefficient {
 };
 inline constexpr Coefficient kCoefficients[] = {{"mu", Quantity::mu},     {"d", Quantity::d},
                                                 {"mu_c", Quantity::mu_c}, {"mu_s", Quantity::mu_s},
-                                                {"v_s", Quantity::v_s},   {"kappa", Quantity::kappa}};
+                                                {"v_s", Quantity::v_s},   {"sigma0", Quantity::sigma0},
+                                                {"sigma1", Quantity::sigma1}, {"sigma2", Quantity::sigma2},
+                                                {"kappa", Quantity::kappa}};
 
 // The numeric per-ball keys, as TOML names them, as model.md does, and as BallField does.
 struct BallKey {
@@ -49,7 +51,10 @@ inline constexpr BallKey kBallKeys[] = {{"mass", Quantity::ball_mass, BallField:
                                         {"d", Quantity::d, BallField::d},
                                         {"mu_c", Quantity::mu_c, BallField::mu_c},
                                         {"mu_s", Quantity::mu_s, BallField::mu_s},
-                                        {"v_s", Quantity::v_s, BallField::v_s}};
+                                        {"v_s", Quantity::v_s, BallField::v_s},
+                                        {"sigma0", Quantity::sigma0, BallField::sigma0},
+                                        {"sigma1", Quantity::sigma1, BallField::sigma1},
+                                        {"sigma2", Quantity::sigma2, BallField::sigma2}};
 
 inline const BallKey& ball_key(BallField f) {
   for (const auto& k : kBallKeys)
@@ -75,6 +80,9 @@ inline double& field(BallT<double>& b, BallField f) {
     case BallField::d: return b.d;
     case BallField::mu_c: return b.mu_c;
     case BallField::mu_s: return b.mu_s;
+    case BallField::sigma0: return b.sigma0;
+    case BallField::sigma1: return b.sigma1;
+    case BallField::sigma2: return b.sigma2;
     case BallField::v_s: break;
   }
   return b.v_s;

@@ -1,10 +1,12 @@
 #include "abu/model/friction.hpp"
 
+#include "abu/core/errors.hpp"
 #include "abu/core/taylor.hpp"
 
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <stdexcept>
 #include <type_traits>
 
 namespace abu {
@@ -50,6 +52,13 @@ T stribeck_level(const BallT<T>& b, const T& v) {
   return b.mu_c + (b.mu_s - b.mu_c) * exp(-x * x);
 }
 
+// LuGre's force depends on the bristle state z_i too (model.md §12): it has its own
+// (3n + 4) field in model/lugre.hpp. The CLI commands that use the (2n + 4) model refuse
+// a LuGre scene up front; any other caller (the Python API) gets NotSupportedError here.
+constexpr const char* kLugreHere =
+    "friction law 'lugre' (model.md §12) is analysed by 'equilibria' only; this analysis uses the (2n + 4) "
+    "model of the smooth laws";
+
 }  // namespace
 
 template <class T, int N>
@@ -66,6 +75,7 @@ T friction_force(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       const T normal = b.mass * b.race_radius * p.omega * p.omega;
       return -normal * stribeck_level(b, beta_dot) * smooth_sign(p.kappa, beta_dot);
     }
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return T(0);
 }
@@ -88,6 +98,7 @@ T friction_slope(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       return -normal * (level_dv * smooth_sign(p.kappa, beta_dot) +
                         stribeck_level(b, beta_dot) * smooth_sign_dv(p.kappa, beta_dot));
     }
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return T(0);
 }
@@ -138,6 +149,7 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
         default: return zero;
       }
     }
+    case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
   }
   return zero;
 }

@@ -22,9 +22,10 @@
 
 namespace abu {
 
-/// Friction law acting on each ball along +beta_i (model.md §4). Only the smooth laws
-/// are modelled; `coulomb-set` (the kappa -> infinity limit) is not a vector field.
-enum class FrictionLaw { none, viscous, coulomb, stribeck };
+/// Friction law acting on each ball along +beta_i (model.md §4). `lugre` (model.md §12)
+/// adds one bristle state z_i per ball: its field is model/lugre.hpp's, of dimension
+/// 3n + 4; the (2n + 4) field of model.hpp is not defined for it.
+enum class FrictionLaw { none, viscous, coulomb, stribeck, lugre };
 std::string_view to_string(FrictionLaw law);
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name);
 
@@ -38,13 +39,17 @@ struct BallT {
   T inertia_factor{};  ///< j_i = 1 + I_i/(m_i r_i^2): 7/5 rolling solid sphere, 1 sliding
   T mu{};              ///< coulomb: mu_i = f_i / r_i [-]
   T d{};               ///< viscous: d_i [N s/m]
-  T mu_c{};            ///< stribeck: Coulomb level [-]
-  T mu_s{};            ///< stribeck: static (breakaway) level [-]
-  T v_s{};             ///< stribeck: Stribeck velocity [rad/s]
+  T mu_c{};            ///< stribeck, lugre: Coulomb level [-]
+  T mu_s{};            ///< stribeck, lugre: static (breakaway) level [-]
+  T v_s{};             ///< stribeck, lugre: Stribeck velocity [rad/s]
+  T sigma0{};          ///< lugre: bristle stiffness per unit normal force [1/rad]
+  T sigma1{};          ///< lugre: bristle damping per unit normal force [s/rad]
+  T sigma2{};          ///< lugre: viscous coefficient per unit normal force [s/rad]
 
   template <class U>
   BallT<U> cast() const {
-    return {U(mass), U(race_radius), U(radius), U(inertia_factor), U(mu), U(d), U(mu_c), U(mu_s), U(v_s)};
+    return {U(mass), U(race_radius), U(radius), U(inertia_factor), U(mu), U(d), U(mu_c), U(mu_s), U(v_s),
+            U(sigma0), U(sigma1), U(sigma2)};
   }
 };
 
@@ -151,11 +156,12 @@ using ParamsN = ParamsT<double, any_balls>;
 enum class Quantity {
   omega, unbalance, stiffness, damping, rotor_mass,          // global
   ball_mass, race_radius, ball_radius, mu, d, mu_c, mu_s, v_s,  // per ball
+  sigma0, sigma1, sigma2,                                      // per ball (lugre)
   kappa                                                        // global friction
 };
 
 /// A parameter as model.md names it: `omega U k c M_r kappa` (global) and
-/// `m l r mu d mu_c mu_s v_s` (every ball) or `m1 l2 mu1 ...` (one ball, 1-based).
+/// `m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2` (every ball) or `m1 l2 mu1 ...` (one ball, 1-based).
 struct ParamRef {
   Quantity quantity = Quantity::omega;
   int ball = -1;  ///< -1: every ball; otherwise 0-based ball index
@@ -188,6 +194,9 @@ T& ball_field(BallT<T>& b, Quantity q) {
     case Quantity::d: return b.d;
     case Quantity::mu_c: return b.mu_c;
     case Quantity::mu_s: return b.mu_s;
+    case Quantity::sigma0: return b.sigma0;
+    case Quantity::sigma1: return b.sigma1;
+    case Quantity::sigma2: return b.sigma2;
     default: return b.v_s;
   }
 }

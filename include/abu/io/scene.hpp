@@ -96,6 +96,7 @@ struct Scene {
   RotorT<double> rotor{};
   double omega = 0.0;
   FrictionLaw law = FrictionLaw::none;
+  int law_line = 0;  ///< line of [friction] law in `file` (0: not from a file), for messages
   double kappa = 0.0;                ///< only meaningful for coulomb / stribeck
   std::vector<BallT<double>> balls;  ///< friction coefficients already resolved per ball
   std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion

@@ -8,6 +8,9 @@
 //   coulomb   F = -mu N (2/pi) atan(kappa beta_dot),                     N = m l omega^2
 //   stribeck  F = -N [mu_c + (mu_s - mu_c) exp(-(beta_dot/v_s)^2)] (2/pi) atan(kappa beta_dot)
 //
+// `lugre` (model.md §12) is not a function of beta_dot alone: these functions throw
+// NotSupportedError for it; its force is model/lugre.hpp's.
+//
 // Templated on the scalar (double, long double, complex for complex-step checks).
 #pragma once
 
