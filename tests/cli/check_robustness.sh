@@ -131,6 +131,26 @@ done
 check "kappa=1e12: no balanced state called unstable after a failed refinement" \
   "/usr/bin/python3 -c \"import json,sys; d=json.load(open('$work/k.json')); sys.exit(any(e['family']=='balanced' and e['stability']=='unstable' for e in d['equilibria']))\""
 
+# kappa = 1e12 (issue 12): the spectrum spans 30 decades and a pair at -8.3 +- 99.8i came
+# out of both QRs as two real values near +-0.8 that Newton could not leave ("marginal,
+# abscissa 0.80"). 40-digit reference (tests/reference/mp_reference.py, this scene with
+# kappa=1e12 omega=150 mu=0.08208914159638263): together 1 is stable, abscissa
+# -2.9621114926954522e-15, and every eigenvalue refines (spectrum_converged). Tolerance 1e-9
+# relative: the refined creep modes agree with the reference to ~1e-15.
+"$bin" equilibria "$scene" --set kappa=1e12 --set omega=150 --set mu=0.08208914159638263 --format json 2>/dev/null >"$work/k150.json"
+check "kappa=1e12, omega=150: together 1 stable at the 40-digit abscissa, every eigenvalue refined" \
+  "/usr/bin/python3 -c \"import json,sys; e=[e for e in json.load(open('$work/k150.json'))['equilibria'] if e['family']=='together' and e['member']==1][0]; sys.exit(not (e['stability']=='stable' and e['spectrum_converged'] and abs(e['spectral_abscissa']/-2.9621114926954522e-15-1)<1e-9))\""
+# ... and over a map (1440 cells, 8569 rows: 135 rows disagreed before), --method full and
+# fast give the same stable flag and unstable count on every row.
+for m in fast full; do
+  "$bin" map "$scene" --set kappa=1e12 --x omega:50:2000:40 --y mu:1e-4:0.1:36:log --method $m --long --no-chart \
+    --no-boundaries --quiet --threads 2 -o "$work/k12_$m" 2>/dev/null
+done
+disagree=$(paste -d, <(grep -v '^#' "$work/k12_fast/map_omega_mu.csv" | cut -d, -f7,8) \
+  <(grep -v '^#' "$work/k12_full/map_omega_mu.csv" | cut -d, -f7,8) | awk -F, '$1 != $3 || $2 != $4' | wc -l)
+rows=$(grep -vc '^#' "$work/k12_full/map_omega_mu.csv")
+check "kappa=1e12 map: fast and full agree on every row ($disagree of $rows differ)" "[ $rows -gt 8000 ] && [ $disagree -eq 0 ]"
+
 # --- 5. exit codes, escapes, integers, overlaps, --set order -------------------------------
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/mx" 2>/dev/null
 check "a branch ending in MX exits 3" "[ $? -eq 3 ] && grep -q ',MX,' '$work/mx/special_omega.csv'"
