@@ -112,7 +112,7 @@ check "... says the tiles are kept" "grep -q 'tiles are kept' '$work/stop.err' &
 check "... no temporary in the tile directory" "no_temporaries '$work/sig3'"
 
 # --- 3. numerical range: never a hang -----------------------------------------------------
-for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300; do
+for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300 kappa=1e20 kappa=1e200 M_r=1e-300 k=1e-300 m=1e-40 l=1e-30; do
   timeout -s KILL 20 "$bin" equilibria "$scene" --format csv --set "$set" >"$work/range.csv" 2>"$work/range.err"
   code=$?
   check "--set $set: refused (2) or reported (3) or right (0), never a hang (exit $code)" \
@@ -123,6 +123,14 @@ for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300; do
       "grep -v '^#' '$work/range.csv' | tail -n +2 | awk -F, '{if (\$8 + 0 > 1e-6 || \$8 == \"\") exit 1}'"
   fi
 done
+
+# kappa beyond the verified range (kappa omega_n <= 1e16) is refused, also as a sweep's end.
+"$bin" sweep "$scene" --param kappa --from 1e3 --to 1e200 --steps 3 --no-chart -o "$work/kap" 2>"$work/kap.err"
+check "sweep reaching kappa = 1e200 refused with exit 2 naming kappa" "[ $? -eq 2 ] && grep -q \"key 'kappa'\" '$work/kap.err' && [ ! -e '$work/kap' ]"
+# SIGTERM in the two commands not covered above (equilibria on a 12-ball ring, simulate).
+read code secs < <(stop_after TERM "$bin" simulate "$scene" --balls 0,1 --t-end 1000 --quiet --no-chart -o "$work/sig4")
+check "SIGTERM stops simulate: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
+check "... no temporary" "no_temporaries '$work/sig4'"
 
 # A failed eigenvalue refinement (kappa = 1e12: spectra over 26 decades) classifies by the
 # error it has: the balanced states, stable by a 40-digit computation (abscissa -3.6e-15),
