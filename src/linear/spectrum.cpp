@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
-#include <vector>
 
 namespace abu {
 
@@ -329,9 +327,11 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
     // Every round keeps what converged (at its refined value) and reshifts for the rest,
     // at the scale of their starts; a round is taken only if fewer fail. The Starts stay
     // alive: the estimates point into the QR each came from.
-    std::vector<std::unique_ptr<Starts<N>>> rounds;
+    // (Fixed storage: the map's cells allocate nothing, tests/perf no_allocation.)
+    constexpr int kRounds = 4;
+    std::array<Starts<N>, kRounds> rounds;
     const Starts<N>* current = &starts;
-    for (int round = 0; round < 4 && n_failed(failed) > 0; ++round) {
+    for (int round = 0; round < kRounds && n_failed(failed) > 0; ++round) {
       std::array<std::complex<double>, SpectrumT<N>::capacity> kept{};
       double scale = 0;
       for (std::size_t i = 0; i < m; ++i) {
@@ -341,7 +341,8 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
       if (!(scale > 0) || !std::isfinite(scale)) scale = 1;
       bool progress = false;
       for (const double factor : {1.0, 1e2, 1e4}) {
-        auto retry = std::make_unique<Starts<N>>(*current);
+        Starts<N>* const retry = &rounds[std::size_t(round)];
+        *retry = *current;
         if (!middle_starts<N>(lin, -factor * scale, failed, kept, *retry)) continue;
         SpectrumT<N> again;
         again.count = retry->count;
@@ -353,8 +354,7 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
         sp = again;
         band = band_again;
         failed = failed_again;
-        current = retry.get();
-        rounds.push_back(std::move(retry));
+        current = retry;
         progress = true;
         break;
       }

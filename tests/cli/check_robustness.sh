@@ -111,6 +111,21 @@ check "SIGTERM stops map: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143
 check "... says the tiles are kept" "grep -q 'tiles are kept' '$work/stop.err' && grep -q -- '--resume' '$work/stop.err'"
 check "... no temporary in the tile directory" "no_temporaries '$work/sig3'"
 
+# --- 4. maps: tiles streamed (memory per worker independent of the y axis) ----------------
+# Tiles of ~25 MB, written through 1 MB buffers (many spills per tile): the same bytes for
+# 1 and 2 threads, every cell present once, and the estimate printed with --progress.
+for t in 1 2; do
+  "$bin" map "$scene" --set kappa=1e6 --x omega:50:2000:12 --y U:1e-7:1e-6:6000 --long --no-chart --no-boundaries \
+    --progress --threads $t -o "$work/stream$t" 2>"$work/stream$t.err"
+done
+check "streamed tiles: 1 and 2 threads give the same bytes" \
+  "cmp -s <(grep -v '^# command' '$work/stream1/map_omega_U.csv') <(grep -v '^# command' '$work/stream2/map_omega_U.csv') && cmp -s <(grep -v '^# command' '$work/stream1/summary_omega_U.csv') <(grep -v '^# command' '$work/stream2/summary_omega_U.csv')"
+check "... every cell once, in order (72000 summary rows)" \
+  "[ \$(grep -v '^#' '$work/stream1/summary_omega_U.csv' | tail -n +2 | cut -d, -f1,2 | uniq | wc -l) -eq 72000 ]"
+check "... the disk and memory estimate printed first ($(head -c 150 "$work/stream2.err"))" \
+  "grep -q '^map: 72000 cells, about .* GB of disk .* of memory (2 workers x ' '$work/stream2.err'"
+check "... no temporary left" "no_temporaries '$work/stream1' && no_temporaries '$work/stream2'"
+
 # --- 3. numerical range: never a hang -----------------------------------------------------
 for set in omega=1e155 U=1e300 c=1e300 omega=1e-200 U=1e-22 k=1e300 kappa=1e20 kappa=1e200 M_r=1e-300 k=1e-300 m=1e-40 l=1e-30; do
   timeout -s KILL 20 "$bin" equilibria "$scene" --format csv --set "$set" >"$work/range.csv" 2>"$work/range.err"
