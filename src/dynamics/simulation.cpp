@@ -311,9 +311,16 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     State<double, N> xs = x0;
     xs.tail(n).setZero();
     const StateMatrix<double, N> J = jacobian(pp, xs);
+    // A Jacobian that overflowed would give a NaN stiffness ratio (and so a silent choice
+    // of the explicit method) or a DBL_MAX spectral radius in the summary: fail here.
+    if (!J.allFinite() || !(J.cwiseAbs().maxCoeff() <= 1e150))
+      throw NumericalError(fmt::format(
+          "simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not finite or beyond 1e150 "
+          "(an overflow of the model at these parameters)",
+          w_max));
     Eigen::EigenSolver<StateMatrix<double, N>> es(J, false);
     double rho = 0;
-    if (es.info() == Eigen::Success) {
+    if (es.info() == Eigen::Success && es.eigenvalues().allFinite()) {
       rho = es.eigenvalues().cwiseAbs().maxCoeff();
     } else {
       rho = J.cwiseAbs().rowwise().sum().maxCoeff();  // the infinity norm bounds it

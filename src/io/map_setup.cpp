@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <chrono>
 #include <cmath>
@@ -198,7 +199,7 @@ std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e
 
 // Refuses (exit 2) a map whose tiles and CSVs cannot fit on the disk, or whose workers'
 // tiles cannot fit in memory, before any work (docs/robustness.md "Maps").
-void check_map_fits(const MapJob& job, const MapOutput& output) {
+std::string check_map_fits(const MapJob& job, const MapOutput& output) {
   const double cells = double(job.x.count) * double(job.y.count);
   const double per_cell = double(map_bytes_per_cell(job));
   const double disk = 2 * cells * per_cell;  // the tiles, then the assembled CSVs
@@ -208,13 +209,17 @@ void check_map_fits(const MapJob& job, const MapOutput& output) {
                                  "make the map smaller or write it elsewhere",
                                  gigabytes(disk), cells, gigabytes(*free)));
   const int workers = std::max(1, std::min(output.threads, tile_count(job)));
-  // Each worker's tile text, twice (the buffer and the tile's copy).
-  const double memory = 2.0 * workers * double(job.tile_columns()) * double(job.y.count) * per_cell;
+  // Each worker streams its tile (map_driver.hpp): two text buffers and a copy buffer of
+  // kTileSpillBytes (each can pass it by one cell's text) and its analyzers; independent of
+  // the axes' lengths.
+  const double memory =
+      double(workers) * (3.0 * (double(kTileSpillBytes) + per_cell) + double(kWorkerBaseBytes));
   if (const auto available = available_memory(); available && memory > *available)
     throw InputError("--threads", 0, std::to_string(output.threads),
-                     fmt::format("{} workers would need about {} of memory for their tiles, {} are available; use "
-                                 "fewer threads or a shorter y axis",
+                     fmt::format("{} workers would need about {} of memory, {} are available; use fewer threads",
                                  workers, gigabytes(memory), gigabytes(*available)));
+  return fmt::format("map: {} cells, about {} of disk (tiles, then CSVs) and {} of memory ({} workers x {:.0f} MB)\n",
+                     cells, gigabytes(disk), gigabytes(memory), workers, memory / workers / 1e6);
 }
 }  // namespace
 
@@ -228,7 +233,8 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     std::exception_ptr failure;
     try {
       if (root) {
-        check_map_fits(job, output);
+        const std::string estimate = check_map_fits(job, output);
+        if (output.progress) std::fputs(estimate.c_str(), stderr);
         store.emplace(dir / tile_directory_name(job), job, output.mode);
         missing = store->missing();
       }

@@ -28,6 +28,12 @@ std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
                                            "got c = {:g} N s/m",
                                            kMaxDampingRatio, kMaxDampingRatio * 2 * std::sqrt(scene.rotor.stiffness * total),
                                            scene.rotor.damping)};
+  if ((scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck) &&
+      !(scene.kappa * omega_n <= kMaxSharpness))
+    return RangeViolation{"kappa", fmt::format("kappa omega_n must be <= {:g} (omega_n = {:.6g} rad/s, so kappa <= "
+                                               "{:.6g} s/rad; beyond, the stiff friction modes and the creep modes "
+                                               "are too far apart for double precision); got kappa = {:g} s/rad",
+                                               kMaxSharpness, omega_n, kMaxSharpness / omega_n, scene.kappa)};
   const double u = scene.rotor.unbalance;
   if (u != 0 && !(u >= kMinUnbalanceRatio * capacity))
     return RangeViolation{"U", fmt::format("U must be 0 or >= {:g} of the balls' capacity sum m_i l_i = {:.6g} kg m "

@@ -89,7 +89,8 @@ namespace spectrum_detail {
 
 template <int N>
 void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts, SpectrumMethod method,
-                       const VectorSource<N>& vector_of, SpectrumT<N>& sp, std::array<ld, SpectrumT<N>::capacity>& band) {
+                       const VectorSource<N>& vector_of, SpectrumT<N>& sp, std::array<ld, SpectrumT<N>::capacity>& band,
+                       std::array<bool, SpectrumT<N>::capacity>* failed_out) {
   const auto& start = starts.estimates;
   const std::size_t m = eigen_count<N>(starts.count);  // eigenvalues to fill, from slot `first`
   const std::size_t first = eigen_count<N>(sp.count) - m;
@@ -218,8 +219,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
       for (std::size_t j = 0; j < m; ++j) {
         if (!group[j]) continue;
         const auto& e = start[j];
-        const double qr = e.source == &starts.direct ? kEps * e.source->norm
-                                                     : kEps * e.source->norm * std::norm(e.value - starts.shift);
+        const double qr = apriori_error(e);
         bound = std::max(bound, std::abs(e.value - mean) + qr);
       }
       // 1e-10: copies of one eigenvalue agree to ~1e-15 here; two distinct eigenvalues
@@ -259,6 +259,8 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
   }
   for (std::size_t i = 0; i < m; ++i) sp.ill_conditioned = sp.ill_conditioned || !(sp.condition[first + i] * kEps <= 1e-8);
   sp.converged = true;
+  if (failed_out)
+    for (std::size_t i = 0; i < m; ++i) (*failed_out)[i] = failed[i];
   for (std::size_t i = 0; i < m; ++i) {
     if (failed[i]) {  // keeps its QR value, and the refinement is reported as failed
       sp.eigenvalues[first + i] = start[i].value;
@@ -268,9 +270,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
       // the direct matrix, eps ||(J - sigma)^-1|| |lambda - sigma|^2 from the inverse), so
       // a QR value that cannot be told from the axis is marginal, never unstable.
       const auto& e = start[i];
-      ld apriori = 0;
-      if (e.source == &starts.direct) apriori = ld(kEps) * ld(e.source->norm);
-      else if (e.source) apriori = ld(kEps) * ld(e.source->norm) * std::norm(as_ld(e.value) - ld(starts.shift));
+      const ld apriori = e.source ? ld(apriori_error(e)) : 0;
       band[first + i] = std::max({band[first + i], std::abs(refined[i] - as_ld(e.value)), 64 * apriori});
       sp.error[first + i] = std::max(sp.error[first + i], double(64 * apriori));
       sp.converged = false;
@@ -288,10 +288,12 @@ void finish_spectrum(SpectrumT<N>& sp, const std::array<ld, SpectrumT<N>::capaci
 }
 
 template void assemble_spectrum<2>(const Linearization<ld, 2>&, const Starts<2>&, SpectrumMethod,
-                                   const VectorSource<2>&, SpectrumT<2>&, std::array<ld, SpectrumT<2>::capacity>&);
+                                   const VectorSource<2>&, SpectrumT<2>&, std::array<ld, SpectrumT<2>::capacity>&,
+                                   std::array<bool, SpectrumT<2>::capacity>*);
 template void assemble_spectrum<any_balls>(const Linearization<ld, any_balls>&, const Starts<any_balls>&,
                                            SpectrumMethod, const VectorSource<any_balls>&, SpectrumT<any_balls>&,
-                                           std::array<ld, SpectrumT<any_balls>::capacity>&);
+                                           std::array<ld, SpectrumT<any_balls>::capacity>&,
+                                           std::array<bool, SpectrumT<any_balls>::capacity>*);
 template void finish_spectrum<2>(SpectrumT<2>&, const std::array<ld, SpectrumT<2>::capacity>&, int);
 template void finish_spectrum<any_balls>(SpectrumT<any_balls>&, const std::array<ld, SpectrumT<any_balls>::capacity>&,
                                          int);
@@ -310,7 +312,55 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
   const VectorSource<N> vector_of = [](const Estimate<N>& e, bool complex) {
     return complex ? position_vector<std::complex<double>, N>(e) : position_vector<double, N>(e);
   };
-  assemble_spectrum(lin, starts, method, vector_of, sp, band);
+  std::array<bool, SpectrumT<N>::capacity> failed{};
+  assemble_spectrum(lin, starts, method, vector_of, sp, band, &failed);
+  // Failed refinements (issue 12: at kappa = 1e12 the spectrum spans 30 decades, and a
+  // pair at -8 +- 100i came out of both QRs as two real values near +-0.8 that Newton could
+  // not leave): retry them from a shifted inverse near their scale, where the QR resolves
+  // them, and take the retry only if every eigenvalue then converges. Exact cases never
+  // come here, so their bytes are unchanged.
+  const std::size_t m = eigen_count<N>(starts.count);
+  const auto n_failed = [m](const std::array<bool, SpectrumT<N>::capacity>& f) {
+    return std::count(f.begin(), f.begin() + std::ptrdiff_t(m), true);
+  };
+  if (method == SpectrumMethod::refined && n_failed(failed) > 0) {
+    // Every round keeps what converged (at its refined value) and reshifts for the rest,
+    // at the scale of their starts; a round is taken only if fewer fail. The Starts stay
+    // alive: the estimates point into the QR each came from.
+    // (Fixed storage: the map's cells allocate nothing, tests/perf no_allocation.)
+    constexpr int kRounds = 4;
+    std::array<Starts<N>, kRounds> rounds;
+    const Starts<N>* current = &starts;
+    for (int round = 0; round < kRounds && n_failed(failed) > 0; ++round) {
+      std::array<std::complex<double>, SpectrumT<N>::capacity> kept{};
+      double scale = 0;
+      for (std::size_t i = 0; i < m; ++i) {
+        kept[i] = sp.eigenvalues[i];
+        if (failed[i]) scale = std::max(scale, std::abs(current->estimates[i].value));
+      }
+      if (!(scale > 0) || !std::isfinite(scale)) scale = 1;
+      bool progress = false;
+      for (const double factor : {1.0, 1e2, 1e4}) {
+        Starts<N>* const retry = &rounds[std::size_t(round)];
+        *retry = *current;
+        if (!middle_starts<N>(lin, -factor * scale, failed, kept, *retry)) continue;
+        SpectrumT<N> again;
+        again.count = retry->count;
+        again.status = retry->status;
+        std::array<ld, SpectrumT<N>::capacity> band_again{};
+        std::array<bool, SpectrumT<N>::capacity> failed_again{};
+        assemble_spectrum(lin, *retry, method, vector_of, again, band_again, &failed_again);
+        if (!(n_failed(failed_again) < n_failed(failed))) continue;
+        sp = again;
+        band = band_again;
+        failed = failed_again;
+        current = retry;
+        progress = true;
+        break;
+      }
+      if (!progress) break;
+    }
+  }
   sort_and_classify(sp, band, structural_zeros);
   return sp;
 }

@@ -97,6 +97,8 @@ void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out) 
   for (std::size_t i = 0; i < m; ++i) direct[i] = {out.direct.values[i], out.direct.values[i], &out.direct};
   out.estimates = direct;
   if (!have_inverse) return;
+  out.inverse.inverse = true;
+  out.inverse.shift = shift;
   std::array<Estimate<N>, state_capacity<N>> inverse{};
   for (std::size_t i = 0; i < m; ++i) {
     const auto mu = out.inverse.values[i];
@@ -120,6 +122,72 @@ void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out) 
   if (splits_pair(inverse)) ++k;
   if (splits_pair(direct)) --k;
   for (std::size_t i = 0; i < m; ++i) out.estimates[i] = i < k ? inverse[i] : direct[i];
+}
+
+template <int N>
+double apriori_error(const Estimate<N>& e) {
+  if (!e.source) return std::numeric_limits<double>::infinity();
+  if (!e.source->inverse) return kEps * e.source->norm;
+  return kEps * e.source->norm * std::norm(e.value - e.source->shift);
+}
+
+template <int N>
+bool middle_starts(const Linearization<ld, N>& lin, double sigma, const std::array<bool, state_capacity<N>>& failed,
+                   const std::array<std::complex<double>, state_capacity<N>>& kept, Starts<N>& out) {
+  const std::size_t m = eigen_count<N>(out.count);
+  FirstOrderMatrix<N> jinv;
+  if (!shifted_inverse(lin, ld(sigma), jinv) || !balanced_qr<N>(jinv, out.middle)) return false;
+  out.middle.inverse = true;
+  out.middle.shift = sigma;
+  std::array<Estimate<N>, state_capacity<N>> candidate{};
+  std::array<bool, state_capacity<N>> taken{};
+  for (std::size_t i = 0; i < m; ++i) {
+    const auto theta = out.middle.values[i];
+    if (theta == 0.0 || !std::isfinite(std::abs(theta))) return false;
+    candidate[i] = {sigma + 1.0 / theta, theta, &out.middle};
+  }
+  // Each kept eigenvalue claims the nearest candidate (its copy in this QR).
+  std::size_t n_failed = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    if (failed[j]) {
+      ++n_failed;
+      continue;
+    }
+    std::size_t best = m;
+    for (std::size_t i = 0; i < m; ++i)
+      if (!taken[i] && (best == m || std::abs(candidate[i].value - kept[j]) < std::abs(candidate[best].value - kept[j])))
+        best = i;
+    if (best == m) return false;
+    taken[best] = true;
+  }
+  // The failed slots get what is left, closest to sigma first (best resolved there).
+  std::array<std::size_t, state_capacity<N>> left{};
+  std::size_t n_left = 0;
+  for (std::size_t i = 0; i < m; ++i)
+    if (!taken[i]) left[n_left++] = i;
+  if (n_left != n_failed) return false;
+  const auto closer = [&](std::size_t a, std::size_t b) {
+    const double da = std::abs(candidate[a].value - sigma), db = std::abs(candidate[b].value - sigma);
+    return da < db || (da == db && candidate[a].value.imag() > candidate[b].value.imag());
+  };
+  for (std::size_t i = 1; i < n_left && i < m; ++i)  // (insertion sort: n_left <= 8 .. 26)
+    for (std::size_t k = i; k > 0 && closer(left[k], left[k - 1]); --k) std::swap(left[k], left[k - 1]);
+  // The kept ones start from their refined values: a QR value that refined far from
+  // itself (inside the old basin) would leave the basin the new starts draw.
+  std::size_t next = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    if (failed[j]) out.estimates[j] = candidate[left[next++]];
+    else out.estimates[j].value = kept[j];
+  }
+  // Conjugate pairs must be whole (the assembly refines one and mirrors the other).
+  for (std::size_t j = 0; j < m; ++j) {
+    const auto z = out.estimates[j].value;
+    if (z.imag() == 0) continue;
+    bool partner = false;
+    for (std::size_t i = 0; i < m && !partner; ++i) partner = i != j && out.estimates[i].value == std::conj(z);
+    if (!partner) return false;
+  }
+  return true;
 }
 
 // If K is singular (a zero eigenvalue: U = 0 circles, folds), the shift moves to
@@ -183,6 +251,9 @@ QepVector<N> position_vector(const Estimate<N>& e) {
 #define ABU_INSTANTIATE_STARTS(N)                                                                   \
   template bool balanced_qr<N>(const FirstOrderMatrix<N>&, BalancedQr<N>&);                         \
   template void combine_starts<N>(int, bool, double, Starts<N>&);                                   \
+  template double apriori_error<N>(const Estimate<N>&);                                             \
+  template bool middle_starts<N>(const Linearization<ld, N>&, double, const std::array<bool, state_capacity<N>>&, \
+                                 const std::array<std::complex<double>, state_capacity<N>>&, Starts<N>&);          \
   template void starting_values<N>(const Linearization<ld, N>&, SpectrumMethod, Starts<N>&);        \
   template QepVector<N> position_vector<double, N>(const Estimate<N>&);                             \
   template QepVector<N> position_vector<std::complex<double>, N>(const Estimate<N>&);

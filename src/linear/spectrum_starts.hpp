@@ -40,6 +40,9 @@ struct BalancedQr {
   std::array<double, state_capacity<N>> scale{};  // balanced = D^-1 M D, D = diag(scale)
   std::array<std::complex<double>, state_capacity<N>> values{};
   double norm = 0;
+  /// The matrix is (J - shift)^-1 (its eigenvalues theta = 1 / (lambda - shift)), not J.
+  bool inverse = false;
+  double shift = 0;
 };
 /// Balances and QRs `m` (square, any size up to the capacity). False if the matrix is
 /// not finite or the QR does not converge (the values are then not usable).
@@ -59,6 +62,7 @@ struct Estimate {
 template <int N>
 struct Starts {
   BalancedQr<N> direct, inverse;
+  BalancedQr<N> middle;  ///< a second shifted inverse, for the retry of failed refinements
   std::array<Estimate<N>, state_capacity<N>> estimates{};
   int count = 0;      ///< eigenvalues, the size of `direct`
   double shift = 0;   ///< sigma of the inverse
@@ -78,6 +82,23 @@ void combine_starts(int count, bool have_inverse, double shift, Starts<N>& out);
 template <int N>
 void starting_values(const Linearization<long double, N>& lin, SpectrumMethod method, Starts<N>& out);
 
+/// A-priori absolute error of an estimate from its QR: eps ||J|| from the direct matrix,
+/// eps ||(J - sigma)^-1|| |lambda - sigma|^2 from a shifted inverse.
+template <int N>
+double apriori_error(const Estimate<N>& e);
+
+/// Second starts for the eigenvalues whose refinement failed (`failed[i]`; the others
+/// refined to `kept[i]`): the QR of the structured inverse shifted to `sigma` (model.md
+/// §8) resolves eigenvalues near sigma that neither J (norm 1e15 at kappa = 1e12) nor
+/// its inverse at 0 (norm 1e15 from the creep modes) can: each kept eigenvalue claims
+/// the nearest of its values, and the failed slots get the remaining values closest to
+/// sigma (conjugate pairs together); the kept ones start from their refined values. False if T(sigma) is singular, the QR fails or the
+/// values cannot be assigned; `out` (a copy of the first starts) then is not usable.
+template <int N>
+bool middle_starts(const Linearization<long double, N>& lin, double sigma,
+                   const std::array<bool, state_capacity<N>>& failed,
+                   const std::array<std::complex<double>, state_capacity<N>>& kept, Starts<N>& out);
+
 /// The position part x of the eigenvector (x, lambda x) by inverse iteration on the
 /// balanced matrix the estimate came from (J or its structured inverse).
 template <class S, int N>
@@ -90,10 +111,12 @@ using VectorSource = std::function<QepVector<N>(const Estimate<N>&, bool complex
 /// Refines the `starts.count` estimates on the quadratic problem `qep` into slots
 /// sp.count - starts.count .. sp.count - 1 of `sp`, with their bands (the Newton of
 /// refinement.hpp, kept in the basin of its start; QR values only for other methods).
+/// `failed_out`, if given: which estimates kept their QR value (refinement failed).
 template <int N>
 void assemble_spectrum(const Linearization<long double, N>& qep, const Starts<N>& starts, SpectrumMethod method,
                        const VectorSource<N>& vector_of, SpectrumT<N>& sp,
-                       std::array<long double, SpectrumT<N>::capacity>& band);
+                       std::array<long double, SpectrumT<N>::capacity>& band,
+                       std::array<bool, SpectrumT<N>::capacity>* failed_out = nullptr);
 
 /// Sorts and classifies (spectrum.hpp's rules); `structural_zeros` as compute_spectrum's.
 template <int N>

@@ -248,16 +248,23 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
 
 }  // namespace
 
-TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
+namespace {
+
+// Text buffered per worker before it goes to the tile's temporaries (streamed tiles): the
+// worker's memory does not grow with the y axis (issue 12: 2 GB at 8 threads, N_y = 20,000).
+constexpr std::size_t kSpillBytes = kTileSpillBytes;
+
+// The cells of `tile` into `rows` / `summary`. With `spill` set, whenever a buffer passes
+// kSpillBytes its text goes to `spill` and the buffers are emptied; without, everything
+// stays in the buffers. The bytes are the same either way.
+using Spill = std::function<void(fmt::memory_buffer& rows, fmt::memory_buffer& summary)>;
+TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace, fmt::memory_buffer& rows,
+                           fmt::memory_buffer& summary, const Spill& spill) {
   TileText text;
   const int first = tile * job.tile_columns(), last = std::min(job.x.count, first + job.tile_columns());
-  std::vector<std::string> y_values(std::size_t(job.y.count));
-  for (int iy = 0; iy < job.y.count; ++iy) y_values[std::size_t(iy)] = format_number(job.y.value(iy), "y value");
-  // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
-  // and a format string parsed per row would be most of that.
-  fmt::memory_buffer rows, summary;
-  rows.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 6 * 140);
-  summary.reserve(std::size_t(last - first) * std::size_t(job.y.count) * 80);
+  const auto maybe_spill = [&] {
+    if (spill && (rows.size() >= kSpillBytes || summary.size() >= kSpillBytes)) spill(rows, summary);
+  };
   if (job.any_balls) {
     for (int ix = first; ix < last; ++ix) {
       const std::string x_value = format_number(job.x.value(ix), "x value");
@@ -267,11 +274,11 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
         ++text.cells;
         text.equilibria += long(workspace.cell_n.equilibria.size());
         text.fallbacks += long(workspace.cell_n.equilibria.size());  // every one by full eigenvalues
-        write_cell_n(job, ix, iy, x_value, y_values[std::size_t(iy)], workspace.cell_n, rows, summary);
+        write_cell_n(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), workspace.cell_n, rows,
+                     summary);
+        maybe_spill();
       }
     }
-    text.rows.assign(rows.data(), rows.size());
-    text.summary.assign(summary.data(), summary.size());
     return text;
   }
   CellAnalyzer& analyzer = *workspace.two_balls;
@@ -284,7 +291,9 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
       ++text.cells;
       text.equilibria += cell.count;
       text.fallbacks += cell.fallbacks;
-      const std::string_view x = x_value, y = y_values[std::size_t(iy)];
+      // (formatted per cell, not cached per column: a cache would grow with the y axis)
+      const std::string y_value = format_number(job.y.value(iy), "y value");
+      const std::string_view x = x_value, y = y_value;
       std::array<int, 3> members{};
       int balanced_stable = -1, n_stable = 0;
       for (int k = 0; k < cell.count; ++k) {
@@ -311,8 +320,19 @@ TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
         fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
       }
       fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+      maybe_spill();
     }
   }
+  return text;
+}
+
+}  // namespace
+
+TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
+  // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
+  // and a format string parsed per row would be most of that.
+  fmt::memory_buffer rows, summary;
+  TileText text = compute_tile_text(job, tile, workspace, rows, summary, {});
   text.rows.assign(rows.data(), rows.size());
   text.summary.assign(summary.data(), summary.size());
   return text;
@@ -327,7 +347,7 @@ namespace {
 // typed, the scene's path): a resumed run is the same map when the parameters, axes,
 // method and program are, however the scene path or the options were written.
 std::string manifest_of(const MapJob& job) {
-  std::string out = fmt::format("abu map tiles: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job));
+  std::string out = fmt::format("abu map tiles v2: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job));
   std::istringstream headers(map_csv_header(job) + summary_csv_header(job));
   for (std::string line; std::getline(headers, line);)
     if (line.rfind("# command:", 0) != 0 && line.rfind("# scene:", 0) != 0) out += line + '\n';
@@ -466,22 +486,144 @@ std::vector<int> TileStore::missing() const {
   return out;
 }
 
-// A tile file: "<rows bytes> <summary bytes>\n", the rows, the summary rows.
+// A tile file: "<rows bytes> <summary bytes>\n" (each 20 digits, so that a streamed tile
+// can write it last, at the start), the rows, the summary rows.
+namespace {
+std::string tile_header(std::size_t rows, std::size_t summary) { return fmt::format("{:020} {:020}\n", rows, summary); }
+
+void write_all(int fd, std::string_view piece, const fs::path& path) {
+  while (!piece.empty()) {
+    const ssize_t n = ::write(fd, piece.data(), piece.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), std::strerror(n < 0 ? errno : ENOSPC)));
+    piece.remove_prefix(std::size_t(n));
+  }
+}
+
+// The two temporaries of a streamed tile (rows; summary rows, appended at the end). On
+// any exit but commit() (a stop, an error) both are closed and removed.
+class StreamedTile {
+ public:
+  explicit StreamedTile(fs::path path) : path_(std::move(path)) {
+    rows_part_ = create_temporary_next_to(path_, "part", rows_fd_);
+    summary_part_ = create_temporary_next_to(path_, "summary.part", summary_fd_);
+    write_all(rows_fd_, tile_header(0, 0), rows_part_);  // a placeholder, rewritten by commit()
+  }
+  ~StreamedTile() {
+    if (rows_fd_ >= 0) ::close(rows_fd_);
+    if (summary_fd_ >= 0) ::close(summary_fd_);
+    for (const fs::path* part : {&rows_part_, &summary_part_}) {
+      if (part->empty()) continue;
+      ::unlink(part->c_str());
+      unregister_temporary(*part);
+    }
+  }
+  StreamedTile(const StreamedTile&) = delete;
+  StreamedTile& operator=(const StreamedTile&) = delete;
+  void write(fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
+    write_all(rows_fd_, std::string_view(rows.data(), rows.size()), rows_part_);
+    write_all(summary_fd_, std::string_view(summary.data(), summary.size()), summary_part_);
+    rows_bytes_ += rows.size();
+    summary_bytes_ += summary.size();
+    rows.clear();
+    summary.clear();
+  }
+  void commit() {
+    // The summary rows after the rows, through a fixed buffer; then the sizes at the start.
+    // (The temporary was opened write-only: read it through a second descriptor, checked
+    // to be the same file.)
+    const int reader = ::open(summary_part_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    struct stat written {}, read_back {};
+    if (reader < 0) fail("read back", summary_part_);
+    if (::fstat(reader, &read_back) != 0 || ::fstat(summary_fd_, &written) != 0 ||
+        read_back.st_ino != written.st_ino || read_back.st_dev != written.st_dev) {
+      ::close(reader);
+      errno = errno ? errno : EIO;
+      fail("read back", summary_part_);
+    }
+    std::vector<char> buffer(kSpillBytes);
+    std::size_t copied = 0;
+    for (;;) {
+      const ssize_t n = ::read(reader, buffer.data(), buffer.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const int err = errno;
+        ::close(reader);
+        errno = err;
+        fail("read back", summary_part_);
+      }
+      if (n == 0) break;
+      try {
+        write_all(rows_fd_, std::string_view(buffer.data(), std::size_t(n)), rows_part_);
+      } catch (...) {
+        ::close(reader);
+        throw;
+      }
+      copied += std::size_t(n);
+    }
+    ::close(reader);
+    if (copied != summary_bytes_) {
+      errno = EIO;
+      fail("read back", summary_part_);
+    }
+    const std::string header = tile_header(rows_bytes_, summary_bytes_);
+    if (::pwrite(rows_fd_, header.data(), header.size(), 0) != ssize_t(header.size())) fail("write", rows_part_);
+    const int fd = rows_fd_;
+    rows_fd_ = -1;
+    if (::close(fd) != 0) fail("write", rows_part_);
+    if (::rename(rows_part_.c_str(), path_.c_str()) != 0) fail("rename into place", path_);
+    unregister_temporary(rows_part_);
+    rows_part_.clear();
+  }
+
+ private:
+  [[noreturn]] static void fail(const char* what, const fs::path& path) {
+    throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(errno)));
+  }
+  fs::path path_, rows_part_, summary_part_;
+  int rows_fd_ = -1, summary_fd_ = -1;
+  std::size_t rows_bytes_ = 0, summary_bytes_ = 0;
+};
+}  // namespace
+
 void TileStore::put(int tile, const TileText& text) const {
-  write_atomically(tile_path(tile), fmt::format("{} {}\n", text.rows.size(), text.summary.size()), text.rows,
-                   text.summary);
+  write_atomically(tile_path(tile), tile_header(text.rows.size(), text.summary.size()), text.rows, text.summary);
+}
+
+TileText compute_tile_into(const MapJob& job, int tile, CellWorkspace& workspace, const TileStore& store) {
+  StreamedTile out(store.tile_path(tile));
+  fmt::memory_buffer rows, summary;
+  TileText text = compute_tile_text(job, tile, workspace, rows, summary,
+                                    [&out](fmt::memory_buffer& r, fmt::memory_buffer& s) { out.write(r, s); });
+  out.write(rows, summary);
+  out.commit();
+  return text;
 }
 
 void TileStore::append(int tile, std::ostream& rows, std::ostream& summary) const {
-  const std::string content = read_file(tile_path(tile));
-  const auto newline = content.find('\n');
+  // Through a fixed buffer: assembling holds no tile in memory.
+  const fs::path path = tile_path(tile);
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
   std::size_t n_rows = 0, n_summary = 0;
-  std::istringstream sizes(content.substr(0, newline));
+  std::istringstream sizes(first);
   sizes >> n_rows >> n_summary;
-  if (newline == std::string::npos || !sizes || newline + 1 + n_rows + n_summary != content.size())
-    throw std::runtime_error(fmt::format("{}: damaged tile file; rerun with --fresh", tile_path(tile).string()));
-  rows.write(content.data() + newline + 1, std::streamsize(n_rows));
-  summary.write(content.data() + newline + 1 + n_rows, std::streamsize(n_summary));
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (!in || !sizes || ec || first.size() + 1 + n_rows + n_summary != size)
+    throw std::runtime_error(fmt::format("{}: damaged tile file; rerun with --fresh", path.string()));
+  std::vector<char> buffer(std::min<std::size_t>(kSpillBytes, std::max(n_rows, n_summary) + 1));
+  for (auto [out, left] : {std::pair<std::ostream*, std::size_t>{&rows, n_rows}, {&summary, n_summary}}) {
+    while (left > 0) {
+      const std::size_t n = std::min(left, buffer.size());
+      if (!in.read(buffer.data(), std::streamsize(n)))
+        throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
+      out->write(buffer.data(), std::streamsize(n));
+      left -= n;
+    }
+  }
 }
 
 void TileStore::remove() const { fs::remove_all(directory_); }
@@ -544,7 +686,10 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
     try {
       CellWorkspace workspace(job);
       for (std::size_t i = next++; i < tiles.size() && !stopped(); i = next++) {
-        TileText text = compute_tile(job, tiles[i], workspace);
+        // Streamed into the store's tile (memory bounded) when there is one; in memory
+        // for the sink otherwise (MPI ranks other than 0 send their tiles).
+        TileText text = options.stream_to ? compute_tile_into(job, tiles[i], workspace, *options.stream_to)
+                                          : compute_tile(job, tiles[i], workspace);
         const long cells = text.cells;
         {
           std::lock_guard lock(mutex);
@@ -553,7 +698,7 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
           stats.equilibria += text.equilibria;
           stats.fallbacks += text.fallbacks;
         }
-        sink(tiles[i], std::move(text));
+        if (!options.stream_to) sink(tiles[i], std::move(text));
         if (options.progress) options.progress->tile_done(cells);
       }
     } catch (const Interrupted&) {

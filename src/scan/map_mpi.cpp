@@ -18,7 +18,9 @@ namespace {
 
 MapRunStats compute_local(const MapJob& job, const std::vector<int>& missing, const MapRunOptions& options,
                           const TileStore* store) {
-  return compute_tiles(job, missing, options, [store](int tile, TileText&& text) { store->put(tile, text); });
+  MapRunOptions streamed = options;
+  streamed.stream_to = store;
+  return compute_tiles(job, missing, streamed, [store](int tile, TileText&& text) { store->put(tile, text); });
 }
 
 }  // namespace
@@ -145,8 +147,10 @@ MapRunStats compute_distributed(const MapJob& job, const std::vector<int>& missi
         }
       }
     };
+    MapRunOptions streamed = options;
+    streamed.stream_to = store;
     MapRunStats stats = compute_tiles(
-        job, mine, options, [store](int tile, TileText&& text) { store->put(tile, text); }, receive_all);
+        job, mine, streamed, [store](int tile, TileText&& text) { store->put(tile, text); }, receive_all);
     for (const auto& f : failures)
       if (f.find("interrupted") == std::string::npos) throw NumericalError(f);
     stats.tiles += remote.tiles;

@@ -6,6 +6,9 @@
 //   omega / omega_n in [1e-6, 1e6]             omega_n = sqrt(k / (M_r + sum m_i)), model.md §3
 //   zeta = c / (2 sqrt(k (M_r + sum m_i))) <= 1e6   the rotor's damping ratio
 //   U = 0 or U >= 1e-12 sum m_i l_i             below, the two balanced states agree to rounding
+//   kappa omega_n <= 1e16 (coulomb, stribeck)   the arctan's sharpness: stiff friction modes
+//                                               ~ kappa, creep modes ~ 1/kappa; at kappa = 1e20
+//                                               refinements failed, at 1e200 a creep mode's sign flipped
 #pragma once
 
 #include <optional>
@@ -19,6 +22,7 @@ inline constexpr double kMinSpeedRatio = 1e-6;      ///< omega / omega_n
 inline constexpr double kMaxSpeedRatio = 1e6;
 inline constexpr double kMaxDampingRatio = 1e6;     ///< zeta
 inline constexpr double kMinUnbalanceRatio = 1e-12;  ///< U / sum m_i l_i, unless U = 0
+inline constexpr double kMaxSharpness = 1e16;        ///< kappa omega_n (coulomb, stribeck)
 
 struct RangeViolation {
   std::string key;   ///< the model.md symbol to change (omega, c, U)

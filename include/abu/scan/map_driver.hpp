@@ -33,8 +33,14 @@ namespace abu {
 /// Columns (x values) per tile: small enough for progress and resume, large enough that
 /// a tile (8 x ny cells) dwarfs the cost of writing it.
 inline constexpr int kTileColumns = 8;
-/// Memory for one tile's text per worker, above which a tile gets fewer columns.
+/// Text per tile above which a tile gets fewer columns: what an MPI rank other than 0
+/// holds per tile to send it (rank 0 and single-process maps stream, kTileSpillBytes).
 inline constexpr long kTileBudgetBytes = 32L << 20;
+/// A worker's text buffers (rows, summary) are written to the tile's temporaries when
+/// one passes this: a streamed worker holds about 3 x (this + one cell's text).
+inline constexpr std::size_t kTileSpillBytes = std::size_t(1) << 20;
+/// Allowance for a worker's analyzers and equilibria (fixed size, well below this).
+inline constexpr std::size_t kWorkerBaseBytes = std::size_t(16) << 20;
 /// Bytes of CSV per cell of a two-ball map (long rows and summary, measured on the default
 /// scene, rounded up): the up-front disk and memory estimate (docs/robustness.md).
 inline constexpr std::size_t kMapBytesPerCell = 900;
@@ -80,6 +86,12 @@ struct TileText {
 /// the cell if a value is not finite.
 TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace);
 
+class TileStore;
+/// As compute_tile, but the text goes to the tile's file in `store` as it is made (1 MB
+/// buffers: a worker's memory does not grow with the y axis), renamed into place at the
+/// end; the returned TileText has the counts only. Same bytes as put(compute_tile(...)).
+TileText compute_tile_into(const MapJob& job, int tile, CellWorkspace& workspace, const TileStore& store);
+
 /// Comment block and column names of the long CSV (one row per equilibrium per cell) and
 /// of the summary CSV (one row per cell).
 std::string map_csv_header(const MapJob& job);
@@ -120,9 +132,9 @@ class TileStore {
   /// Removes the directory (after the assembled files are in place).
   void remove() const;
   const std::filesystem::path& directory() const { return directory_; }
+  std::filesystem::path tile_path(int tile) const;
 
  private:
-  std::filesystem::path tile_path(int tile) const;
   void lock();
   std::filesystem::path directory_;
   int tiles_ = 0;
@@ -153,6 +165,8 @@ struct MapRunOptions {
   /// Set from a signal handler: workers stop after their current tile.
   const std::atomic<bool>* stop = nullptr;
   ProgressMeter* progress = nullptr;
+  /// If set, tiles are streamed into this store (compute_tile_into) and `sink` is not called.
+  const TileStore* stream_to = nullptr;
 };
 
 struct MapRunStats {
