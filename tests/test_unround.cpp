@@ -183,3 +183,40 @@ TEST_CASE("unround race: equilibria appear in pairs as eps grows (index sum 0)",
     }
   }
 }
+
+TEST_CASE("unround race: the reference values of model.md §11.9", "[unround]") {
+  // Published values (4 significant digits, so a 5e-4 relative tolerance) for the default
+  // scene with one oval on both balls.
+  SECTION("counts and the smallest residual whirl, phase 0") {
+    struct Row {
+      double eps;
+      std::size_t count;
+      double smallest;
+    };
+    for (const Row& row : {Row{1e-6, 6, 3.661e-8}, Row{1e-4, 10, 3.351e-6}, Row{1e-3, 16, 4.983e-6}}) {
+      const UnroundResult r = find_unround_equilibria(base(2), same_for_all(2, {{2, row.eps, 0.0}}));
+      INFO("eps " << row.eps);
+      CHECK(r.list.size() == row.count);
+      CHECK(std::abs(r.list[0].amplitude / row.smallest - 1) < 5e-4);
+      CHECK(std::abs(r.list[1].amplitude / r.list[0].amplitude - 1) < 1e-12);  // the mirror pair
+    }
+  }
+  SECTION("the near-balanced branch, phase 1, viscous d = 1e-3") {
+    struct Row {
+      double eps, q, beta1, beta2, abscissa;
+    };
+    // beta to 1e-4 rad (printed to 4 decimals), the abscissa to 4 digits.
+    for (const Row& row : {Row{5e-6, 1.708e-7, 2.0826, 4.1466, -5.207}, Row{4e-5, 1.791e-6, 1.7144, 3.8975, -0.922},
+                           Row{2e-4, 4.930e-6, 0.6421, 3.5705, -8.329}}) {
+      const UnroundResult r = find_unround_equilibria(base(2), same_for_all(2, {{2, row.eps, 1.0}}));
+      INFO("eps " << row.eps);
+      const auto it = std::find_if(r.list.begin(), r.list.end(), [&](const UnroundEquilibrium& e) {
+        return std::abs(double(e.position(2)) - row.beta1) < 2e-4 && std::abs(double(e.position(3)) - row.beta2) < 2e-4;
+      });
+      REQUIRE(it != r.list.end());
+      CHECK(std::abs(it->amplitude / row.q - 1) < 5e-4);
+      CHECK(std::abs(it->spectrum.abscissa / row.abscissa - 1) < 1e-3);
+      CHECK(it->spectrum.stability == Stability::stable);
+    }
+  }
+}

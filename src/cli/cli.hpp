@@ -37,6 +37,9 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+/// Commands that do not model an unround race (model.md §11) refuse a scene with one
+/// (NotSupportedError: exit 2) instead of silently analysing the round race.
+void refuse_unround(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();
