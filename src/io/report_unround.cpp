@@ -54,7 +54,8 @@ std::string race_lines(const RaceShape& race, std::string_view prefix) {
 std::string search_line(const UnroundResult& r) {
   return fmt::format("search (model.md §11.4): {} boxes tested, {} leaves (Newton starts), {} unresolved, index sum {}{}",
                      r.search.boxes_tested, r.search.leaves, r.search.unresolved, r.search.index_sum,
-                     r.doubt.empty() ? std::string(": complete") : fmt::format(": {}", r.doubt));
+                     r.doubt.empty() ? std::string(": complete")
+                                     : std::string(": INCOMPLETE, equilibria may be missing or degenerate"));
 }
 
 std::string design_line(const UnroundResult& r, const ParamsN& p) {
