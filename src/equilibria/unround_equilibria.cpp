@@ -77,10 +77,10 @@ L torus_distance(const Angles& a, const Angles& b) {
   return d;
 }
 
-// Newton with step halving on |g|; nullopt if it does not converge in 60 iterations.
+// Newton with step halving on |g|; nullopt if it does not converge in 200 iterations.
 std::optional<Angles> newton(const LongParamsN& p, const RaceShape& race, Angles beta) {
   Reduced r = reduced(p, race, beta);
-  for (int it = 0; it < 60; ++it) {
+  for (int it = 0; it < 200; ++it) {
     const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
     if (lu.rank() < r.dg.rows()) return std::nullopt;
     const Angles step = lu.solve(r.g);
@@ -229,24 +229,41 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
     }
     level = std::move(next);
   }
-  result.search.leaves = std::ssize(leaves);
 
-  // Newton from every leaf; a zero far from its leaf leaves that leaf unresolved.
+  // Newton from every leaf; a leaf whose Newton fails is unresolved.
+  // A leaf whose Newton fails (it stalls at a minimum of |g| that is not a zero) is
+  // halved again, up to 1/64 of the leaf width, and its children tested and started
+  // afresh; only what remains then is unresolved.
   std::vector<Angles> zeros;
   for (std::size_t k = 0; k < leaves.size(); ++k) {
     if (k % 4096 == 0) throw_if_stopped("unround equilibria: Newton starts");
     const auto z = newton(p, race, leaves[k].centre);
     if (!z) {
-      ++result.search.unresolved;
+      const Box b = leaves[k];
+      if (b.half > leaf_half / 64 && std::ssize(leaves) < search.max_leaves) {
+        for (int c = 0; c < (1 << n); ++c) {
+          Box child{b.centre, b.half / 2};
+          for (int i = 0; i < n; ++i) child.centre(i) += ((c >> i) & 1 ? 1 : -1) * child.half;
+          ++result.search.boxes_tested;
+          const Angles g = reduced(p, race, child.centre).g;
+          bool excluded = false;
+          for (int i = 0; i < n && !excluded; ++i) excluded = std::abs(g(i)) > child.half * row_sum(i);
+          if (!excluded) leaves.push_back(child);
+        }
+      } else {
+        ++result.search.unresolved;
+      }
       continue;
     }
-    if (torus_distance(*z, leaves[k].centre) > 64 * leaves[k].half) ++result.search.unresolved;
+    // A Newton that leaves its box is no doubt: the bound (11.4.5) is global and keeps
+    // boxes some way from any zero; every zero's own leaf lies within h sqrt(n) of it.
     const bool known = std::any_of(zeros.begin(), zeros.end(), [&](const Angles& a) {
       return torus_distance(a, *z) < 1e-9L;
     });
     if (!known) zeros.push_back(*z);
   }
 
+  result.search.leaves = std::ssize(leaves);
   for (const Angles& beta : zeros) {
     UnroundEquilibrium e;
     const Reduced r = reduced(p, race, beta);

@@ -7,7 +7,7 @@
 #     residual whirl |q| = d (JSON best_stable.q_abs) to 1e-12 relative;
 #  3. the same run twice gives the same bytes; -o writes the file atomically;
 #  4. `sweep`, `continue`, `map`, `simulate` refuse an unround scene (exit 2 with the
-#     reason), never computing the round race silently.
+#     reason), never computing the round race silently;
 set -u
 bin=$1
 src=$2
@@ -42,5 +42,14 @@ for cmd in "sweep --param omega --from 100 --to 200 --steps 3 -o $work/sw" "cont
   "$bin" ${cmd%% *} "$work/ecc.toml" ${cmd#* } > /dev/null 2> "$work/err"
   rc=$?
   if [ $rc -eq 2 ] && grep -q "unround" "$work/err"; then check ok "${cmd%% *} refuses an unround scene"; else check no "${cmd%% *} refuses an unround scene (exit $rc: $(head -c 300 "$work/err"))"; fi
+done
+# 5. the search over the torus is complete (no unresolved leaf, index sum 0) on the
+#    reference scenes: "every equilibrium" is then a claim the output makes.
+for scene in "$src"/tests/scenes/unround/*.toml; do
+  if "$bin" equilibria "$scene" 2> /dev/null | grep -q "unresolved, index sum 0: complete"; then
+    check ok "complete search: $(basename "$scene")"
+  else
+    check no "complete search: $(basename "$scene")"
+  fi
 done
 exit $fail

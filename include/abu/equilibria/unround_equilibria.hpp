@@ -10,8 +10,8 @@
 // dropped only if some |g_i| at its centre exceeds a rigorous Lipschitz bound of g_i
 // over the box (built from the harmonics' amplitudes and orders), so no zero is in a
 // dropped box. The boxes that remain are halved down to a leaf width, and Newton (long
-// double) starts at every leaf's centre. A leaf whose Newton does not end on a zero
-// close to it is counted as unresolved and reported. The zeros found are checked
+// double) starts at every leaf's centre (every zero lies within h sqrt(n) of one); a
+// leaf whose Newton fails is counted as unresolved and reported. The zeros found are checked
 // against Poincare-Hopf: their indices sign det(dg/dbeta) sum to chi(T^n) = 0.
 //
 //   abu::UnroundResult r = abu::find_unround_equilibria(p, race);
@@ -47,7 +47,7 @@ struct UnroundEquilibrium {
 struct UnroundSearchReport {
   long long boxes_tested = 0;   ///< boxes whose exclusion test ran
   long long leaves = 0;         ///< boxes not excluded at the finest level (Newton starts)
-  long long unresolved = 0;     ///< leaves whose Newton failed or ended on a distant zero
+  long long unresolved = 0;     ///< leaves whose Newton failed
   int index_sum = 0;            ///< sum of indices; 0 when the list is complete (Poincare-Hopf)
   bool budget_exhausted = false;
 };
