@@ -37,6 +37,9 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+/// Commands that do not model an unround race (model.md §11) refuse a scene with one
+/// (NotSupportedError: exit 2) instead of silently analysing the round race.
+void refuse_unround(const Scene& scene, std::string_view command);
 
 /// Commands built on the (2n + 4) model refuse a LuGre scene (model.md §12: its state is
 /// 3n + 4 and its equilibria a family): InputError at the scene's `law` key, exit 2.

@@ -17,6 +17,7 @@
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/io/report.hpp"
 #include "abu/io/report_lugre.hpp"
+#include "abu/io/report_unround.hpp"
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -121,7 +122,29 @@ void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& 
 
 // Two balls take the fixed-size path (closed forms of model.md §5), any other count the
 // general one (§13); both write the same formats.
+// An unround race (model.md §11): every equilibrium of §11.4 on the torus, its own report.
+std::string render_unround(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+  if (!o.mode_shapes.empty())
+    throw NotSupportedError("--mode-shapes on an unround race (model.md §11): not supported yet");
+  const ParamsN p = params_of<any_balls>(scene);
+  const RaceShape race = race_shape(scene);
+  const UnroundResult r = find_unround_equilibria(p, race);
+  for (const auto& e : r.list)
+    if (!(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: an equilibrium of the unround race has residual {:.3g}: it is not "
+                                       "an equilibrium",
+                                       p.omega, e.residual));
+  // An incomplete search is said on stderr as well as in the output's search line.
+  if (!r.doubt.empty()) warnings = fmt::format("warning: omega={}: unround race: {}\n", p.omega, r.doubt);
+  if (o.format == "csv") return unround_csv(r, p, race, provenance_header(command_line(), scene.file, p));
+  if (o.format == "json") return unround_json(r, p, race, command_line(), scene.file);
+  return unround_table(r, p, race, scene.file);
+}
+
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
+  if (!scene.race.round()) {
+    return render_unround(scene, o, warnings);
+  }
   const SpeedUnit unit = o.scene.speed_unit();
   if (scene.law == FrictionLaw::lugre) {
     if (!o.mode_shapes.empty())

@@ -28,6 +28,7 @@
 #include <toml++/toml.h>
 
 #include "abu/core/errors.hpp"
+#include "race_reading.hpp"
 #include "abu/core/speed_units.hpp"
 #include "abu/core/suggest.hpp"
 #include "scene_reading.hpp"
@@ -179,7 +180,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   struct Part {
     const toml::table* table = nullptr;
     bool seen = false;
-  } rotor, friction, speed, ring, simulate;
+  } rotor, friction, speed, ring, simulate, race;
   toml::source_position ring_pos{};
   const toml::array* ball_array = nullptr;
   bool balls_seen = false;
@@ -192,6 +193,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                  : name == "speed"    ? &speed
                  : name == "balls"    ? &ring
                  : name == "simulate" ? &simulate
+                 : name == "race"     ? &race
                                       : nullptr;
     if (name == "rolling") {
       rolling = read_bool(p, name, node, pos).value_or(true);
@@ -212,9 +214,9 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     } else {
       p.add(pos, name,
             unknown_name_rule(node.is_table() ? "unknown table" : "unknown key",
-                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate"}),
+                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate", "race"}),
                               "the top level has",
-                              "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate]"));
+                              "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate], [race]"));
     }
   }
   for (auto [part, name] : {std::pair{&rotor, "rotor"}, {&friction, "friction"}, {&speed, "speed"}})
@@ -283,6 +285,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   }
   const std::vector<BallInput>& balls = ring_in && !balls_seen ? expanded : listed;
   for (const BallInput& b : balls) check_fit(p, b);
+
+  // --- [race] (optional): an unround race (model.md §11), checked on the balls below.
+  RaceSpec race_spec;
+  if (race.table) scene_reading::read_race(p, *race.table, balls.size(), race_spec);
 
   // --- [friction]: the law, its coefficients, and the per-ball overrides against it.
   std::vector<Slot> friction_slots;
@@ -361,9 +367,11 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   scene.law_line = law_line;
   scene.kappa = value(friction_slots, "kappa");
   scene.simulate = std::move(simulate_settings);
+  scene.race = std::move(race_spec);
   if (ring_in) {
     scene.ring = make_ring(*ring_in, friction_slots, *law, rolling, file);
     scene.balls = ring_balls(*scene.ring);
+    scene_reading::check_race(scene);
     return scene;
   }
   for (const BallInput& in : listed) {
@@ -379,6 +387,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     }
     scene.balls.push_back(b);
   }
+  scene_reading::check_race(scene);
   return scene;
 }
 

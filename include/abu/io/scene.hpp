@@ -75,6 +75,7 @@
 #include "abu/core/params.hpp"
 #include "abu/dynamics/speed_profile.hpp"
 #include "abu/io/ball_ring.hpp"  // BallRing, ring_balls, set_ball_count (the [balls] ring)
+#include "abu/io/race_scene.hpp"  // RaceSpec: the [race] table (unround race, model.md §11)
 
 namespace abu {
 
@@ -101,6 +102,7 @@ struct Scene {
   std::vector<BallT<double>> balls;  ///< friction coefficients already resolved per ball
   std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion
   std::optional<SimulateSettings> simulate;  ///< set iff the file has a [simulate] table
+  RaceSpec race;                     ///< [race]: unround race harmonics (race_scene.hpp); round if absent
 };
 
 /// Reads and validates a scene file. Throws InputError (also for an unreadable file).

@@ -1,0 +1,26 @@
+// Output of `equilibria` for an unround race (model.md §11): a table, CSV or JSON with
+// every equilibrium of §11.4, its Poincare-Hopf index, spectrum (rotating frame, 1/s) and
+// stability, the search's completeness record, the first-order parameter Lambda_k of
+// §11.6 and the design figure: the residual whirl |q| of the best stable state.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "abu/equilibria/unround_equilibria.hpp"
+
+namespace abu {
+
+/// Lambda = max over balls and harmonics of k^2 eps_k |K + iC| / (m_i omega^2) (§11.6):
+/// the race-lock stiffness over the balancing stiffness; first order holds for Lambda << 1.
+double unround_lambda(const ParamsN& p, const RaceShape& race);
+/// Lambda <= this is reported as the first-order regime (marked in tables and maps).
+inline constexpr double kFirstOrderLambda = 0.1;
+
+std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene);
+/// `header`: the provenance comment lines (io.hpp).
+std::string unround_csv(const UnroundResult& r, const ParamsN& p, const RaceShape& race, const std::string& header);
+std::string unround_json(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view command_line,
+                         std::string_view scene);
+
+}  // namespace abu
