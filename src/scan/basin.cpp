@@ -4,12 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
@@ -234,42 +229,16 @@ TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>&
 
 MapRunStats compute_basin_tiles(const BasinJob& job, const std::vector<BasinTarget>& targets,
                                 const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink) {
-  MapRunStats stats;
-  const auto start = std::chrono::steady_clock::now();
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::mutex mutex;
-  std::exception_ptr error;
-  const auto stopped = [&] { return failed.load() || (options.stop && options.stop->load()); };
-  const auto worker = [&] {
-    try {
-      for (std::size_t k = next++; k < tiles.size() && !stopped(); k = next++) {
-        TileText text = compute_basin_tile(job, targets, tiles[k]);
-        const long cells = text.cells;
-        {
-          std::lock_guard lock(mutex);
-          ++stats.tiles;
-          stats.cells += cells;
-        }
-        sink(tiles[k], std::move(text));
-        if (options.progress) options.progress->tile_done(cells);
-      }
-    } catch (const Interrupted&) {
-      // Stopped inside a tile: that tile is not written, the finished ones stay.
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      if (!error) error = std::current_exception();
-      failed = true;
-    }
+  const auto make_work = [&]() -> TileWork {
+    return [&](int tile) {
+      TileText text = compute_basin_tile(job, targets, tile);
+      MapRunStats done;
+      done.cells = text.cells;
+      sink(tile, std::move(text));
+      return done;
+    };
   };
-  const int n_threads = std::max(1, std::min<int>(options.threads, int(tiles.size())));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n_threads; ++t) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
-  if (error) std::rethrow_exception(error);
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  stats.interrupted = stats.tiles < int(tiles.size());
-  return stats;
+  return run_tile_pool(tiles, options, make_work);
 }
 
 }  // namespace abu

@@ -15,6 +15,7 @@
 #include <exception>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -672,8 +673,9 @@ void ProgressMeter::print_locked(bool final_line) {
 // ---------------------------------------------------------------------------------------
 // Threads
 
-MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
-                          const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait) {
+MapRunStats run_tile_pool(const std::vector<int>& tiles, const MapRunOptions& options,
+                          const std::function<TileWork()>& make_work,
+                          const std::function<void(const std::function<bool()>& done)>& wait) {
   MapRunStats stats;
   const auto start = std::chrono::steady_clock::now();
   std::atomic<std::size_t> next{0};
@@ -684,22 +686,17 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
   const auto stopped = [&] { return failed.load() || (options.stop && options.stop->load()); };
   const auto worker = [&] {
     try {
-      CellWorkspace workspace(job);
+      const TileWork work = make_work();
       for (std::size_t i = next++; i < tiles.size() && !stopped(); i = next++) {
-        // Streamed into the store's tile (memory bounded) when there is one; in memory
-        // for the sink otherwise (MPI ranks other than 0 send their tiles).
-        TileText text = options.stream_to ? compute_tile_into(job, tiles[i], workspace, *options.stream_to)
-                                          : compute_tile(job, tiles[i], workspace);
-        const long cells = text.cells;
+        const MapRunStats done = work(tiles[i]);
         {
           std::lock_guard lock(mutex);
           ++stats.tiles;
-          stats.cells += text.cells;
-          stats.equilibria += text.equilibria;
-          stats.fallbacks += text.fallbacks;
+          stats.cells += done.cells;
+          stats.equilibria += done.equilibria;
+          stats.fallbacks += done.fallbacks;
         }
-        if (!options.stream_to) sink(tiles[i], std::move(text));
-        if (options.progress) options.progress->tile_done(cells);
+        if (options.progress) options.progress->tile_done(done.cells);
       }
     } catch (const Interrupted&) {
       // Stopped inside a tile: that tile is not written, the finished ones stay.
@@ -729,6 +726,26 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.interrupted = stats.tiles < int(tiles.size());
   return stats;
+}
+
+MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
+                          const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait) {
+  const auto make_work = [&]() -> TileWork {
+    // One workspace per thread, shared by its tiles (no allocation per cell).
+    return [&job, &options, &sink, workspace = std::make_shared<CellWorkspace>(job)](int tile) {
+      // Streamed into the store's tile (memory bounded) when there is one; in memory
+      // for the sink otherwise (MPI ranks other than 0 send their tiles).
+      TileText text = options.stream_to ? compute_tile_into(job, tile, *workspace, *options.stream_to)
+                                        : compute_tile(job, tile, *workspace);
+      MapRunStats done;
+      done.cells = text.cells;
+      done.equilibria = text.equilibria;
+      done.fallbacks = text.fallbacks;
+      if (!options.stream_to) sink(tile, std::move(text));
+      return done;
+    };
+  };
+  return run_tile_pool(tiles, options, make_work, wait);
 }
 
 void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv) {

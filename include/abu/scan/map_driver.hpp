@@ -179,6 +179,20 @@ struct MapRunStats {
 /// Called from worker threads with each finished tile; must be thread-safe.
 using TileSink = std::function<void(int tile, TileText&& text)>;
 
+/// What one worker thread does with a tile: computes it (and hands it on), returning the
+/// tile's counts. Built once per thread by the pool, so it may own per-thread workspace.
+using TileWork = std::function<MapRunStats(int tile)>;
+
+/// The thread pool of maps and basins: an atomic counter hands out `tiles` to
+/// options.threads threads, each running its own `make_work()`; the counts are summed and
+/// progress is reported per tile. An `Interrupted` inside a tile drops that tile only;
+/// any other exception stops every worker and is rethrown after all joined. `wait` (if
+/// set) runs on the calling thread while the workers run, and must return once `done()`
+/// is true (MPI uses it to receive other ranks' tiles).
+MapRunStats run_tile_pool(const std::vector<int>& tiles, const MapRunOptions& options,
+                          const std::function<TileWork()>& make_work,
+                          const std::function<void(const std::function<bool()>& done)>& wait = {});
+
 /// Computes `tiles` on options.threads threads (an atomic counter hands out tiles, one
 /// CellAnalyzer per thread) and passes each to `sink`. `wait` (if set) runs on the
 /// calling thread while the workers run, and must return once `done()` is true (MPI uses
