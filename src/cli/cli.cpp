@@ -136,6 +136,14 @@ std::string in_si(const SceneOptions& options, const std::string& assignment) {
 // values (r < l) is judged on the final scene. They are applied in the given order; one
 // refused only because of a value a later override changes is applied again after the
 // others; at the end every override is checked once more against the final scene.
+void refuse_anisotropic(const Scene& scene, std::string_view command) {
+  if (scene.support)
+    throw NotSupportedError(fmt::format(
+        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria` "
+        "handles it so far (the balanced states' Floquet multipliers)",
+        command, scene.file));
+}
+
 Scene load(const SceneOptions& options) {
   Scene scene = load_scene(options.scene);
   std::vector<std::string> pending = options.overrides;

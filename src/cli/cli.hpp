@@ -37,6 +37,9 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+/// Commands that do not handle an anisotropic support yet (docs/model.md §10) refuse such
+/// a scene up front: NotSupportedError naming the command and what to use instead.
+void refuse_anisotropic(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

@@ -9,6 +9,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_floquet.hpp"
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -60,6 +61,15 @@ void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& 
 // Two balls take the fixed-size path (closed forms of model.md §5), any other count the
 // general one (§13); both write the same formats.
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
+  if (scene.support) {  // anisotropic support: Floquet verdicts of the balanced states (model.md §10)
+    if (!o.mode_shapes.empty())
+      throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
+    const ParamsN p = params_of<any_balls>(scene);
+    const FloquetAnalysis a = analyze_floquet(p, *scene.support, o.sampling);
+    if (o.format == "csv") return floquet_csv(a, p, provenance_header(command_line(), scene.file, p));
+    if (o.format == "json") return floquet_json(a, p, *scene.support, command_line(), scene.file);
+    return floquet_table(a, p, *scene.support);
+  }
   const SpeedUnit unit = o.scene.speed_unit();
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);

@@ -151,7 +151,9 @@ HillResult hill_multipliers(const PeriodicJacobian& J, const HillOptions& option
       auto it = std::min_element(both.begin(), both.end(), [&](const auto& a, const auto& b) {
         return std::abs(a.first - x) < std::abs(b.first - x);
       });
-      lam.push_back(it->second);
+      cd l = it->second;
+      if (x.imag() == 0.0) l = {l.real(), x.real() >= 0.0 ? 0.0 : J.omega};  // a real multiplier: Im exact
+      lam.push_back(l);
     }
     r.multipliers = rho;
     r.exponents = lam;
