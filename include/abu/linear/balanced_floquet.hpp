@@ -34,8 +34,8 @@ struct BalancedFloquet {
   double monodromy_deviation = 0.0;  ///< max |rho_Hill - rho_Magnus| / max(|rho_Hill|, floor)
   double max_modulus = 0.0;     ///< max |rho|
   double abscissa = 0.0;        ///< (omega/pi) ln max |rho| [1/s]: the decay rate that decides
-  /// What |ln max|rho|| must exceed for a verdict other than marginal: 64 long-double
-  /// roundings of Hill's matrix norm times pi/omega, plus Hill's last truncation change
+  /// What |ln max|rho|| must exceed for a verdict other than marginal: 64 roundings (of the
+  /// precision Hill ran in) of Hill's matrix norm times pi/omega, plus Hill's last truncation change
   /// (the isotropic path's band is the same idea, spectrum.hpp). A multiplier of the
   /// stuck coulomb balls, 1 - 4e-10, is then still decided.
   double band = 0.0;

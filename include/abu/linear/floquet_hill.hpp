@@ -28,8 +28,13 @@ namespace abu {
 struct HillOptions {
   int first_harmonics = 4;      ///< N of the first try (harmonics -N..N); default 4
   int harmonics_step = 4;       ///< N grows by this; default 4
-  int max_harmonics = 64;       ///< give up beyond; default 64 (a 129 dim matrix)
-  double tolerance = 1e-12;     ///< converged when every multiplier moved by <= tol |rho| + tol^2; default 1e-12
+  int max_harmonics = 32;       ///< give up beyond; default 32 (a 65 dim matrix)
+  /// converged when every multiplier moved by <= tol |rho| + tol^2 (long double; double:
+  /// 100 tol, its rounding level); default 1e-12
+  double tolerance = 1e-12;
+  /// Solve in long double (default false: double). balanced_floquet switches it on when
+  /// double Hill and the Magnus monodromy disagree (the stiff coulomb laws).
+  bool extended = false;
 };
 
 struct HillResult {
