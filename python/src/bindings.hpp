@@ -15,11 +15,23 @@
 #include <string_view>
 #include <vector>
 
+#include "abu/core/errors.hpp"
 #include "abu/core/status.hpp"
+#include "abu/io/scene.hpp"
 
 namespace abu::python {
 
 namespace py = pybind11;
+
+/// The module analyses the model of model.md §3 (isotropic support, round race): a scene
+/// with an anisotropic support (§10) or an unround race (§11) is refused, as the CLI's
+/// sweep, continue, map and simulate refuse it, rather than analysed without them.
+inline void require_base_model(const Scene& scene, std::string_view what) {
+  if (scene.support || !scene.race.round())
+    throw NotSupportedError(std::string(what) + ": " + scene.file + " has an " +
+                            (scene.support ? "anisotropic support (model.md §10)" : "unround race (model.md §11)") +
+                            "; the Python module does not analyse it yet (the CLI's `equilibria` does)");
+}
 
 /// Registers continue_branches and simulate (runs.cpp).
 void bind_runs(py::module_& m);

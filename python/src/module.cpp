@@ -149,6 +149,7 @@ py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p) {
 }
 
 py::dict equilibria(const Scene& scene, int samples_per_sheet) {
+  require_base_model(scene, "equilibria");
   BalancedSampling sampling;
   sampling.samples_per_sheet = samples_per_sheet;
   if (const auto rule = options_violation(sampling)) throw InputError("equilibria", 0, "samples_per_sheet", *rule);
@@ -290,6 +291,7 @@ void map_tile(const MapJob& job, int tile, CellWorkspace& ws, std::vector<CellSu
 
 py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& method,
              int samples_per_sheet, int threads) {
+  require_base_model(scene, "map");
   if (method != "fast" && method != "full")
     throw InputError("map", 0, "method", fmt::format("must be 'fast' or 'full', got '{}'", method));
   if (threads < 1 || threads > 1024) throw InputError("map", 0, "threads", "must lie in 1..1024");

@@ -132,10 +132,6 @@ std::string in_si(const SceneOptions& options, const std::string& assignment) {
 }
 }  // namespace
 
-// The overrides do not depend on their order for being accepted: a rule between two
-// values (r < l) is judged on the final scene. They are applied in the given order; one
-// refused only because of a value a later override changes is applied again after the
-// others; at the end every override is checked once more against the final scene.
 void refuse_unround(const Scene& scene, std::string_view command) {
   if (!scene.race.round())
     throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria` "
@@ -143,6 +139,18 @@ void refuse_unround(const Scene& scene, std::string_view command) {
                                         command, scene.file));
 }
 
+void refuse_anisotropic(const Scene& scene, std::string_view command) {
+  if (scene.support)
+    throw NotSupportedError(fmt::format(
+        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria` "
+        "handles it so far (the balanced states' Floquet multipliers)",
+        command, scene.file));
+}
+
+// The overrides do not depend on their order for being accepted: a rule between two
+// values (r < l) is judged on the final scene. They are applied in the given order; one
+// refused only because of a value a later override changes is applied again after the
+// others; at the end every override is checked once more against the final scene.
 Scene load(const SceneOptions& options) {
   Scene scene = load_scene(options.scene);
   std::vector<std::string> pending = options.overrides;

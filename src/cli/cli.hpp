@@ -44,6 +44,9 @@ void refuse_unround(const Scene& scene, std::string_view command);
 /// Commands built on the (2n + 4) model refuse a LuGre scene (model.md §12: its state is
 /// 3n + 4 and its equilibria a family): InputError at the scene's `law` key, exit 2.
 void refuse_lugre(const Scene& scene, std::string_view command);
+/// Commands that do not handle an anisotropic support yet (docs/model.md §10) refuse such
+/// a scene up front: NotSupportedError naming the command and what to use instead.
+void refuse_anisotropic(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

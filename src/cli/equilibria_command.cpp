@@ -16,6 +16,7 @@
 #include "abu/io/io.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_floquet.hpp"
 #include "abu/io/report_lugre.hpp"
 #include "abu/io/report_unround.hpp"
 #include "abu/io/report_views.hpp"
@@ -142,8 +143,25 @@ std::string render_unround(const Scene& scene, const EquilibriaOptions& o, std::
 }
 
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
-  if (!scene.race.round()) {
-    return render_unround(scene, o, warnings);
+  {
+    // The extensions are modelled one at a time (model.md §10-§12): a scene that combines
+    // them is refused rather than analysed with one of them silently dropped.
+    const int extensions =
+        int(scene.support.has_value()) + int(!scene.race.round()) + int(scene.law == FrictionLaw::lugre);
+    if (extensions > 1)
+      throw NotSupportedError(fmt::format("{} combines an anisotropic support, an unround race or LuGre friction; "
+                                          "each is analysed only on its own so far (model.md §10-§12)",
+                                          scene.file));
+  }
+  if (!scene.race.round()) return render_unround(scene, o, warnings);
+  if (scene.support) {  // anisotropic support: Floquet verdicts of the balanced states (model.md §10)
+    if (!o.mode_shapes.empty())
+      throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
+    const ParamsN p = params_of<any_balls>(scene);
+    const FloquetAnalysis a = analyze_floquet(p, *scene.support, o.sampling);
+    if (o.format == "csv") return floquet_csv(a, p, provenance_header(command_line(), scene.file, p));
+    if (o.format == "json") return floquet_json(a, p, *scene.support, command_line(), scene.file);
+    return floquet_table(a, p, *scene.support);
   }
   const SpeedUnit unit = o.scene.speed_unit();
   if (scene.law == FrictionLaw::lugre) {

@@ -86,6 +86,7 @@ Action add_map_command(CLI::App& app) {
     const Scene scene = load(o->scene);
     refuse_lugre(scene, "map");
     refuse_unround(scene, "map");
+    refuse_anisotropic(scene, "map");
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

@@ -2,6 +2,13 @@
 //
 //   rolling = true       # optional, default true: j = 7/5 (rolling sphere); false: j = 1
 //   [rotor]    mass = 0.12  stiffness = 7500.0  damping = 2.0  unbalance = 6.0e-7
+//              or, an anisotropic support (docs/model.md §10), instead of stiffness and
+//              damping (never both forms): stiffness_x, stiffness_y, damping_x, damping_y
+//              and optional stiffness_xy, damping_xy (default 0) on the fixed axes; K_f
+//              must be positive definite, C_f positive semidefinite (reported at the
+//              last of the keys that form the matrix). Scene::support is then set and
+//              rotor.stiffness / rotor.damping hold the means k_bar, c_bar (the mean
+//              system of §10.5); `--set k=` / `c=` are refused on such a scene.
 //   [[ball]]   mass = 3.3e-5  race_radius = 0.018  radius = 1.0e-3   # one table per ball, 2..12
 //              optional per ball: rolling, and the coefficients mu d mu_c mu_s v_s
 //   [friction] law = "coulomb"  mu = 0.002  kappa = 1.0e3
@@ -76,6 +83,7 @@
 #include "abu/dynamics/speed_profile.hpp"
 #include "abu/io/ball_ring.hpp"  // BallRing, ring_balls, set_ball_count (the [balls] ring)
 #include "abu/io/race_scene.hpp"  // RaceSpec: the [race] table (unround race, model.md §11)
+#include "abu/model/anisotropic_support.hpp"
 
 namespace abu {
 
@@ -103,6 +111,9 @@ struct Scene {
   std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion
   std::optional<SimulateSettings> simulate;  ///< set iff the file has a [simulate] table
   RaceSpec race;                     ///< [race]: unround race harmonics (race_scene.hpp); round if absent
+  /// Set iff [rotor] gives the fixed-frame matrices (docs/model.md §10); rotor.stiffness
+  /// and rotor.damping are then their means.
+  std::optional<AnisotropicSupport> support;
 };
 
 /// Reads and validates a scene file. Throws InputError (also for an unreadable file).

@@ -1,0 +1,38 @@
+// Reports of a scene with an anisotropic support (docs/model.md §10): the balanced states
+// with their Floquet multipliers over pi/omega (Hill's method, checked by the Magnus
+// monodromy), as a table, CSV or JSON. The other equilibria of the mean system are
+// pi/omega-periodic orbits of the real system (§10.5); they are not computed yet and the
+// reports say so instead of printing the mean-system equilibria as equilibria.
+//
+//   abu::FloquetAnalysis a = abu::analyze_floquet(p, *scene.support, {});
+//   std::string json = abu::floquet_json(a, p, *scene.support, command_line, scene.file);
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/linear/balanced_floquet.hpp"
+
+namespace abu {
+
+struct FloquetAnalysis {
+  EquilibriumSetN mean_equilibria;          ///< of the mean system (k_bar, c_bar)
+  std::vector<EquilibriumN> balanced;       ///< its balanced states (exact equilibria, §10.5)
+  std::vector<BalancedFloquet> floquet;     ///< one per balanced state
+  int periodic_orbits_not_computed = 0;     ///< the mean system's other equilibria
+};
+
+/// `p` must carry the mean support. Throws NumericalError (where and why) if Hill's method
+/// does not converge or Hill and Magnus disagree beyond `cross_check_tolerance` (1e-6).
+FloquetAnalysis analyze_floquet(const ParamsN& p, const AnisotropicSupport& support, const BalancedSampling& sampling,
+                                const FloquetOptions& options = {}, double cross_check_tolerance = 1e-6);
+
+std::string floquet_table(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support);
+/// One row per balanced state; `header` is written first (provenance, comment lines).
+std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::string& header);
+std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support,
+                         std::string_view command_line, std::string_view scene_file);
+
+}  // namespace abu

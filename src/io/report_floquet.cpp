@@ -1,0 +1,154 @@
+// Reports of the balanced states' Floquet stability on an anisotropic support
+// (docs/model.md §10.5, §10.6).
+#include "abu/io/report_floquet.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "abu/core/errors.hpp"
+
+namespace abu {
+
+namespace {
+
+std::string json_escape(std::string_view s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') out += '\\', out += ch;
+    else if (static_cast<unsigned char>(ch) < 0x20) out += fmt::format("\\u{:04x}", int(static_cast<unsigned char>(ch)));
+    else out += ch;
+  }
+  return out + "\"";
+}
+
+constexpr std::string_view kOrbitsNote =
+    "the mean system's other equilibria become pi/omega-periodic orbits on an anisotropic support "
+    "(docs/model.md §10.5); they are not computed yet (no shooting/harmonic balance), so none is reported";
+
+std::string support_text(const AnisotropicSupport& s) {
+  return fmt::format("K_f = [[{}, {}], [{}, {}]] N/m, C_f = [[{}, {}], [{}, {}]] N s/m (fixed frame); k_bar = {}, "
+                     "|kappa| = {}, c_bar = {}, |gamma| = {}",
+                     s.k_x, s.k_xy, s.k_xy, s.k_y, s.c_x, s.c_xy, s.c_xy, s.c_y, s.mean_stiffness(),
+                     s.stiffness_anisotropy(), s.mean_damping(), s.damping_anisotropy());
+}
+
+}  // namespace
+
+FloquetAnalysis analyze_floquet(const ParamsN& p, const AnisotropicSupport& support, const BalancedSampling& sampling,
+                                const FloquetOptions& options, double cross_check_tolerance) {
+  FloquetAnalysis a;
+  a.mean_equilibria = find_equilibria(p, sampling);
+  for (const EquilibriumN& e : a.mean_equilibria.points()) {
+    if (e.family != Family::balanced) {
+      ++a.periodic_orbits_not_computed;
+      continue;
+    }
+    if (!e.converged && !(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: the Newton polish of balanced state {} did not converge (residual "
+                                       "{:.3g}): it is not an equilibrium",
+                                       p.omega, e.member, e.residual));
+    BalancedFloquet f = balanced_floquet(p, support, e, options);
+    if (!f.status.ok())
+      throw NumericalError(fmt::format("omega={}: Floquet multipliers of balanced state {}: {} (N = {})", p.omega,
+                                       e.member, f.status.reason, f.harmonics));
+    if (!(f.monodromy_deviation <= cross_check_tolerance))
+      throw NumericalError(fmt::format("omega={}: Floquet multipliers of balanced state {}: Hill's method and the "
+                                       "Magnus monodromy disagree by {:.3g} (relative), above {:.3g}",
+                                       p.omega, e.member, f.monodromy_deviation, cross_check_tolerance));
+    a.balanced.push_back(e);
+    a.floquet.push_back(std::move(f));
+  }
+  return a;
+}
+
+std::string floquet_table(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support) {
+  std::string out = fmt::format("anisotropic support: {}\n", support_text(support));
+  out += fmt::format("omega = {} rad/s; the rotating-frame system is periodic with pi/omega = {:.6g} s: stability "
+                     "from Floquet multipliers rho (|rho| < 1 decays), exponents lambda = (omega/pi) ln rho [1/s, "
+                     "rotating frame, Im modulo 2 omega]\n\n",
+                     p.omega, std::numbers::pi / p.omega);
+  if (a.balanced.empty()) out += "no balanced state (the balls cannot cancel U, model.md §5/§13.4)\n";
+  for (std::size_t i = 0; i < a.balanced.size(); ++i) {
+    const EquilibriumN& e = a.balanced[i];
+    const BalancedFloquet& f = a.floquet[i];
+    out += fmt::format("balanced {}: beta =", e.member);
+    for (Eigen::Index k = 2; k < e.position.size(); ++k) out += fmt::format(" {:.6f}", double(e.position(k)));
+    out += fmt::format(" rad; {} (max |rho| = {:.12f}, decay rate {:.6g} 1/s)", to_string(f.verdict), f.max_modulus,
+                       f.abscissa);
+    if (f.deflated) out += fmt::format("; {} unit multiplier(s) along the balanced set deflated", f.deflated);
+    out += fmt::format("\n  Hill N = {}, Magnus cross-check {:.2g}\n  {:>20}  {:>15}  {:>14}  {:>14}\n", f.harmonics,
+                       f.monodromy_deviation, "|rho|", "arg rho [rad]", "Re lambda", "Im lambda");
+    for (std::size_t k = 0; k < f.multipliers.size(); ++k)
+      out += fmt::format("  {:>20.12e}  {:>15.10f}  {:>14.6g}  {:>14.6g}\n", std::abs(f.multipliers[k]),
+                         std::arg(f.multipliers[k]), f.exponents[k].real(), f.exponents[k].imag());
+  }
+  if (a.periodic_orbits_not_computed > 0)
+    out += fmt::format("\n{} other state(s): {}\n", a.periodic_orbits_not_computed, kOrbitsNote);
+  return out;
+}
+
+std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::string& header) {
+  std::string out = header;
+  out += fmt::format("# anisotropic support: balanced states only; {} other state(s): {}\n",
+                     a.periodic_orbits_not_computed, kOrbitsNote);
+  const int n = p.n_balls();
+  out += "state,member";
+  for (int k = 1; k <= n; ++k) out += fmt::format(",beta{}", k);
+  out += ",stability,max_modulus,decay_rate,deflated,harmonics,cross_check";
+  const std::size_t count = a.floquet.empty() ? 0 : a.floquet.front().multipliers.size();
+  for (std::size_t k = 1; k <= count; ++k) out += fmt::format(",rho{}_re,rho{}_im", k, k);
+  out += "\n";
+  for (std::size_t i = 0; i < a.balanced.size(); ++i) {
+    const EquilibriumN& e = a.balanced[i];
+    const BalancedFloquet& f = a.floquet[i];
+    out += fmt::format("balanced,{}", e.member);
+    for (Eigen::Index k = 2; k < e.position.size(); ++k) out += fmt::format(",{}", double(e.position(k)));
+    out += fmt::format(",{},{},{},{},{},{}", to_string(f.verdict), f.max_modulus, f.abscissa, f.deflated, f.harmonics,
+                       f.monodromy_deviation);
+    for (const auto& rho : f.multipliers) out += fmt::format(",{},{}", rho.real(), rho.imag());
+    out += "\n";
+  }
+  return out;
+}
+
+std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& s,
+                         std::string_view command_line, std::string_view scene_file) {
+  std::string out = "{\n";
+  out += fmt::format("  \"command\": {},\n  \"scene\": {},\n  \"balls\": {},\n  \"omega\": {},\n", json_escape(command_line),
+                     json_escape(scene_file), p.n_balls(), p.omega);
+  out += fmt::format(
+      "  \"support\": {{\"frame\": \"fixed\", \"stiffness\": [[{}, {}], [{}, {}]], \"damping\": [[{}, {}], [{}, {}]], "
+      "\"mean_stiffness\": {}, \"mean_damping\": {}, \"units\": \"N/m, N s/m\"}},\n",
+      s.k_x, s.k_xy, s.k_xy, s.k_y, s.c_x, s.c_xy, s.c_xy, s.c_y, s.mean_stiffness(), s.mean_damping());
+  out += fmt::format("  \"period\": {},\n  \"units\": {},\n", std::numbers::pi / p.omega,
+                     json_escape("beta [rad]; floquet_multipliers [re, im] over pi/omega, dimensionless, sorted by "
+                                 "modulus descending; floquet_exponents [re, im] 1/s, rotating frame, im modulo 2 "
+                                 "omega; decay_rate = (omega/pi) ln max |rho| [1/s]"));
+  out += "  \"balanced_states\": [";
+  for (std::size_t i = 0; i < a.balanced.size(); ++i) {
+    const EquilibriumN& e = a.balanced[i];
+    const BalancedFloquet& f = a.floquet[i];
+    out += i ? ",\n    {" : "\n    {";
+    out += fmt::format("\"member\": {}, \"on_balanced_set\": {}, \"beta\": [", e.member, e.on_balanced_set);
+    for (Eigen::Index k = 2; k < e.position.size(); ++k) out += fmt::format("{}{}", k > 2 ? ", " : "", double(e.position(k)));
+    out += fmt::format("], \"residual\": {}, \"stability\": \"{}\", \"max_modulus\": {}, \"decay_rate\": {}, "
+                       "\"band\": {}, \"deflated_unit_multipliers\": {}, \"hill_harmonics\": {}, "
+                       "\"magnus_cross_check\": {},\n     \"floquet_multipliers\": [",
+                       e.residual, to_string(f.verdict), f.max_modulus, f.abscissa, f.band, f.deflated, f.harmonics,
+                       f.monodromy_deviation);
+    for (std::size_t k = 0; k < f.multipliers.size(); ++k)
+      out += fmt::format("{}[{}, {}]", k ? ", " : "", f.multipliers[k].real(), f.multipliers[k].imag());
+    out += "],\n     \"floquet_exponents\": [";
+    for (std::size_t k = 0; k < f.exponents.size(); ++k)
+      out += fmt::format("{}[{}, {}]", k ? ", " : "", f.exponents[k].real(), f.exponents[k].imag());
+    out += "]}";
+  }
+  out += a.balanced.empty() ? "],\n" : "\n  ],\n";
+  out += fmt::format("  \"periodic_orbits\": {{\"count\": {}, \"computed\": false, \"note\": {}}}\n}}\n",
+                     a.periodic_orbits_not_computed, json_escape(kOrbitsNote));
+  return out;
+}
+
+}  // namespace abu

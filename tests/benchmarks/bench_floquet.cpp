@@ -1,0 +1,70 @@
+// Benchmark (not a test): the cost of the balanced state's Floquet verdict on an anisotropic
+// support (Hill + Magnus cross-check, docs/model.md §10.5-10.6) against the isotropic
+// eigenvalue verdict (scan.hpp equilibrium_spectrum) of the same state, and against a
+// numpy script that integrates the monodromy by RK4 (bench_floquet_numpy.py), in one run.
+//
+//   build/tests/benchmarks/bench_floquet [tests/benchmarks/bench_floquet_numpy.py] [reps]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/linear/balanced_floquet.hpp"
+#include "abu/linear/floquet_hill.hpp"
+#include "abu/linear/magnus_monodromy.hpp"
+#include "abu/scan/scan.hpp"
+
+using namespace abu;
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double seconds_per_call(int reps, F&& f) {
+  const auto t0 = Clock::now();
+  for (int i = 0; i < reps; ++i) f();
+  return std::chrono::duration<double>(Clock::now() - t0).count() / reps;
+}
+
+int main(int argc, char** argv) {
+  const std::string script = argc > 1 ? argv[1] : "tests/benchmarks/bench_floquet_numpy.py";
+  const int reps = argc > 2 ? std::atoi(argv[2]) : 20;
+  for (FrictionLaw law : {FrictionLaw::viscous, FrictionLaw::coulomb}) {
+    ParamsN p;  // BASE of docs/model.md §10.8
+    p.rotor = {0.12, 7500.0, 2.0, 6e-7};
+    p.omega = 900.0;
+    p.law = law;
+    p.kappa = 1e5;
+    p.balls.resize(2);
+    for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-3, 0.001, 0.003, 0.1};
+    const AnisotropicSupport s{7875.0, 7125.0, 150.0, 2.3, 1.7, 0.1};
+    const EquilibriumSetN set = find_equilibria(p);
+    const EquilibriumN e = set.points()[0];
+    volatile double sink = 0.0;
+    const double t_iso = seconds_per_call(reps, [&] { sink = sink + equilibrium_spectrum(p, e).abscissa; });
+    const PeriodicJacobian J = balanced_periodic_jacobian(p, s, e.position);
+    const double t_hill = seconds_per_call(reps, [&] { sink = sink + std::abs(hill_multipliers(J).multipliers[0]); });
+    const double t_magnus = seconds_per_call(reps, [&] { sink = sink + magnus_monodromy(J, 256)(0, 0); });
+    const double t_verdict = seconds_per_call(reps, [&] { sink = sink + balanced_floquet(p, s, e).max_modulus; });
+    fmt::print("{}: isotropic eigenvalue verdict {:.3g} ms; Floquet verdict {:.3g} ms (Hill {:.3g} ms, Magnus-256 "
+               "{:.3g} ms): ratio {:.1f}\n",
+               to_string(law), 1e3 * t_iso, 1e3 * t_verdict, 1e3 * t_hill, 1e3 * t_magnus, t_verdict / t_iso);
+    // The same J (scaled coordinates) for the numpy script.
+    const std::string file = "/tmp/bench_floquet_J.txt";
+    {
+      std::ofstream out(file);
+      out.precision(17);
+      out << J.omega << " " << J.dimension() << "\n" << J.mean << "\n" << J.cos2 << "\n" << J.sin2 << "\n";
+    }
+    if (law == FrictionLaw::viscous) {
+      const std::string cmd = fmt::format("/usr/bin/python3 {} {} {:.6g}", script, file, t_verdict);
+      if (std::system(cmd.c_str()) != 0) fmt::print("numpy script failed: {}\n", cmd);
+    } else {
+      fmt::print("coulomb: no numpy RK4 comparison (ball rates {:.2g} 1/s need ~1e6 explicit steps per period)\n",
+                 -hill_multipliers(J).exponents.back().real());
+    }
+    std::remove(file.c_str());
+  }
+}
