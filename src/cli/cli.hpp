@@ -37,6 +37,9 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+/// `coulomb-set` is not a vector field (model.md §4): a command that needs one refuses
+/// the scene (exit 2) and names the commands that take it.
+void refuse_set_valued(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

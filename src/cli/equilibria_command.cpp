@@ -8,7 +8,9 @@
 #include "cli.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
+#include "abu/equilibria/stick_set.hpp"
 #include "abu/io/report.hpp"
+#include "abu/io/report_stick_set.hpp"
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -23,7 +25,47 @@ struct EquilibriaOptions {
   BalancedSampling sampling;
   bool chart = true;  // no chart to draw: --no-chart is accepted like everywhere
   std::string mode_shapes;  // --mode-shapes DIR
+  std::string stick_dir;    // --stick-set DIR (coulomb-set scenes)
+  StickSetOptions stick;
 };
+
+// `coulomb-set` (model.md §14): the stick set instead of isolated equilibria; with
+// --stick-set DIR also DIR/stick_boundary.csv (traced curves) and DIR/stick_set.png.
+std::string render_stick_set(const Scene& scene, const EquilibriaOptions& o, OutputTransaction& out) {
+  const ParamsN p = params_of<any_balls>(scene);
+  const StickSet s = stick_set(p, o.stick);
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  if (!o.stick_dir.empty()) {
+    const std::filesystem::path d(o.stick_dir);
+    const auto csv = out.stage(d / "stick_set.csv", stick_set_csv(s, header));
+    if (s.n_balls == 2) {
+      const auto boundary = out.stage(d / "stick_boundary.csv", stick_boundary_csv(s, header));
+      const auto raster = out.stage(d / "stick_raster.dat", stick_raster_dat(p, 240));
+      if (o.chart) {
+        std::string marks = "# smooth equilibria (tau = 0): beta1 beta2 kind (1 balanced, 2 other)\n";
+        for (const auto& sd : s.seeds)
+          marks += fmt::format("{} {} {}\n", sd.beta[0], sd.beta[1], sd.family == "balanced" ? 1 : 2);
+        const auto seeds = out.stage(d / "stick_seeds.dat", marks);
+        run_gnuplot(plots_dir() / "stick_set.gp",
+                    {{"csv", boundary.string()},
+                     {"raster", raster.string()},
+                     {"seeds", seeds.string()},
+                     {"png", out.reserve(d / "stick_set.png").string()},
+                     {"worst1", fmt::format("{}", s.worst_beta.empty() ? -10.0 : s.worst_beta[0])},
+                     {"worst2", fmt::format("{}", s.worst_beta.empty() ? -10.0 : s.worst_beta[1])},
+                     {"title", fmt::format("{}: stick set of coulomb-set friction at omega = {} rad/s", scene.file,
+                                           p.omega)},
+                     {"subtitle", fmt::format("area {:.4g} rad^2 ({:.3g} of the torus), {} component(s), "
+                                              "V = {:.4g} m (balanced comp.), V_E = {:.4g} m",
+                                              s.area, s.area_fraction, s.components.size(), s.worst_q_abs,
+                                              s.worst_q_abs_any)}});
+      }
+    }
+  }
+  if (o.format == "csv") return stick_set_csv(s, header);
+  if (o.format == "json") return stick_set_json(s, command_line(), scene.file, p);
+  return stick_set_table(s, p);
+}
 
 // A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
 // (rounding level is 1e-16) is a numerical failure, exit 3, not a row (issue 12).
@@ -61,6 +103,7 @@ void stage_mode_shapes(OutputTransaction& out, const std::string& dir, const A& 
 // general one (§13); both write the same formats.
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
   const SpeedUnit unit = o.scene.speed_unit();
+  if (scene.law == FrictionLaw::coulomb_set) return render_stick_set(scene, o, out);
   if (scene.balls.size() == 2) {
     const Params p = params_of<2>(scene);
     const Analysis a = analyze(p);
@@ -114,6 +157,14 @@ Action add_equilibria_command(CLI::App& app) {
                   "Also write DIR/modes.csv (every mode of every equilibrium: rotor and ball motion over one cycle) and "
                   "DIR/modes.png")
       ->type_name("DIR");
+  sub->add_option("--stick-set", options->stick_dir,
+                  "coulomb-set scenes: also write DIR/stick_set.csv, and for two balls DIR/stick_boundary.csv (the "
+                  "traced boundary curves), DIR/stick_raster.dat and DIR/stick_set.png (model.md §14)")
+      ->type_name("DIR");
+  sub->add_option("--stick-grid", options->stick.grid_budget,
+                  "coulomb-set, n >= 3 balls: at most this many grid points on the torus (G = floor(B^(1/n)) per angle)")
+      ->check(CLI::Range(1L << 10, 1L << 26))
+      ->capture_default_str();
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work

@@ -5,11 +5,15 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <stdexcept>
 #include <type_traits>
 
 namespace abu {
 
 namespace {
+
+// The commands refuse `coulomb-set` before any vector field is evaluated (model.md §4).
+constexpr const char* kNotVectorField = "friction law 'coulomb-set' is not a vector field (model.md §4)";
 
 template <class T>
 struct RealOf {
@@ -66,6 +70,7 @@ T friction_force(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       const T normal = b.mass * b.race_radius * p.omega * p.omega;
       return -normal * stribeck_level(b, beta_dot) * smooth_sign(p.kappa, beta_dot);
     }
+    case FrictionLaw::coulomb_set: throw std::logic_error(kNotVectorField);
   }
   return T(0);
 }
@@ -88,6 +93,7 @@ T friction_slope(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       return -normal * (level_dv * smooth_sign(p.kappa, beta_dot) +
                         stribeck_level(b, beta_dot) * smooth_sign_dv(p.kappa, beta_dot));
     }
+    case FrictionLaw::coulomb_set: throw std::logic_error(kNotVectorField);
   }
   return T(0);
 }
@@ -97,6 +103,7 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
   const auto& b = p.balls[std::size_t(ball)];
   const T zero(0);
   switch (p.law) {
+    case FrictionLaw::coulomb_set: throw std::logic_error(kNotVectorField);
     case FrictionLaw::none: return zero;
     case FrictionLaw::viscous:
       if (q == Quantity::d) return -b.race_radius * beta_dot;

@@ -22,9 +22,10 @@
 
 namespace abu {
 
-/// Friction law acting on each ball along +beta_i (model.md §4). Only the smooth laws
-/// are modelled; `coulomb-set` (the kappa -> infinity limit) is not a vector field.
-enum class FrictionLaw { none, viscous, coulomb, stribeck };
+/// Friction law acting on each ball along +beta_i (model.md §4). `coulomb_set` (scene
+/// name `coulomb-set`, the kappa -> infinity limit (4.6)) is not a vector field: only the
+/// stick-set analysis of model.md §14 (equilibria/stick_set.hpp) takes it.
+enum class FrictionLaw { none, viscous, coulomb, stribeck, coulomb_set };
 std::string_view to_string(FrictionLaw law);
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name);
 
