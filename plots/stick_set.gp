@@ -16,7 +16,7 @@ if (!exists("worst2")) worst2 = '-10'
 
 set terminal pngcairo size 900,860 enhanced font 'DejaVu Sans,10'
 set output png
-set title sprintf("%s\n{/*0.85 %s}", title, subtitle) noenhanced
+set title sprintf("%s\n%s", title, subtitle) noenhanced
 set xlabel 'beta_1 [rad]'
 set ylabel 'beta_2 [rad]'
 set xrange [0:2*pi]
@@ -30,11 +30,12 @@ set palette defined (0 'white', 1 '#c8e6c9')
 unset colorbox
 set cbrange [0:1]
 set datafile commentschars '#'
+set datafile separator ','
 plot raster using 1:2:3 with image notitle, \
-     csv using 4:(column(2) == 1 && column(3) > 0 ? column(5) : NaN) every ::1 with lines lw 2 lc rgb '#1565c0' dt 1 title 'ball 1: s_1 = +1', \
-     csv using 4:(column(2) == 1 && column(3) < 0 ? column(5) : NaN) every ::1 with lines lw 2 lc rgb '#1565c0' dt 2 title 'ball 1: s_1 = -1', \
-     csv using 4:(column(2) == 2 && column(3) > 0 ? column(5) : NaN) every ::1 with lines lw 2 lc rgb '#c62828' dt 1 title 'ball 2: s_2 = +1', \
-     csv using 4:(column(2) == 2 && column(3) < 0 ? column(5) : NaN) every ::1 with lines lw 2 lc rgb '#c62828' dt 2 title 'ball 2: s_2 = -1', \
+     csv using 4:(column(2) == 1 && column(3) > 0 ? column(5) : NaN) with lines lw 2 lc rgb '#1565c0' dt 1 title 'ball 1: s_1 = +1', \
+     csv using 4:(column(2) == 1 && column(3) < 0 ? column(5) : NaN) with lines lw 2 lc rgb '#1565c0' dt 2 title 'ball 1: s_1 = -1', \
+     csv using 4:(column(2) == 2 && column(3) > 0 ? column(5) : NaN) with lines lw 2 lc rgb '#c62828' dt 1 title 'ball 2: s_2 = +1', \
+     csv using 4:(column(2) == 2 && column(3) < 0 ? column(5) : NaN) with lines lw 2 lc rgb '#c62828' dt 2 title 'ball 2: s_2 = -1', \
      seeds using 1:($3 == 1 ? $2 : NaN) with points pt 7 ps 1.4 lc rgb 'black' title 'balanced point', \
      seeds using 1:($3 == 2 ? $2 : NaN) with points pt 9 ps 1.4 lc rgb '#555555' title 'other smooth equilibrium', \
      '+' using (real(worst1)):(real(worst2)) every ::0::0 with points pt 3 ps 2.5 lw 2 lc rgb '#ff6f00' title 'worst |q| (V)'

@@ -44,7 +44,7 @@ std::string render_stick_set(const Scene& scene, const EquilibriaOptions& o, Out
       if (o.chart) {
         std::string marks = "# smooth equilibria (tau = 0): beta1 beta2 kind (1 balanced, 2 other)\n";
         for (const auto& sd : s.seeds)
-          marks += fmt::format("{} {} {}\n", sd.beta[0], sd.beta[1], sd.family == "balanced" ? 1 : 2);
+          marks += fmt::format("{},{},{}\n", sd.beta[0], sd.beta[1], sd.family == "balanced" ? 1 : 2);
         const auto seeds = out.stage(d / "stick_seeds.dat", marks);
         run_gnuplot(plots_dir() / "stick_set.gp",
                     {{"csv", boundary.string()},

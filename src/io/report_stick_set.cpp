@@ -177,7 +177,7 @@ std::string stick_raster_dat(const ParamsN& p, int cells) {
       const StickPoint sp = stick_point(p, b);
       bool in = true;
       for (double v : sp.s) in = in && std::fabs(v) <= 1.0;
-      out += fmt::format("{:.6f} {:.6f} {}\n", b[0], b[1], in ? 1 : 0);
+      out += fmt::format("{:.6f},{:.6f},{}\n", b[0], b[1], in ? 1 : 0);
     }
     out += "\n";
   }

@@ -23,7 +23,7 @@ std::string stick_set_json(const StickSet& s, std::string_view command_line, std
 /// The traced boundary: one row per point (arc, ball, sign, beta1, beta2); arcs separated
 /// by a blank line (gnuplot's index-free line break) and a wrap by 2 pi too.
 std::string stick_boundary_csv(const StickSet& s, const std::string& header);
-/// A raster of the set for the chart's fill: rows beta1 beta2 inside (0/1), `cells` per angle.
+/// A raster of the set for the chart's fill: rows beta1,beta2,inside (0/1), comma-separated, `cells` per angle.
 std::string stick_raster_dat(const ParamsN& p, int cells);
 
 }  // namespace abu
