@@ -339,6 +339,7 @@ TEST_CASE("friction laws follow model.md section 4", "[model]") {
         case FrictionLaw::coulomb: return -b.mu * normal * sgn;
         case FrictionLaw::stribeck:
           return -normal * (b.mu_c + (b.mu_s - b.mu_c) * std::exp(-(v / b.v_s) * (v / b.v_s))) * sgn;
+        case FrictionLaw::coulomb_set: break;  // not a vector field (model.md §4): no force law
       }
       return 0.0;
     };

@@ -147,6 +147,26 @@ def refine_max(P, b0):
     return abs(P["G"]) * math.sqrt(-fun(b)), (b[0] % TWO_PI, b[1] % TWO_PI)
 
 
+def zoom_max(P, b, width):
+    """Brute-force local refinement: the best inside point of a 201 x 201 grid around b,
+    the window shrinking fivefold each round (the maximum of |q| over E lies on its
+    boundary, often at a corner, where SLSQP may stop early)."""
+    best = np.array(b, dtype=float)
+    bestv = abs(q_of(P, best[0], best[1])) if excess(P, best[0], best[1]) <= 0 else -1.0
+    w = width
+    t = np.linspace(-1, 1, 201)
+    for _ in range(16):
+        X, Y = np.meshgrid(best[0] + w * t, best[1] + w * t, indexing="ij")
+        inside = excess(P, X, Y) <= 0
+        if inside.any():
+            qa = np.where(inside, np.abs(q_of(P, X, Y)), -1.0)
+            k = np.unravel_index(np.argmax(qa), qa.shape)
+            if qa[k] > bestv:
+                bestv, best = qa[k], np.array([X[k], Y[k]])
+        w /= 5.0
+    return bestv, (best[0] % TWO_PI, best[1] % TWO_PI)
+
+
 def maxima(P, R=3000):
     x = (np.arange(R) + 0.5) * TWO_PI / R
     B1, B2 = np.meshgrid(x, x, indexing="ij")
@@ -165,8 +185,12 @@ def maxima(P, R=3000):
         order = sel[np.argsort(qa.ravel()[sel])[::-1][:6]]
         best = (qa.ravel()[order[0]], (B1.ravel()[order[0]], B2.ravel()[order[0]]))
         for k in order:
-            r = refine_max(P, np.array([B1.ravel()[k], B2.ravel()[k]]))
+            start = np.array([B1.ravel()[k], B2.ravel()[k]])
+            r = refine_max(P, start)
             if r and r[0] > best[0]:
+                best = r
+            r = zoom_max(P, r[1] if r else start, 4 * TWO_PI / R)
+            if r[0] > best[0]:
                 best = r
         # the global maximiser of |W| (balls together at the unbalance) if it is inside
         if excess(P, 0.0, 0.0) <= 0 and lab[0, 0] == c:
