@@ -758,6 +758,23 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
         const double w2 = std::norm(m.W(b));
         if (segment_inside && w2 > best_w2) best_w2 = w2, best_c = wrap(b[0]), best_along = wrap(b[1]);
       }
+    // Last, a local brute-force zoom (41 x 41 points, the window shrinking threefold per
+    // round from a few sample steps): the maximum on a curved edge next to a thin tip that
+    // neither the columns nor the corner Newton reached.
+    {
+      double w = 4.0 * std::max(two_pi / o.samples, S.resolution);
+      for (int round = 0; round < 30; ++round) {
+        const double c0 = best_c, a0 = best_along;
+        for (int i = -20; i <= 20; ++i)
+          for (int k = -20; k <= 20; ++k) {
+            const double x[2] = {c0 + w * i / 20.0, a0 + w * k / 20.0};
+            if (m.excess(x) > 0.0) continue;
+            const double w2 = std::norm(m.W(x));
+            if (w2 > best_w2) best_w2 = w2, best_c = wrap(x[0]), best_along = wrap(x[1]);
+          }
+        w /= 3.0;
+      }
+    }
     comp.q_abs_max = gabs * std::sqrt(std::max(0.0, best_w2));
     comp.beta_at_max = {best_c, best_along};
     const double scale_a = trapezoid_area > 0 ? S.area / trapezoid_area : 0.0;
