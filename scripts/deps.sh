@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(cmake g++ make pkg-config libeigen3-dev libgsl-dev libarpack2-dev libfmt-dev catch2 libcli11-dev
           libtomlplusplus-dev gnuplot-nox python3 python3-mpmath
-          python3-dev pybind11-dev python3-numpy python3-pytest python3-sympy "$@")
+          python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest python3-sympy "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -183,6 +183,15 @@ void refuse_lugre(const Scene& scene, std::string_view command) {
                                command));
 }
 
+void refuse_set_valued(const Scene& scene, std::string_view command) {
+  if (scene.law != FrictionLaw::coulomb_set) return;
+  throw InputError(scene.file, scene.law_line, "friction.law",
+                   fmt::format("friction law 'coulomb-set' is set-valued, not a vector field: `{}` needs one; "
+                               "`equilibria` computes its stick set (model.md §14); use 'coulomb' with a large kappa "
+                               "here",
+                               command));
+}
+
 namespace {
 // Integers on the command line are decimal: CLI11 reads "010" as octal 8 (strtoll base 0,
 // also inside its range checks). An option's value of digits with leading zeros ("--steps

@@ -47,6 +47,9 @@ void refuse_lugre(const Scene& scene, std::string_view command);
 /// Commands that do not handle an anisotropic support yet (docs/model.md §10) refuse such
 /// a scene up front: NotSupportedError naming the command and what to use instead.
 void refuse_anisotropic(const Scene& scene, std::string_view command);
+/// `coulomb-set` is not a vector field (model.md §4): a command that needs one refuses
+/// the scene (exit 2) and names the commands that take it.
+void refuse_set_valued(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

@@ -15,9 +15,11 @@
 #include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/equilibria/stick_set.hpp"
 #include "abu/io/report.hpp"
 #include "abu/io/report_floquet.hpp"
 #include "abu/io/report_lugre.hpp"
+#include "abu/io/report_stick_set.hpp"
 #include "abu/io/report_unround.hpp"
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
@@ -34,6 +36,8 @@ struct EquilibriaOptions {
   bool chart = true;  // no chart to draw: --no-chart is accepted like everywhere
   std::string mode_shapes;  // --mode-shapes DIR
   std::string at_balls;     // --at-balls b1,..,bn: a LuGre stuck state [rad]
+  std::string stick_dir;    // --stick-set DIR (coulomb-set scenes)
+  StickSetOptions stick;
 };
 
 // --at-balls "b1,b2,..": one finite angle [rad] per ball.
@@ -87,6 +91,44 @@ std::string render_lugre(const Scene& scene, const EquilibriaOptions& o, std::st
   if (o.format == "csv") return lugre_equilibria_csv(rows, p, provenance_header(command_line(), scene.file, p));
   if (o.format == "json") return lugre_equilibria_json(rows, p, command_line(), scene.file);
   return lugre_equilibria_table(rows, p);
+}
+
+// `coulomb-set` (model.md §14): the stick set instead of isolated equilibria; with
+// --stick-set DIR also DIR/stick_boundary.csv (traced curves) and DIR/stick_set.png.
+std::string render_stick_set(const Scene& scene, const EquilibriaOptions& o, OutputTransaction& out) {
+  const ParamsN p = params_of<any_balls>(scene);
+  const StickSet s = stick_set(p, o.stick);
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  if (!o.stick_dir.empty()) {
+    const std::filesystem::path d(o.stick_dir);
+    const auto csv = out.stage(d / "stick_set.csv", stick_set_csv(s, header));
+    if (s.n_balls == 2) {
+      const auto boundary = out.stage(d / "stick_boundary.csv", stick_boundary_csv(s, header));
+      const auto raster = out.stage(d / "stick_raster.dat", stick_raster_dat(p, 240));
+      if (o.chart) {
+        std::string marks = "# smooth equilibria (tau = 0): beta1 beta2 kind (1 balanced, 2 other)\n";
+        for (const auto& sd : s.seeds)
+          marks += fmt::format("{},{},{}\n", sd.beta[0], sd.beta[1], sd.family == "balanced" ? 1 : 2);
+        const auto seeds = out.stage(d / "stick_seeds.dat", marks);
+        run_gnuplot(plots_dir() / "stick_set.gp",
+                    {{"csv", boundary.string()},
+                     {"raster", raster.string()},
+                     {"seeds", seeds.string()},
+                     {"png", out.reserve(d / "stick_set.png").string()},
+                     {"worst1", fmt::format("{}", s.worst_beta.empty() ? -10.0 : s.worst_beta[0])},
+                     {"worst2", fmt::format("{}", s.worst_beta.empty() ? -10.0 : s.worst_beta[1])},
+                     {"title", fmt::format("{}: stick set of coulomb-set friction at omega = {} rad/s", scene.file,
+                                           p.omega)},
+                     {"subtitle", fmt::format("area {:.4g} rad^2 ({:.3g} of the torus), {} component(s), "
+                                              "V = {:.4g} m (balanced comp.), V_E = {:.4g} m",
+                                              s.area, s.area_fraction, s.components.size(), s.worst_q_abs,
+                                              s.worst_q_abs_any)}});
+      }
+    }
+  }
+  if (o.format == "csv") return stick_set_csv(s, header);
+  if (o.format == "json") return stick_set_json(s, command_line(), scene.file, p);
+  return stick_set_table(s, p);
 }
 
 // A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
@@ -146,11 +188,12 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   {
     // The extensions are modelled one at a time (model.md §10-§12): a scene that combines
     // them is refused rather than analysed with one of them silently dropped.
-    const int extensions =
-        int(scene.support.has_value()) + int(!scene.race.round()) + int(scene.law == FrictionLaw::lugre);
+    const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
+                           int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set);
     if (extensions > 1)
-      throw NotSupportedError(fmt::format("{} combines an anisotropic support, an unround race or LuGre friction; "
-                                          "each is analysed only on its own so far (model.md §10-§12)",
+      throw NotSupportedError(fmt::format("{} combines two of an anisotropic support, an unround race, LuGre and "
+                                          "coulomb-set friction; each is analysed only on its own so far "
+                                          "(model.md §10-§12, §14)",
                                           scene.file));
   }
   if (!scene.race.round()) return render_unround(scene, o, warnings);
@@ -164,6 +207,7 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     return floquet_table(a, p, *scene.support);
   }
   const SpeedUnit unit = o.scene.speed_unit();
+  if (scene.law == FrictionLaw::coulomb_set) return render_stick_set(scene, o, out);
   if (scene.law == FrictionLaw::lugre) {
     if (!o.mode_shapes.empty())
       throw InputError("--mode-shapes", 0, "", "not available for friction law 'lugre' yet (model.md §12)");
@@ -231,6 +275,14 @@ Action add_equilibria_command(CLI::App& app) {
                   "Also write DIR/modes.csv (every mode of every equilibrium: rotor and ball motion over one cycle) and "
                   "DIR/modes.png")
       ->type_name("DIR");
+  sub->add_option("--stick-set", options->stick_dir,
+                  "coulomb-set scenes: also write DIR/stick_set.csv, and for two balls DIR/stick_boundary.csv (the "
+                  "traced boundary curves), DIR/stick_raster.dat and DIR/stick_set.png (model.md §14)")
+      ->type_name("DIR");
+  sub->add_option("--stick-grid", options->stick.grid_budget,
+                  "coulomb-set, n >= 3 balls: at most this many grid points on the torus (G = floor(B^(1/n)) per angle)")
+      ->check(CLI::Range(1L << 10, 1L << 26))
+      ->capture_default_str();
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work

@@ -87,6 +87,7 @@ Action add_map_command(CLI::App& app) {
     refuse_lugre(scene, "map");
     refuse_unround(scene, "map");
     refuse_anisotropic(scene, "map");
+    refuse_set_valued(scene, "map");
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

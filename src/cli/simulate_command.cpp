@@ -229,6 +229,7 @@ Action add_simulate_command(CLI::App& app) {
     apply_scene_settings(scene, *sub, *o);
     refuse_unround(scene, "simulate");
     refuse_anisotropic(scene, "simulate");
+    refuse_set_valued(scene, "simulate");
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
     // --units converts --set omega; a run-up profile stays in rad/s (docs/views.md).

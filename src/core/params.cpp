@@ -13,13 +13,14 @@ std::string_view to_string(FrictionLaw law) {
     case FrictionLaw::coulomb: return "coulomb";
     case FrictionLaw::stribeck: return "stribeck";
     case FrictionLaw::lugre: return "lugre";
+    case FrictionLaw::coulomb_set: return "coulomb-set";
   }
   return "?";
 }
 
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name) {
   for (auto law : {FrictionLaw::none, FrictionLaw::viscous, FrictionLaw::coulomb, FrictionLaw::stribeck,
-                   FrictionLaw::lugre})
+                   FrictionLaw::lugre, FrictionLaw::coulomb_set})
     if (to_string(law) == name) return law;
   return std::nullopt;
 }
@@ -108,7 +109,7 @@ std::string_view param_symbols_help() {
 
 bool law_uses(FrictionLaw law, Quantity q) {
   switch (q) {
-    case Quantity::mu: return law == FrictionLaw::coulomb;
+    case Quantity::mu: return law == FrictionLaw::coulomb || law == FrictionLaw::coulomb_set;
     case Quantity::d: return law == FrictionLaw::viscous;
     case Quantity::mu_c:
     case Quantity::mu_s:

@@ -47,6 +47,9 @@ std::string chart_subtitle(const Scene& scene, const std::vector<std::string>& o
       out += fmt::format(" {}, kappa = {:.4g} s/rad", ball_range(scene, "mu", "", [](const auto& b) { return b.mu; }),
                          scene.kappa);
       break;
+    case FrictionLaw::coulomb_set:
+      out += fmt::format(" {} (set-valued)", ball_range(scene, "mu", "", [](const auto& b) { return b.mu; }));
+      break;
     case FrictionLaw::stribeck:
       out += fmt::format(" {}, {}, v_s = {:.4g} rad/s, kappa = {:.4g} s/rad",
                          ball_range(scene, "mu_c", "", [](const auto& b) { return b.mu_c; }),

@@ -494,7 +494,8 @@ std::string describe_parameters(const ParamsT<double, N>& p) {
     switch (p.law) {
       case FrictionLaw::none: break;
       case FrictionLaw::viscous: s += fmt::format(" d{}={}", n, b.d); break;
-      case FrictionLaw::coulomb: s += fmt::format(" mu{}={}", n, b.mu); break;
+      case FrictionLaw::coulomb:
+      case FrictionLaw::coulomb_set: s += fmt::format(" mu{}={}", n, b.mu); break;
       case FrictionLaw::stribeck:
         s += fmt::format(" mu_c{}={} mu_s{}={} v_s{}={}", n, b.mu_c, n, b.mu_s, n, b.v_s);
         break;

@@ -152,7 +152,8 @@ std::string parameters_object(const ParamsT<double, N>& p) {
     switch (p.law) {
       case FrictionLaw::none: break;
       case FrictionLaw::viscous: s += fmt::format(", \"d{}\": {}", n, quantity(b.d, "N s/m", "d")); break;
-      case FrictionLaw::coulomb: s += fmt::format(", \"mu{}\": {}", n, quantity(b.mu, "-", "mu")); break;
+      case FrictionLaw::coulomb:
+      case FrictionLaw::coulomb_set: s += fmt::format(", \"mu{}\": {}", n, quantity(b.mu, "-", "mu")); break;
       case FrictionLaw::stribeck:
         s += fmt::format(", \"mu_c{}\": {}, \"mu_s{}\": {}, \"v_s{}\": {}", n, quantity(b.mu_c, "-", "mu_c"), n,
                          quantity(b.mu_s, "-", "mu_s"), n, quantity(b.v_s, "rad/s", "v_s"));

@@ -55,7 +55,7 @@ namespace {
 
 using namespace scene_reading;
 
-constexpr std::string_view kLawNames = "none, viscous, coulomb, stribeck or lugre";
+constexpr std::string_view kLawNames = "none, viscous, coulomb, stribeck, lugre or coulomb-set";
 
 std::string law_mismatch(FrictionLaw law, Quantity q) {
   std::string used;
@@ -406,11 +406,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       if (!s) {
         p.add(pos, key, fmt::format("must be a string ({}), got {}", kLawNames, describe(node)));
       } else if (law = friction_law_from_string(s->get()); !law) {
-        p.add(pos, key,
-              s->get() == "coulomb-set"
-                  ? std::string("'coulomb-set' (kappa -> infinity) is not a smooth vector field and cannot be "
-                                "linearized; use 'coulomb' with a large kappa")
-                  : fmt::format("unknown friction law '{}'; expected {}", s->get(), kLawNames));
+        p.add(pos, key, fmt::format("unknown friction law '{}'; expected {}", s->get(), kLawNames));
       }
       return true;
     };

@@ -13,6 +13,9 @@ namespace abu {
 
 namespace {
 
+// The commands refuse `coulomb-set` before any vector field is evaluated (model.md §4).
+constexpr const char* kNotVectorField = "friction law 'coulomb-set' is not a vector field (model.md §4)";
+
 template <class T>
 struct RealOf {
   using type = T;
@@ -76,6 +79,7 @@ T friction_force(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
       return -normal * stribeck_level(b, beta_dot) * smooth_sign(p.kappa, beta_dot);
     }
     case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
+    case FrictionLaw::coulomb_set: throw NotSupportedError(kNotVectorField);
   }
   return T(0);
 }
@@ -99,6 +103,7 @@ T friction_slope(const ParamsT<T, N>& p, int ball, const T& beta_dot) {
                         stribeck_level(b, beta_dot) * smooth_sign_dv(p.kappa, beta_dot));
     }
     case FrictionLaw::lugre: throw NotSupportedError(kLugreHere);
+    case FrictionLaw::coulomb_set: throw NotSupportedError(kNotVectorField);
   }
   return T(0);
 }
@@ -108,6 +113,7 @@ T friction_partial(const ParamsT<T, N>& p, int ball, const T& beta_dot, Quantity
   const auto& b = p.balls[std::size_t(ball)];
   const T zero(0);
   switch (p.law) {
+    case FrictionLaw::coulomb_set: throw NotSupportedError(kNotVectorField);
     case FrictionLaw::none: return zero;
     case FrictionLaw::viscous:
       if (q == Quantity::d) return -b.race_radius * beta_dot;

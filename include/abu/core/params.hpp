@@ -24,8 +24,10 @@ namespace abu {
 
 /// Friction law acting on each ball along +beta_i (model.md §4). `lugre` (model.md §12)
 /// adds one bristle state z_i per ball: its field is model/lugre.hpp's, of dimension
-/// 3n + 4; the (2n + 4) field of model.hpp is not defined for it.
-enum class FrictionLaw { none, viscous, coulomb, stribeck, lugre };
+/// 3n + 4; the (2n + 4) field of model.hpp is not defined for it. `coulomb_set` (scene
+/// name `coulomb-set`, the kappa -> infinity limit (4.6)) is not a vector field: only the
+/// stick-set analysis of model.md §14 (equilibria/stick_set.hpp) takes it.
+enum class FrictionLaw { none, viscous, coulomb, stribeck, lugre, coulomb_set };
 std::string_view to_string(FrictionLaw law);
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name);
 

@@ -13,6 +13,7 @@
 //              optional per ball: rolling, and the coefficients mu d mu_c mu_s v_s
 //   [friction] law = "coulomb"  mu = 0.002  kappa = 1.0e3
 //              none: -   viscous: d   coulomb: mu kappa   stribeck: mu_c mu_s v_s kappa
+//              coulomb-set: mu (set-valued, model.md §14: only `equilibria` takes it)
 //   [speed]    omega = 900.0
 //
 // Instead of the [[ball]] tables (never both), a ring of `count` equal balls:

@@ -1,0 +1,29 @@
+// Outputs of the stick-set analysis of `coulomb-set` scenes (model.md §14): the
+// `equilibria` table, CSV and JSON, the traced boundary as CSV, and the one-line figures
+// that `sweep` and `map` write per point.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "abu/core/params.hpp"
+#include "abu/equilibria/stick_set.hpp"
+
+namespace abu {
+
+/// Plain text: the figures, every component and every smooth equilibrium it holds.
+std::string stick_set_table(const StickSet& s, const ParamsN& p);
+/// CSV: `header` (comment lines), then one row per component.
+std::string stick_set_csv(const StickSet& s, const std::string& header);
+/// The JSON object `stick_set` (no trailing newline).
+std::string stick_set_json_object(const StickSet& s);
+/// The whole `equilibria --format json` document of a coulomb-set scene.
+std::string stick_set_json(const StickSet& s, std::string_view command_line, std::string_view scene_file,
+                           const ParamsN& p);
+/// The traced boundary: one row per point (arc, ball, sign, beta1, beta2); arcs separated
+/// by a blank line (gnuplot's index-free line break) and a wrap by 2 pi too.
+std::string stick_boundary_csv(const StickSet& s, const std::string& header);
+/// A raster of the set for the chart's fill: rows beta1,beta2,inside (0/1), comma-separated, `cells` per angle.
+std::string stick_raster_dat(const ParamsN& p, int cells);
+
+}  // namespace abu

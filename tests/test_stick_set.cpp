@@ -1,0 +1,85 @@
+// The stick set of set-valued Coulomb friction (model.md §14) against results known by
+// hand: the whole torus when mu is large (area (2 pi)^n, V = omega^2 (U + sum m l)/|K + iC|
+// at beta = 0), the small-mu limit of V (the farthest vertex of the parallelogram
+// |q . n_i| <= mu_i l_i around a balanced point, model.md §14.3), and the refusals.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "abu/core/errors.hpp"
+#include "abu/equilibria/stick_set.hpp"
+
+namespace {
+
+constexpr double two_pi = 2 * std::numbers::pi;
+
+abu::ParamsN rotor(int n, double mu) {
+  abu::ParamsN p;
+  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
+  p.omega = 900.0;
+  p.law = abu::FrictionLaw::coulomb_set;
+  p.balls.resize(std::size_t(n));
+  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, mu, 0.0, 0.0, 0.0, 0.0};
+  return p;
+}
+
+double together_at_unbalance(const abu::ParamsN& p) {
+  double M = p.rotor.mass, capacity = 0.0;
+  for (const auto& b : p.balls) M += b.mass, capacity += b.mass * b.race_radius;
+  const std::complex<double> dyn(p.rotor.stiffness - p.omega * p.omega * M, p.rotor.damping * p.omega);
+  return p.omega * p.omega * (p.rotor.unbalance + capacity) / std::abs(dyn);
+}
+
+}  // namespace
+
+TEST_CASE("stick set: large mu sticks everywhere, V is the balls together at the unbalance", "[stick_set]") {
+  // max |s| over the torus is 0.302 at mu = 0.002 (model.md §14.4): E = T^2.
+  const abu::ParamsN p = rotor(2, 0.002);
+  const abu::StickSet s = abu::stick_set(p);
+  CHECK(s.whole_torus);
+  CHECK(s.components.size() == 1);
+  // area: the column lengths are exactly 2 pi; Simpson sums them to rounding
+  CHECK(s.area == Approx(two_pi * two_pi).epsilon(1e-12));
+  // |W| <= U + sum m l with equality only at beta = 0: exact on the column beta_1 = 0
+  CHECK(s.worst_q_abs == Approx(together_at_unbalance(p)).epsilon(1e-12));
+  CHECK(s.worst_q_abs_any == Approx(s.worst_q_abs).epsilon(1e-15));
+  CHECK(std::fabs(std::remainder(s.worst_beta[0], two_pi)) < 1e-6);
+  CHECK(std::fabs(std::remainder(s.worst_beta[1], two_pi)) < 1e-6);
+  CHECK(s.spread[0] == Approx(two_pi));
+  CHECK(s.max_abs_s < 1.0);
+}
+
+TEST_CASE("stick set: small mu, V approaches the parallelogram vertex", "[stick_set]") {
+  // First order in mu (model.md §14.3): V = mu l / min(x, sqrt(1 - x^2)), x = U/(2 m l).
+  // Its relative error is linear in mu, about 1.5e-4 at mu = 1e-6; tolerance 1e-3.
+  const double mu = 1e-6;
+  const abu::ParamsN p = rotor(2, mu);
+  const abu::StickSet s = abu::stick_set(p);
+  const double x = 6e-7 / (2 * 3.3e-5 * 0.018);
+  const double first_order = mu * 0.018 / std::min(x, std::sqrt(1 - x * x));
+  CHECK(s.worst_q_abs == Approx(first_order).epsilon(1e-3));
+  CHECK(s.balanced_exists);
+  CHECK_FALSE(s.whole_torus);
+  // both balanced points sit in their own small island
+  int balanced_components = 0;
+  for (const auto& c : s.components) balanced_components += !c.balanced_points.empty();
+  CHECK(balanced_components == 2);
+}
+
+TEST_CASE("stick set: n = 3 on a grid, large mu", "[stick_set]") {
+  const abu::ParamsN p = rotor(3, 0.01);
+  abu::StickSetOptions o;
+  o.grid_budget = 1L << 15;  // 32 per angle: enough for a set that is the whole torus
+  const abu::StickSet s = abu::stick_set(p, o);
+  CHECK(s.sampled);
+  CHECK(s.whole_torus);
+  CHECK(s.area == Approx(two_pi * two_pi * two_pi).epsilon(1e-12));
+  // the grid holds beta = 0, the maximiser of |W|
+  CHECK(s.worst_q_abs == Approx(together_at_unbalance(p)).epsilon(1e-12));
+}
+
+TEST_CASE("stick set: mu = 0 has no area and is refused", "[stick_set]") {
+  CHECK_THROWS_AS(abu::stick_set(rotor(2, 0.0)), abu::NotSupportedError);
+}
