@@ -115,7 +115,8 @@ class Integrator {
           why = "the integrator failed (a non-finite field or a step below rounding)";
           return false;
         }
-        if (++steps_ > 50'000'000) {
+        if ((++steps_ & 1023) == 0) throw_if_stopped("cycle continuation: integrating an interval");
+        if (steps_ > 50'000'000) {
           why = "the integrator needed more than 5e7 steps";
           return false;
         }
