@@ -41,24 +41,6 @@ struct BasinOptions {
   bool resume = false, fresh = false, chart = true, progress = false, quiet = false;
 };
 
-std::vector<double> parse_reals(const std::string& text, const std::string& option) {
-  std::vector<double> v;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string_view item(text.data() + start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    double x = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x))
-      throw InputError(option, 0, "", fmt::format("expected a comma-separated list of finite reals, got '{}'", text));
-    v.push_back(x);
-    start = comma + 1;
-  }
-  return v;
-}
-
 // "N" or "N1xN2": cells per axis, 2..1000.
 std::pair<int, int> parse_grid(const std::string& text) {
   const auto x = text.find('x');
@@ -169,7 +151,7 @@ Action add_basin_command(CLI::App& app) {
     job.cells2 = c2;
     if (!b.fixed.empty()) {
       if (n == 2) throw InputError("--fixed", 0, "", "a scene of two balls has no fixed balls (both are gridded)");
-      job.fixed = parse_reals(b.fixed, "--fixed");
+      job.fixed = parse_real_list(b.fixed, "--fixed");
       if (int(job.fixed.size()) != n - 2)
         throw InputError("--fixed", 0, "", fmt::format("give balls 3..{}: {} angles, got {}", n, n - 2, job.fixed.size()));
     } else {

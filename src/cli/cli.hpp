@@ -37,6 +37,11 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
+/// A comma-separated list of finite reals ("2, 4.5,1e-3"; spaces around items allowed), as
+/// --balls, --from-state, --fixed and --at-balls take it; otherwise InputError naming
+/// `option`, exit 2.
+std::vector<double> parse_real_list(const std::string& text, const std::string& option);
+
 /// Commands that do not model an unround race (model.md §11) refuse a scene with one
 /// (NotSupportedError: exit 2) instead of silently analysing the round race.
 void refuse_unround(const Scene& scene, std::string_view command);

@@ -41,22 +41,8 @@ struct EquilibriaOptions {
 };
 
 // --at-balls "b1,b2,..": one finite angle [rad] per ball.
-std::vector<double> parse_ball_angles(std::string_view text, int n) {
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string_view item = text.substr(start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    double v = 0;
-    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() || !std::isfinite(v))
-      throw InputError("--at-balls", 0, "",
-                       fmt::format("expected {} comma-separated finite angles in rad (got '{}')", n, text));
-    out.push_back(v);
-    start = comma + 1;
-  }
+std::vector<double> parse_ball_angles(const std::string& text, int n) {
+  std::vector<double> out = parse_real_list(text, "--at-balls");
   if (int(out.size()) != n)
     throw InputError("--at-balls", 0, "",
                      fmt::format("the scene has {} balls: give {} angles beta_1..beta_{} [rad] (got {})", n, n, n,

@@ -42,24 +42,6 @@ struct SimulateOptions {
 };
 
 
-std::vector<double> parse_list(const std::string& text, const std::string& option) {
-  std::vector<double> v;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string_view item(text.data() + start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    double x = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x))
-      throw InputError(option, 0, "", fmt::format("expected a comma-separated list of finite reals, got '{}'", text));
-    v.push_back(x);
-    start = comma + 1;
-  }
-  return v;
-}
-
 template <int N>
 int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProfile& speed) {
   ParamsT<double, N> p = params_of<N>(scene);
@@ -71,9 +53,9 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     throw InputError("simulate", 0, "", "give exactly one start: --balls, --from-state or --from-equilibrium");
   if (o.perturb && o.from_equilibrium.empty())
     throw InputError("--perturb", 0, "", "--perturb goes with --from-equilibrium");
-  if (!o.balls.empty()) x0 = start_at_rest(p, parse_list(o.balls, "--balls"));
+  if (!o.balls.empty()) x0 = start_at_rest(p, parse_real_list(o.balls, "--balls"));
   if (!o.from_state.empty()) {
-    const auto v = parse_list(o.from_state, "--from-state");
+    const auto v = parse_real_list(o.from_state, "--from-state");
     if (int(v.size()) != 2 * n + 4)
       throw InputError("--from-state", 0, "",
                        fmt::format("a state of {} balls has 2n + 4 = {} values (q1,q2,beta1..,dq1,dq2,dbeta1..), got {}",

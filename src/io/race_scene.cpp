@@ -99,16 +99,12 @@ std::optional<RaceHarmonicsInput> read_list(Problems& p, const toml::node& node,
         }
       } else if (name == "amplitude" || name == "phase") {
         has_amplitude = has_amplitude || name == "amplitude";
-        double x = 0;
-        if (const auto* i = v.as_integer()) {
-          x = double(i->get());
-        } else if (const auto* f = v.as_floating_point()) {
-          x = f->get();
-        } else {
-          p.add(vpos, vkey, fmt::format("must be a number, got {}", describe(v)));
+        const std::optional<double> value = number_value(p, vkey, v, vpos);
+        if (!value) {
           ok = false;
           continue;
         }
+        const double x = *value;
         if (!std::isfinite(x)) {
           p.add(vpos, vkey, "must be finite");
           ok = false;

@@ -73,25 +73,6 @@ std::vector<std::string> notes(const EquilibriumT<N>& e, const SpectrumT<N>& sp)
   return out;
 }
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out += fmt::format("\\u{:04x}", int(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 template <class A>
 int ball_count_of(const A& a, int fallback) {
   const auto points = a.equilibria.points();

@@ -8,20 +8,11 @@
 #include <fmt/format.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/io/io.hpp"
 
 namespace abu {
 
 namespace {
-
-std::string json_escape(std::string_view s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\', out += ch;
-    else if (static_cast<unsigned char>(ch) < 0x20) out += fmt::format("\\u{:04x}", int(static_cast<unsigned char>(ch)));
-    else out += ch;
-  }
-  return out + "\"";
-}
 
 constexpr std::string_view kOrbitsNote =
     "the mean system's other equilibria become pi/omega-periodic orbits on an anisotropic support "
@@ -116,14 +107,14 @@ std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::s
 std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& s,
                          std::string_view command_line, std::string_view scene_file) {
   std::string out = "{\n";
-  out += fmt::format("  \"command\": {},\n  \"scene\": {},\n  \"balls\": {},\n  \"omega\": {},\n", json_escape(command_line),
-                     json_escape(scene_file), p.n_balls(), p.omega);
+  out += fmt::format("  \"command\": {},\n  \"scene\": {},\n  \"balls\": {},\n  \"omega\": {},\n", json_string(command_line),
+                     json_string(scene_file), p.n_balls(), p.omega);
   out += fmt::format(
       "  \"support\": {{\"frame\": \"fixed\", \"stiffness\": [[{}, {}], [{}, {}]], \"damping\": [[{}, {}], [{}, {}]], "
       "\"mean_stiffness\": {}, \"mean_damping\": {}, \"units\": \"N/m, N s/m\"}},\n",
       s.k_x, s.k_xy, s.k_xy, s.k_y, s.c_x, s.c_xy, s.c_xy, s.c_y, s.mean_stiffness(), s.mean_damping());
   out += fmt::format("  \"period\": {},\n  \"units\": {},\n", std::numbers::pi / p.omega,
-                     json_escape("beta [rad]; floquet_multipliers [re, im] over pi/omega, dimensionless, sorted by "
+                     json_string("beta [rad]; floquet_multipliers [re, im] over pi/omega, dimensionless, sorted by "
                                  "modulus descending; floquet_exponents [re, im] 1/s, rotating frame, im modulo 2 "
                                  "omega; decay_rate = (omega/pi) ln max |rho| [1/s]"));
   out += "  \"balanced_states\": [";
@@ -147,7 +138,7 @@ std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const Aniso
   }
   out += a.balanced.empty() ? "],\n" : "\n  ],\n";
   out += fmt::format("  \"periodic_orbits\": {{\"count\": {}, \"computed\": false, \"note\": {}}}\n}}\n",
-                     a.periodic_orbits_not_computed, json_escape(kOrbitsNote));
+                     a.periodic_orbits_not_computed, json_string(kOrbitsNote));
   return out;
 }
 

@@ -30,16 +30,6 @@ std::string side_name(const LugreRest& r, const LugreSideSpectrum& s) {
   return std::string(r.zero_bristle ? std::string_view("both") : to_string(s.side));
 }
 
-std::string json_string(std::string_view s) {
-  std::string out(1, '"');
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  out += '"';
-  return out;
-}
-
 }  // namespace
 
 std::string lugre_equilibria_csv(const std::vector<LugreRow>& rows, const ParamsN& p, const std::string& header) {

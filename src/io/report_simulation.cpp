@@ -12,23 +12,6 @@ namespace abu {
 
 namespace {
 
-std::string json_quoted(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", int(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
 std::string number_list(const std::vector<double>& v, std::string_view what) {
   std::string out = "[";
   for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + format_number(v[i], what);
@@ -113,12 +96,12 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
   balls += "]";
   std::string out = "{\n";
   out += fmt::format("  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n", ABU_VERSION,
-                     json_quoted(command_line), json_quoted(scene_file));
-  out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"speed\": {},\n", json_quoted(describe_parameters(p)),
-                     ball_count(p), json_quoted(speed.describe()));
-  out += fmt::format("  \"status\": {},\n  \"reason\": {},\n", json_quoted(to_string(r.status)), json_quoted(r.reason));
-  out += fmt::format("  \"outcome\": {},\n  \"pattern\": {},\n  \"note\": {},\n", json_quoted(to_string(s.outcome)),
-                     json_quoted(s.pattern), json_quoted(s.note));
+                     json_string(command_line), json_string(scene_file));
+  out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"speed\": {},\n", json_string(describe_parameters(p)),
+                     ball_count(p), json_string(speed.describe()));
+  out += fmt::format("  \"status\": {},\n  \"reason\": {},\n", json_string(to_string(r.status)), json_string(r.reason));
+  out += fmt::format("  \"outcome\": {},\n  \"pattern\": {},\n  \"note\": {},\n", json_string(to_string(s.outcome)),
+                     json_string(s.pattern), json_string(s.note));
   out += fmt::format("  \"t_end\": {},\n  \"state_end\": {},\n", format_number(s.t_end, "t_end"),
                      number_list(s.state_end, "state_end"));
   out += fmt::format("  \"max_q_abs\": {},\n  \"t_max_q_abs\": {},\n", format_number(s.max_q_abs, "max_q_abs"),
@@ -132,7 +115,7 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
   out += fmt::format("  \"omega_n\": {},\n  \"t_omega_n\": {},\n", format_number(s.omega_n, "omega_n"),
                      number_list(s.t_omega_n, "t_omega_n"));
   out += fmt::format("  \"method\": {},\n  \"stiffness_ratio\": {},\n  \"spectral_radius\": {},\n",
-                     json_quoted(to_string(r.method)), format_number(r.stiffness_ratio, "stiffness"),
+                     json_string(to_string(r.method)), format_number(r.stiffness_ratio, "stiffness"),
                      format_number(r.spectral_radius, "spectral radius"));
   out += fmt::format("  \"displacement_scale\": {},\n", format_number(r.displacement_scale, "L"));
   out += fmt::format(
@@ -141,7 +124,7 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
       r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.jacobian_evaluations, r.stats.restarts,
       format_number(r.stats.wall_seconds, "wall"));
   out += fmt::format("  \"units\": {}\n}}\n",
-                     json_quoted("t [s], q [m], beta [rad], omega and ball speeds [rad/s] (fixed frame for ball_speed_fixed), "
+                     json_string("t [s], q [m], beta [rad], omega and ball speeds [rad/s] (fixed frame for ball_speed_fixed), "
                             "state order (q1, q2, beta_1..beta_n, dq1, dq2, dbeta_1..dbeta_n), model.md §2"));
   return out;
 }

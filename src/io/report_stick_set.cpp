@@ -11,18 +11,6 @@
 namespace abu {
 
 namespace {
-std::string jstr(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", int(c));
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
 std::string num(double v, std::string_view what) { return format_number(v, what); }
 std::string list(const std::vector<double>& v, std::string_view what) {
   std::string out = "[";
@@ -123,7 +111,7 @@ std::string stick_set_json_object(const StickSet& s) {
       num(s.resolution, "resolution"), s.grid_points_per_angle, num(s.max_abs_s, "s"), s.balanced_exists,
       num(s.worst_q_abs, "V"), list(s.worst_beta, "beta"), num(s.worst_q_abs_any, "V_E"), list(s.worst_beta_any, "beta"),
       num(s.mean_q_abs, "mean"), list(s.spread, "spread"), num(s.bare_rotor_q_abs, "bare"),
-      jstr(s.status.ok() ? "ok" : s.status.reason), s.boundary.size());
+      json_string(s.status.ok() ? "ok" : s.status.reason), s.boundary.size());
   for (std::size_t c = 0; c < s.components.size(); ++c) {
     const auto& comp = s.components[c];
     out += fmt::format("{}{{\"area\": {}, \"q_abs_max\": {}, \"beta_at_max\": {}, \"mean_q_abs\": {}, "
@@ -136,7 +124,7 @@ std::string stick_set_json_object(const StickSet& s) {
   for (std::size_t k = 0; k < s.seeds.size(); ++k) {
     const auto& sd = s.seeds[k];
     out += fmt::format("{}{{\"family\": {}, \"beta\": {}, \"q_abs\": {}, \"component\": {}}}", k ? ", " : "",
-                       jstr(sd.family), list(sd.beta, "beta"), num(sd.q_abs, "q"),
+                       json_string(sd.family), list(sd.beta, "beta"), num(sd.q_abs, "q"),
                        sd.component < 0 ? std::string("null") : std::to_string(sd.component + 1));
   }
   return out + "]}";
@@ -147,8 +135,8 @@ std::string stick_set_json(const StickSet& s, std::string_view command_line, std
   return fmt::format(
       "{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n  \"parameters\": {},\n  "
       "\"balls\": {},\n  \"units\": {},\n  \"frame\": \"rotating\",\n  \"stick_set\": {}\n}}\n",
-      ABU_VERSION, jstr(command_line), jstr(scene_file), jstr(describe_parameters(p)), p.n_balls(),
-      jstr("area [rad^n], q [m], beta and spread [rad]; q is the rotor displacement in the rotating frame (a whirl of "
+      ABU_VERSION, json_string(command_line), json_string(scene_file), json_string(describe_parameters(p)), p.n_balls(),
+      json_string("area [rad^n], q [m], beta and spread [rad]; q is the rotor displacement in the rotating frame (a whirl of "
            "radius |q| in the fixed frame)"),
       stick_set_json_object(s));
 }

@@ -14,22 +14,6 @@ namespace abu {
 namespace {
 std::string num(double v, std::string_view what) { return format_number(v, what); }
 
-std::string json_text(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out.push_back('\\');
-      out.push_back(c);
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", int(c));
-    } else {
-      out.push_back(c);
-    }
-  }
-  out.push_back('"');
-  return out;
-}
-
 double dynamic_stiffness(const ParamsN& p) {
   return std::hypot(p.rotor.stiffness - p.omega * p.omega * p.total_mass(), p.rotor.damping * p.omega);
 }
@@ -137,10 +121,10 @@ std::string unround_json(const UnroundResult& r, const ParamsN& p, const RaceSha
                          std::string_view scene) {
   const int n = p.n_balls();
   std::string out = "{\n";
-  out += fmt::format("  \"program\": {},\n  \"command\": {},\n  \"scene\": {},\n", json_text("stability-scan"),
-                     json_text(command_line), json_text(scene));
+  out += fmt::format("  \"program\": {},\n  \"command\": {},\n  \"scene\": {},\n", json_string("stability-scan"),
+                     json_string(command_line), json_string(scene));
   out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"frame\": \"rotating\",\n",
-                     json_text(describe_parameters(p)), n);
+                     json_string(describe_parameters(p)), n);
   out += "  \"race\": [";
   for (std::size_t i = 0; i < race.balls.size(); ++i) {
     out += i ? ", [" : "[";
@@ -159,7 +143,7 @@ std::string unround_json(const UnroundResult& r, const ParamsN& p, const RaceSha
       "  \"search\": {{\"boxes_tested\": {}, \"leaves\": {}, \"unresolved\": {}, \"index_sum\": {}, \"complete\": {}, "
       "\"doubt\": {}}},\n",
       r.search.boxes_tested, r.search.leaves, r.search.unresolved, r.search.index_sum, r.doubt.empty(),
-      json_text(r.doubt));
+      json_string(r.doubt));
   out += fmt::format("  \"q_bare\": {{\"value\": {}, \"unit\": \"m\"}},\n", num(bare_whirl(p), "q0"));
   if (r.best_stable)
     out += fmt::format("  \"best_stable\": {{\"equilibrium\": {}, \"q_abs\": {{\"value\": {}, \"unit\": \"m\"}}}},\n",

@@ -25,19 +25,6 @@ using cd_t = std::complex<double>;
 
 std::string num(double v, std::string_view what) { return format_number(v, what); }
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", int(c));
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string quantity(double value, std::string_view unit, std::string_view what) {
   return fmt::format("{{\"value\": {}, \"unit\": {}}}", num(value, what), json_string(unit));
 }

@@ -159,19 +159,23 @@ inline std::string describe(const toml::node& node) {
   return "nothing";
 }
 
-// Integers are accepted where reals are expected (`stiffness = 7500`); booleans and
-// strings are not numbers. The range rule (including finiteness) is range_violation's.
+// A number node's value: integers are accepted where reals are expected (`stiffness =
+// 7500`); booleans and strings are not numbers (a problem at `key`, nullopt). Not checked
+// for finiteness: that is the caller's rule.
+inline std::optional<double> number_value(Problems& p, const std::string& key, const toml::node& node,
+                                          toml::source_position pos) {
+  if (const auto* i = node.as_integer()) return double(i->get());
+  if (const auto* f = node.as_floating_point()) return f->get();
+  p.add(pos, key, fmt::format("must be a number, got {}", describe(node)));
+  return std::nullopt;
+}
+
+// A parameter's number; the range rule (including finiteness) is range_violation's.
 inline std::optional<double> read_number(Problems& p, const std::string& key, const toml::node& node,
                                   toml::source_position pos, Quantity q) {
-  double x = 0.0;
-  if (const auto* i = node.as_integer()) {
-    x = double(i->get());
-  } else if (const auto* f = node.as_floating_point()) {
-    x = f->get();
-  } else {
-    p.add(pos, key, fmt::format("must be a number, got {}", describe(node)));
-    return std::nullopt;
-  }
+  const std::optional<double> value = number_value(p, key, node, pos);
+  if (!value) return std::nullopt;
+  const double x = *value;
   if (auto bad = range_violation(q, x)) {
     p.add(pos, key, *bad);
     return std::nullopt;

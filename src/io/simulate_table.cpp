@@ -16,15 +16,9 @@ constexpr std::string_view kRampKeys = "omega0, omega1, alpha";
 constexpr std::string_view kMethods = "auto, bdf, rk8pd, rk4imp, bsimp, rkf45";
 
 std::optional<double> real(Problems& p, const std::string& key, const toml::node& node, toml::source_position pos) {
-  double x = 0;
-  if (const auto* i = node.as_integer()) {
-    x = double(i->get());
-  } else if (const auto* f = node.as_floating_point()) {
-    x = f->get();
-  } else {
-    p.add(pos, key, fmt::format("must be a number, got {}", describe(node)));
-    return std::nullopt;
-  }
+  const std::optional<double> value = number_value(p, key, node, pos);
+  if (!value) return std::nullopt;
+  const double x = *value;
   if (!std::isfinite(x)) {
     p.add(pos, key, "must be finite");
     return std::nullopt;
