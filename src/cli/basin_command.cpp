@@ -118,6 +118,7 @@ Action add_basin_command(CLI::App& app) {
   return [o, sub]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
+    refuse_unmodelled(scene, "basin");  // it integrates the base model's field (model.md §3)
     check_output_directory(o->output);
     BasinOptions b = *o;
     b.sim.t_end = 10.0;

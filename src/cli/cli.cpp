@@ -150,21 +150,6 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
   return v;
 }
 
-void refuse_unround(const Scene& scene, std::string_view command) {
-  if (!scene.race.round())
-    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria` "
-                                        "analyses it so far",
-                                        command, scene.file));
-}
-
-void refuse_anisotropic(const Scene& scene, std::string_view command) {
-  if (scene.support)
-    throw NotSupportedError(fmt::format(
-        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria` "
-        "handles it so far (the balanced states' Floquet multipliers)",
-        command, scene.file));
-}
-
 // The overrides do not depend on their order for being accepted: a rule between two
 // values (r < l) is judged on the final scene. They are applied in the given order; one
 // refused only because of a value a later override changes is applied again after the
@@ -192,6 +177,22 @@ Scene load(const SceneOptions& options) {
   return scene;
 }
 
+namespace {
+void refuse_unround(const Scene& scene, std::string_view command) {
+  if (!scene.race.round())
+    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria` "
+                                        "analyses it so far",
+                                        command, scene.file));
+}
+
+void refuse_anisotropic(const Scene& scene, std::string_view command) {
+  if (scene.support)
+    throw NotSupportedError(fmt::format(
+        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria` "
+        "handles it so far (the balanced states' Floquet multipliers)",
+        command, scene.file));
+}
+
 void refuse_lugre(const Scene& scene, std::string_view command) {
   if (scene.law != FrictionLaw::lugre) return;
   throw InputError(scene.file, scene.law_line, "friction.law",
@@ -208,6 +209,14 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
                                "`equilibria` computes its stick set (model.md §14); use 'coulomb' with a large kappa "
                                "here",
                                command));
+}
+}  // namespace
+
+void refuse_unmodelled(const Scene& scene, std::string_view command) {
+  refuse_lugre(scene, command);
+  refuse_unround(scene, command);
+  refuse_anisotropic(scene, command);
+  refuse_set_valued(scene, command);
 }
 
 namespace {

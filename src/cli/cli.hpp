@@ -42,19 +42,12 @@ Scene load(const SceneOptions& options);
 /// `option`, exit 2.
 std::vector<double> parse_real_list(const std::string& text, const std::string& option);
 
-/// Commands that do not model an unround race (model.md §11) refuse a scene with one
-/// (NotSupportedError: exit 2) instead of silently analysing the round race.
-void refuse_unround(const Scene& scene, std::string_view command);
-
-/// Commands built on the (2n + 4) model refuse a LuGre scene (model.md §12: its state is
-/// 3n + 4 and its equilibria a family): InputError at the scene's `law` key, exit 2.
-void refuse_lugre(const Scene& scene, std::string_view command);
-/// Commands that do not handle an anisotropic support yet (docs/model.md §10) refuse such
-/// a scene up front: NotSupportedError naming the command and what to use instead.
-void refuse_anisotropic(const Scene& scene, std::string_view command);
-/// `coulomb-set` is not a vector field (model.md §4): a command that needs one refuses
-/// the scene (exit 2) and names the commands that take it.
-void refuse_set_valued(const Scene& scene, std::string_view command);
+/// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
+/// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
+/// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
+/// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
+/// field; InputError at the `law` key).
+void refuse_unmodelled(const Scene& scene, std::string_view command);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

@@ -328,10 +328,7 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_lugre(scene, "continue");
-    refuse_unround(scene, "continue");
-    refuse_anisotropic(scene, "continue");
-    refuse_set_valued(scene, "continue");
+    refuse_unmodelled(scene, "continue");
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->to = omega_input(o->scene, o->to);
     if (o->param2 == "omega") o->to2 = omega_input(o->scene, o->to2);

@@ -207,11 +207,8 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o, sub]() -> int {
     Scene scene = load(o->scene);
-    refuse_lugre(scene, "simulate");
+    refuse_unmodelled(scene, "simulate");
     apply_scene_settings(scene, *sub, *o);
-    refuse_unround(scene, "simulate");
-    refuse_anisotropic(scene, "simulate");
-    refuse_set_valued(scene, "simulate");
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
     // --units converts --set omega; a run-up profile stays in rad/s (docs/views.md).

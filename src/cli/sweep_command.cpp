@@ -136,10 +136,7 @@ Action add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_lugre(scene, "sweep");
-    refuse_unround(scene, "sweep");
-    refuse_anisotropic(scene, "sweep");
-    refuse_set_valued(scene, "sweep");
+    refuse_unmodelled(scene, "sweep");
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (o->from > o->to)
