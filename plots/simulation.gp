@@ -1,6 +1,6 @@
 # Simulation chart (model.md §15): |q| and omega against t (top), the ball angles against t
 # (bottom left, as points since they wrap: relative to the nearest balanced configuration when one exists, else wrapped
-# to [-pi, pi]), and the rotor centre's orbit in the FIXED frame (bottom right).
+# to [-pi, pi]; with stick='1' (coulomb-set, model.md §14.5) the samples where a ball sticks are ringed), and the rotor centre's orbit in the FIXED frame (bottom right).
 # Reads simulation.csv written by `stability-scan simulate`, columns by header name; re-run by hand with
 #   gnuplot -e "csv='out/simulate/simulation.csv'; png='sim.png'; n='2'; rel='1'; omega_n='249.9'; title='x'" plots/simulation.gp
 if (!exists("csv")) csv = 'out/simulate/simulation.csv'
@@ -9,6 +9,7 @@ if (!exists("n")) n = '2'
 if (!exists("rel")) rel = '1'
 if (!exists("omega_n")) omega_n = '0'
 if (!exists("title")) title = 'simulation'
+if (!exists("stick")) stick = '0'
 nb = int(n)
 wn = real(omega_n)
 
@@ -43,10 +44,12 @@ set size 0.55, 0.5
 set ylabel (rel eq '1' ? 'beta_i - beta_i(balanced) [rad]' : 'beta_i wrapped to [-pi, pi] [rad]') noenhanced
 set key top right
 wrap(x) = atan2(sin(x), cos(x))
-if (rel eq '1') {
-  plot for [i=1:nb] csv using (column("t")):(column(sprintf("beta_rel%d", i))) with points pt 7 ps 0.25 title sprintf('ball %d', i)
+angle(i) = rel eq '1' ? column(sprintf("beta_rel%d", i)) : wrap(column(sprintf("beta%d", i)))
+if (stick eq '1') {
+  plot for [i=1:nb] csv using (column("t")):(angle(i)) with points pt 7 ps 0.25 lc i title sprintf('ball %d', i), \
+       for [i=1:nb] csv using (column("t")):(column(sprintf("stick%d", i)) > 0 ? angle(i) : NaN) with points pt 6 ps 0.9 lc i title sprintf('ball %d stuck', i)
 } else {
-  plot for [i=1:nb] csv using (column("t")):(wrap(column(sprintf("beta%d", i)))) with points pt 7 ps 0.25 title sprintf('ball %d', i)
+  plot for [i=1:nb] csv using (column("t")):(angle(i)) with points pt 7 ps 0.25 title sprintf('ball %d', i)
 }
 
 # --- bottom right: orbit of the rotor centre in the fixed frame

@@ -206,17 +206,17 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
   if (scene.law != FrictionLaw::coulomb_set) return;
   throw InputError(scene.file, scene.law_line, "friction.law",
                    fmt::format("friction law 'coulomb-set' is set-valued, not a vector field: `{}` needs one; "
-                               "`equilibria` computes its stick set (model.md §14); use 'coulomb' with a large kappa "
-                               "here",
+                               "`equilibria` computes its stick set and `simulate` and `basin` its stick-slip dynamics "
+                               "(model.md §14); use 'coulomb' with a large kappa here",
                                command));
 }
 }  // namespace
 
-void refuse_unmodelled(const Scene& scene, std::string_view command) {
+void refuse_unmodelled(const Scene& scene, std::string_view command, bool set_valued_ok) {
   refuse_lugre(scene, command);
   refuse_unround(scene, command);
   refuse_anisotropic(scene, command);
-  refuse_set_valued(scene, command);
+  if (!set_valued_ok) refuse_set_valued(scene, command);
 }
 
 namespace {

@@ -46,8 +46,9 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
 /// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
 /// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
-/// field; InputError at the `law` key).
-void refuse_unmodelled(const Scene& scene, std::string_view command);
+/// field; InputError at the `law` key) unless the command integrates it event-driven
+/// (`simulate`, `basin`: set_valued_ok, model.md §14.5).
+void refuse_unmodelled(const Scene& scene, std::string_view command, bool set_valued_ok = false);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

@@ -19,6 +19,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/dynamics/stick_slip.hpp"
 #include "abu/io/equilibrium_start.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report_simulation.hpp"
@@ -94,19 +95,31 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
                  100 * frac, el, frac > 0 ? el * (1 - frac) / frac : 0.0);
     };
   }
-  SimulationResult<N> r = simulate(p, speed, x0, so);
+  // Set-valued Coulomb friction: event-driven stick-slip (model.md §14.5), the rest as usual.
+  std::optional<StickSlipResult<N>> stick_slip;
+  SimulationResult<N> smooth;
+  if (p.law == FrictionLaw::coulomb_set)
+    stick_slip = simulate_stick_slip(p, speed, x0, so);
+  else
+    smooth = simulate(p, speed, x0, so);
+  const SimulationResult<N>& r = stick_slip ? stick_slip->run : smooth;
   if (show) fmt::print(stderr, "\r{:80}\r", "");
 
   const std::string header = provenance_header(command_line(), scene.file, p);
   {
     OutputTransaction out;
-    out.stage(csv_path, simulation_csv(r, p, speed, header));
-    if (!o.summary.empty()) out.stage(o.summary, simulation_json(r, p, speed, command_line(), scene.file));
+    out.stage(csv_path, stick_slip ? stick_slip_csv(*stick_slip, p, speed, header) : simulation_csv(r, p, speed, header));
+    if (!o.summary.empty())
+      out.stage(o.summary, stick_slip ? stick_slip_json(*stick_slip, p, speed, command_line(), scene.file)
+                                      : simulation_json(r, p, speed, command_line(), scene.file));
     out.commit();
   }
   int code = r.status == SimulationStatus::completed ? exit_ok
              : r.status == SimulationStatus::interrupted ? interrupted_exit_code()
                                                           : exit_numerical;
+  // Every ball stuck yet the arrangement outside the stick set (14.3): a numerical failure.
+  const bool outside = stick_slip && stick_slip->end.all_stuck && !stick_slip->end.in_set;
+  if (outside && code == exit_ok) code = exit_numerical;
   if (o.chart && r.samples.size() >= 2) {
     // The CSV is in place already: a failing chart loses nothing else.
     try {
@@ -121,6 +134,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
                       return nearest_balanced_angles(p, beta) ? "1" : "0";
                     }()},
                    {"omega_n", fmt::format("{}", r.summary.omega_n)},
+                   {"stick", stick_slip ? "1" : "0"},
                    {"title", fmt::format("{}: {} ({}), outcome {}", scene.file, speed.describe(), to_string(r.method),
                                          to_string(r.summary.outcome))}});
       chart.commit();
@@ -129,7 +143,12 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
       if (code == exit_ok) code = exit_chart_failed;
     }
   }
-  if (!o.quiet) fmt::print(stderr, "{}", simulation_text(r, speed));
+  if (!o.quiet) fmt::print(stderr, "{}", stick_slip ? stick_slip_text(*stick_slip, speed) : simulation_text(r, speed));
+  if (outside)
+    fmt::print(stderr,
+               "stability-scan: numerical failure: every ball stuck at t = {:.9g} s but max |s_i| = {:.9g} > 1 + {:g}: "
+               "the end point lies outside the stick set (model.md §14.7)\n",
+               r.t_reached, stick_slip->end.max_abs_s, stick_set_tolerance);
   if (r.status == SimulationStatus::failed) fmt::print(stderr, "stability-scan: numerical failure: {}\n", r.reason);
   if (r.status == SimulationStatus::interrupted) fmt::print(stderr, "stability-scan: {}; kept what was computed\n", r.reason);
   if (!o.quiet)
@@ -207,7 +226,7 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o, sub]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "simulate");
+    refuse_unmodelled(scene, "simulate", /*set_valued_ok=*/true);
     apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");

@@ -192,6 +192,22 @@ double scaled_distance_q_beta(const double* a, const double* b, int n, double L)
 
 }  // namespace
 
+void check_simulation_input(const SimulationOptions& o, int dim, const double* x0, int size) {
+  if (!(std::isfinite(o.t_end) && o.t_end > 0))
+    throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", o.t_end));
+  if (!(o.every >= 0 && std::isfinite(o.every)))
+    throw InputError("--every", 0, "", fmt::format("the output interval must be > 0 s (got {})", o.every));
+  const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
+  if (o.record && o.t_end / every > 2e7)
+    throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
+  if (!(o.rtol > 0 && o.rtol < 0.1))
+    throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in (0, 0.1) (got {})", o.rtol));
+  if (size != dim)
+    throw InputError("--from-state", 0, "", fmt::format("a state has 2n + 4 = {} values, got {}", dim, size));
+  for (int i = 0; i < dim; ++i)
+    if (!std::isfinite(x0[i])) throw InputError("--from-state", 0, "", "the initial state must be finite");
+}
+
 template <int N>
 State<double, N> start_at_rest(const ParamsT<double, N>& p, const std::vector<double>& beta) {
   const int n = ball_count(p);
@@ -282,19 +298,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
                              const SimulationOptions& o) {
   gsl_handler_off_once();
   const int n = ball_count(p), dim = 2 * n + 4;
-  if (!(std::isfinite(o.t_end) && o.t_end > 0))
-    throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", o.t_end));
-  if (!(o.every >= 0 && std::isfinite(o.every)))
-    throw InputError("--every", 0, "", fmt::format("the output interval must be > 0 s (got {})", o.every));
+  check_simulation_input(o, dim, x0.data(), int(x0.size()));
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
-  if (o.record && o.t_end / every > 2e7)
-    throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
-  if (!(o.rtol > 0 && o.rtol < 0.1))
-    throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in (0, 0.1) (got {})", o.rtol));
-  if (x0.size() != dim)
-    throw InputError("--from-state", 0, "", fmt::format("a state has 2n + 4 = {} values, got {}", dim, x0.size()));
-  for (int i = 0; i < dim; ++i)
-    if (!std::isfinite(x0(i))) throw InputError("--from-state", 0, "", "the initial state must be finite");
 
   SimulationResult<N> r;
   const auto wall0 = std::chrono::steady_clock::now();

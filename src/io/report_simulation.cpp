@@ -147,6 +147,77 @@ std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& sp
   return out;
 }
 
+
+template <int N>
+std::string stick_slip_csv(const StickSlipResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                           std::string_view header) {
+  const int n = ball_count(p);
+  const std::string base = simulation_csv(r.run, p, speed, header);
+  std::string out;
+  out.reserve(base.size() + r.stuck_mask.size() * std::size_t(2 * n + 1) + 200);
+  std::size_t row = 0, pos = 0;
+  bool columns_seen = false;
+  while (pos < base.size()) {
+    std::size_t end = base.find('\n', pos);
+    if (end == std::string::npos) end = base.size();
+    const std::string_view line(base.data() + pos, end - pos);
+    const bool data = !line.empty() && line[0] != '#';
+    if (data && !columns_seen)
+      out += "# stick_i: 1 while ball i sticks to the race (beta_i' = 0, |F_i| <= mu_i N_i), 0 while it slips "
+             "(set-valued Coulomb friction, model.md §14.5)\n";
+    out += line;
+    if (data) {
+      if (!columns_seen) {
+        for (int i = 1; i <= n; ++i) out += fmt::format(",stick{}", i);
+        columns_seen = true;
+      } else {
+        const std::uint32_t m = row < r.stuck_mask.size() ? r.stuck_mask[row] : 0u;
+        for (int i = 0; i < n; ++i) out += (m >> i) & 1u ? ",1" : ",0";
+        ++row;
+      }
+    }
+    out += '\n';
+    pos = end + 1;
+  }
+  return out;
+}
+
+template <int N>
+std::string stick_slip_json(const StickSlipResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            std::string_view command_line, std::string_view scene_file) {
+  std::string out = simulation_json(r.run, p, speed, command_line, scene_file);
+  const auto& e = r.end;
+  std::string stuck = "[";
+  for (std::size_t i = 0; i < e.stuck.size(); ++i) stuck += (i ? ", " : "") + std::string(e.stuck[i] ? "true" : "false");
+  stuck += "]";
+  const std::string block = fmt::format(
+      "  \"stick_slip\": {{\"stuck\": {}, \"all_stuck\": {}, \"beta_end\": {}, \"s_end\": {}, \"max_abs_s\": {}, "
+      "\"in_stick_set\": {}, \"set_tolerance\": {}, \"q_abs_end\": {}, \"q_abs_static\": {}, \"sticks\": {}, "
+      "\"slips\": {}, \"reversals\": {}}},\n",
+      stuck, e.all_stuck ? "true" : "false", number_list(e.beta, "beta_end"), number_list(e.s, "s_end"),
+      format_number(e.max_abs_s, "max_abs_s"), e.in_set ? "true" : "false",
+      format_number(stick_set_tolerance, "tolerance"), format_number(e.q_abs, "q_abs"),
+      format_number(e.q_abs_static, "q_abs_static"), r.sticks, r.slips, r.reversals);
+  const std::size_t at = out.rfind("  \"units\"");
+  out.insert(at == std::string::npos ? out.size() : at, block);
+  return out;
+}
+
+template <int N>
+std::string stick_slip_text(const StickSlipResult<N>& r, const SpeedProfile& speed) {
+  std::string out = simulation_text(r.run, speed);
+  const auto& e = r.end;
+  out += "  balls at the end:";
+  for (std::size_t i = 0; i < e.stuck.size(); ++i)
+    out += fmt::format(" {} {} at {:.6f} rad (s = {:+.4f});", i + 1, e.stuck[i] ? "stuck" : "slipping", e.beta[i], e.s[i]);
+  out += "\n";
+  out += fmt::format("  stick set (model.md §14.2): max |s_i| = {:.6g}, {}; |q| = {:.6g} m (static {:.6g} m)\n",
+                     e.max_abs_s,
+                     e.in_set ? "inside" : e.all_stuck ? "OUTSIDE" : "not every ball stuck", e.q_abs, e.q_abs_static);
+  out += fmt::format("  switches: {} slip->stick, {} stick->slip, {} reversals\n", r.sticks, r.slips, r.reversals);
+  return out;
+}
+
 template std::string simulation_csv<2>(const SimulationResult<2>&, const ParamsT<double, 2>&, const SpeedProfile&,
                                        std::string_view);
 template std::string simulation_csv<any_balls>(const SimulationResult<any_balls>&, const ParamsT<double, any_balls>&,
@@ -157,5 +228,15 @@ template std::string simulation_json<any_balls>(const SimulationResult<any_balls
                                                 const SpeedProfile&, std::string_view, std::string_view);
 template std::string simulation_text<2>(const SimulationResult<2>&, const SpeedProfile&);
 template std::string simulation_text<any_balls>(const SimulationResult<any_balls>&, const SpeedProfile&);
+template std::string stick_slip_csv<2>(const StickSlipResult<2>&, const ParamsT<double, 2>&, const SpeedProfile&,
+                                       std::string_view);
+template std::string stick_slip_csv<any_balls>(const StickSlipResult<any_balls>&, const ParamsT<double, any_balls>&,
+                                               const SpeedProfile&, std::string_view);
+template std::string stick_slip_json<2>(const StickSlipResult<2>&, const ParamsT<double, 2>&, const SpeedProfile&,
+                                        std::string_view, std::string_view);
+template std::string stick_slip_json<any_balls>(const StickSlipResult<any_balls>&, const ParamsT<double, any_balls>&,
+                                                const SpeedProfile&, std::string_view, std::string_view);
+template std::string stick_slip_text<2>(const StickSlipResult<2>&, const SpeedProfile&);
+template std::string stick_slip_text<any_balls>(const StickSlipResult<any_balls>&, const SpeedProfile&);
 
 }  // namespace abu

@@ -131,6 +131,10 @@ template <int N>
 State<double, N> perturbed_equilibrium(const ParamsT<double, N>& p, const Coordinates<double, N>& position,
                                        std::complex<double> lambda, const ModeVector<N>& mode, double eps);
 
+/// Throws InputError for invalid options or start (t_end <= 0, every, rtol outside (0, 0.1),
+/// a state of the wrong length or not finite): the checks of simulate(), shared.
+void check_simulation_input(const SimulationOptions& options, int dim, const double* x0, int size);
+
 /// Integrates from x0 at t = 0 to options.t_end. Never throws on numerical trouble: a
 /// step-size underflow, a non-finite right-hand side or too many steps end the run with
 /// status failed and the reason (where and why); samples up to there are kept. Throws

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "abu/dynamics/simulation.hpp"
+#include "abu/dynamics/stick_slip.hpp"
 
 namespace abu {
 
@@ -33,5 +34,22 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
 /// stall, steps and evaluations.
 template <int N>
 std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& speed);
+
+/// Stick-slip runs (`coulomb-set`, model.md §14.5): the CSV of simulation_csv with the
+/// columns stick1..stick<n> appended (1: ball i stuck at that sample, 0: slipping).
+template <int N>
+std::string stick_slip_csv(const StickSlipResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                           std::string_view header);
+
+/// The summary JSON of simulation_json plus an object `stick_slip`: per-ball `stuck` at the end,
+/// `beta_end` (wrapped, rad), `s_end` (14.2), `max_abs_s`, `in_stick_set`, `q_abs_static`, and
+/// the switch counts.
+template <int N>
+std::string stick_slip_json(const StickSlipResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
+                            std::string_view command_line, std::string_view scene_file);
+
+/// simulation_text plus the stick-slip lines.
+template <int N>
+std::string stick_slip_text(const StickSlipResult<N>& r, const SpeedProfile& speed);
 
 }  // namespace abu
