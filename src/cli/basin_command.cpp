@@ -21,6 +21,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/dynamics/stick_slip.hpp"
 #include "abu/io/io.hpp"
 #include "abu/scan/basin.hpp"
 #include "commands.hpp"
@@ -118,7 +119,8 @@ Action add_basin_command(CLI::App& app) {
   return [o, sub]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "basin");  // it integrates the base model's field (model.md §3)
+    // It integrates the base model's field (model.md §3), or its stick-slip dynamics (§14.8).
+    refuse_unmodelled(scene, "basin", /*set_valued_ok=*/true);
     check_output_directory(o->output);
     BasinOptions b = *o;
     b.sim.t_end = 10.0;
@@ -226,6 +228,12 @@ Action add_basin_command(CLI::App& app) {
     std::map<std::pair<int, std::string>, long> count;
     std::set<std::pair<int, std::string>> classes;  // of the chart: attractor/member
     long cells = 0, early = 0;
+    // coulomb-set (model.md §14.8): the end angles of the cells where every ball stuck, the
+    // largest |s_i| and |q| there, and how many lie outside the stick set.
+    const bool set_valued = scene.law == FrictionLaw::coulomb_set;
+    std::vector<std::vector<double>> stuck_angles(static_cast<std::size_t>(n));
+    long stuck_cells = 0, outside = 0;
+    double worst_s = 0, worst_q = 0;
     {
       std::istringstream in(rows.str());
       for (std::string row; std::getline(in, row);) {
@@ -236,8 +244,17 @@ Action add_basin_command(CLI::App& app) {
         classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
         early += f[6] == "1";
         ++cells;
+        if (set_valued && f[std::size_t(14 + n)] != "-1") {
+          ++stuck_cells;
+          outside += f[std::size_t(14 + n)] == "0";
+          worst_s = std::max(worst_s, std::stod(f[std::size_t(13 + n)]));
+          worst_q = std::max(worst_q, std::stod(f[9]));
+          for (int k = 0; k < n; ++k) stuck_angles[std::size_t(k)].push_back(std::stod(f[std::size_t(11 + k)]));
+        }
       }
     }
+    std::vector<double> spread;
+    for (const auto& angles : stuck_angles) spread.push_back(shortest_arc(angles));
     std::string fractions = job.provenance + "attractor,cells,fraction\n";
     std::string json = fmt::format("{{\n  \"cells\": {},\n  \"grid\": [{}, {}],\n  \"omega_final\": {},\n  \"t_end\": {},\n"
                                    "  \"by_settle_test\": {},\n  \"fractions\": {{",
@@ -250,7 +267,15 @@ Action add_basin_command(CLI::App& app) {
       json += fmt::format("{}\n    \"{}\": {:.6f}", first ? "" : ",", key.second, frac);
       first = false;
     }
-    json += "\n  }\n}\n";
+    json += "\n  }";
+    if (set_valued) {
+      std::string sp;
+      for (double x : spread) sp += fmt::format("{}{:.9f}", sp.empty() ? "" : ", ", x);
+      json += fmt::format(",\n  \"stick_slip\": {{\"stuck_cells\": {}, \"outside_stick_set\": {}, \"max_abs_s\": {:.9f}, "
+                          "\"worst_q_abs_end\": {:.9e}, \"spread\": [{}], \"set_tolerance\": {:g}}}",
+                          stuck_cells, outside, worst_s, worst_q, sp, stick_set_tolerance);
+    }
+    json += "\n}\n";
     for (const auto& c : classes) labels += (labels.empty() ? "" : " ") + c.second;
     {
       OutputTransaction out;
@@ -276,8 +301,24 @@ Action add_basin_command(CLI::App& app) {
                  stats.tiles, stats.seconds);
       for (const auto& [key, k] : count)
         fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.second, k, 100.0 * double(k) / double(cells));
+      if (set_valued) {
+        fmt::print(stderr, "  every ball stuck in {} of {} cells; end points outside the stick set: {}; max |s_i| = {:.6g}; "
+                           "largest end |q| = {:.6g} m\n  spread of the end angles (shortest arc holding them):",
+                   stuck_cells, cells, outside, worst_s, worst_q);
+        for (int k = 0; k < n; ++k)
+          fmt::print(stderr, " ball {} {:.4f} rad ({:.1f} deg)", k + 1, spread[std::size_t(k)],
+                     spread[std::size_t(k)] * 180 / M_PI);
+        fmt::print(stderr, "\n");
+      }
       fmt::print(stderr, "wrote {}, {}, {}{}\n", csv_path.string(), fractions_path.string(), json_path.string(),
                  b.chart && fs::exists(png_path) ? ", " + png_path.string() : "");
+    }
+    if (outside > 0) {
+      fmt::print(stderr,
+                 "stability-scan: numerical failure: {} end points with every ball stuck lie outside the stick set "
+                 "(max |s_i| = {:.9g} > 1 + {:g}; model.md §14.8)\n",
+                 outside, worst_s, stick_set_tolerance);
+      code = exit_numerical;
     }
     return code;
   };

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/dynamics/stick_slip.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
 
@@ -61,6 +63,60 @@ const ParamsT<double, N>& params_for(const BasinJob& job) {
     return job.params_n;
 }
 
+// A coulomb-set cell (model.md §14.8): the stick-slip run ends once every ball has stuck and the
+// rotor is within the settle radius of its static displacement (5.4) for settle_samples
+// samples in a row, after the speed change; the end point is checked against the stick set.
+template <int N>
+BasinCell stick_slip_cell(const BasinJob& job, const ParamsT<double, N>& p, const State<double, N>& x0, BasinCell c) {
+  const int n = ball_count(p);
+  const double L = displacement_scale(p), w = job.final_omega(), t_change = job.speed.end_of_change();
+  const std::complex<double> dynamic_stiffness(p.rotor.stiffness - w * w * p.total_mass(), p.rotor.damping * w);
+  SimulationOptions o = job.sim;
+  o.record = true;
+  o.interrupt = &stop_flag();
+  o.progress = nullptr;
+  int run = 0;
+  double t_entry = -1;
+  o.stop_at_sample = [&](double t, const double* x) {
+    if (t < t_change) return false;
+    bool settled = true;
+    std::complex<double> W = p.rotor.unbalance;
+    for (int k = 0; k < n; ++k) {
+      settled = settled && x[n + 4 + k] == 0.0;  // a stuck ball's speed is exactly zero (14.5.1)
+      W += p.balls[std::size_t(k)].mass * p.balls[std::size_t(k)].race_radius * std::polar(1.0, x[2 + k]);
+    }
+    const std::complex<double> q_static = w * w * W / dynamic_stiffness;
+    settled = settled && std::abs(std::complex<double>(x[0], x[1]) - q_static) <= job.settle_radius * L &&
+              std::hypot(x[n + 2], x[n + 3]) <= job.settle_radius * L * w;
+    if (!settled) {
+      run = 0;
+      return false;
+    }
+    if (run++ == 0) t_entry = t;
+    return run >= job.settle_samples;
+  };
+  const StickSlipResult<N> r = simulate_stick_slip(p, job.speed, x0, o);
+  if (r.run.status == SimulationStatus::interrupted) throw Interrupted(stop_signal(), "basin cell");
+  if (r.run.status == SimulationStatus::failed)
+    throw NumericalError(fmt::format("basin cell ({}, {}) from beta1 = {:.9g}, beta2 = {:.9g} rad: {}", c.i, c.j,
+                                     c.beta1, c.beta2, r.run.reason));
+  c.t_end = r.run.t_reached;
+  c.state_end.assign(r.run.x_end.data(), r.run.x_end.data() + r.run.x_end.size());
+  c.q_abs_end = std::hypot(r.run.x_end(0), r.run.x_end(1));
+  c.max_q_abs = r.run.summary.max_q_abs;
+  c.steps = r.run.stats.steps;
+  c.rejected = r.run.stats.rejected;
+  c.max_abs_s = r.end.max_abs_s;
+  c.in_stick_set = r.end.all_stuck ? (r.end.in_set ? 1 : 0) : -1;
+  c.by_settle_test = r.run.stopped_early;
+  c.t_settle = r.run.stopped_early ? t_entry : (r.run.summary.settle_time ? *r.run.summary.settle_time : -1.0);
+  if (r.end.all_stuck)
+    c.attractor = r.end.in_set ? "stuck" : "stuck_outside";
+  else
+    c.attractor = r.run.summary.outcome == SimulationOutcome::periodic ? "periodic" : "slipping";
+  return c;
+}
+
 template <int N>
 BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
   ParamsT<double, N> p = params_for<N>(job);
@@ -74,6 +130,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   std::vector<double> beta{c.beta1, c.beta2};
   beta.insert(beta.end(), job.fixed.begin(), job.fixed.end());
   const State<double, N> x0 = start_at_rest(p, beta);
+  if (p.law == FrictionLaw::coulomb_set) return stick_slip_cell(job, p, x0, c);
 
   const double L = displacement_scale(p), w = job.final_omega();
   double capacity = p.rotor.unbalance;
@@ -155,7 +212,21 @@ int BasinJob::n_balls() const { return any_balls ? ball_count(params_n) : 2; }
 double BasinJob::beta1(int i) const { return kTwoPi * i / cells1; }
 double BasinJob::beta2(int j) const { return kTwoPi * j / cells2; }
 
+double shortest_arc(std::vector<double> angles) {
+  if (angles.size() < 2) return 0.0;
+  for (double& a : angles) a = std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi);
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + kTwoPi - angles.back();  // the gap across 0
+  for (std::size_t k = 1; k < angles.size(); ++k) gap = std::max(gap, angles[k] - angles[k - 1]);
+  return kTwoPi - gap;
+}
+
+static bool set_valued(const BasinJob& job) {
+  return (job.any_balls ? job.params_n.law : job.params.law) == FrictionLaw::coulomb_set;
+}
+
 std::vector<BasinTarget> basin_targets(const BasinJob& job) {
+  if (set_valued(job)) return {};  // the stick set, not points: each end point is checked against it (§14.8)
   if (!job.any_balls) {
     Params p = job.params;
     p.omega = job.final_omega();
@@ -176,7 +247,7 @@ std::string basin_csv_header(const BasinJob& job) {
   std::string h = job.provenance;
   h += "i,j,beta1_0,beta2_0,attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
   for (int k = 1; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_end", k);
-  h += ",steps,rejected\n";
+  h += set_valued(job) ? ",steps,rejected,max_abs_s,in_stick_set\n" : ",steps,rejected\n";
   return h;
 }
 
@@ -192,7 +263,9 @@ std::string basin_row(const BasinCell& c) {
     if (b < 0) b += kTwoPi;
     row += fmt::format(",{:.8f}", b);
   }
-  row += fmt::format(",{},{}\n", c.steps, c.rejected);
+  row += fmt::format(",{},{}", c.steps, c.rejected);
+  if (c.max_abs_s >= 0) row += fmt::format(",{:.9f},{}", c.max_abs_s, c.in_stick_set);
+  row += '\n';
   return row;
 }
 

@@ -67,12 +67,21 @@ struct BasinCell {
   double q_abs_end = 0, max_q_abs = 0;  ///< [m]
   std::vector<double> state_end;    ///< 2n + 4 values
   unsigned long steps = 0, rejected = 0;
+  /// coulomb-set (model.md §14.8): max_i |s_i| at the end angles (-1 for the other laws) and
+  /// whether every ball sticks there inside the stick set (1), outside it (0), or some slips (-1).
+  double max_abs_s = -1;
+  int in_stick_set = -1;
 };
+
+/// Length of the shortest arc of the circle that holds every angle [rad] (0 for one angle):
+/// the angular spread of end points (model.md §14.8).
+double shortest_arc(std::vector<double> angles);
 
 BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j);
 
 /// Long CSV: comment block, then `i,j,beta1_0,beta2_0,attractor,member,by_settle_test,
-/// t_settle,t_end,q_abs_end,max_q_abs,beta1_end..betan_end,steps,rejected` (model.md §15.5).
+/// t_settle,t_end,q_abs_end,max_q_abs,beta1_end..betan_end,steps,rejected` (model.md §15.5),
+/// for coulomb-set followed by `max_abs_s,in_stick_set` (model.md §14.8).
 std::string basin_csv_header(const BasinJob& job);
 std::string basin_row(const BasinCell& c);
 /// The resume manifest: everything that determines the bytes.
