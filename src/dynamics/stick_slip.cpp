@@ -92,14 +92,20 @@ void phase_accelerations(Phase<N>& c, const State<double, N>& x, Coordinates<dou
   for (int a = 0; a < k; ++a) acc(2 + stuck_index[a]) = 0.0;  // exactly: the constraint (14.5.1)
 }
 
+// (14.5.2)-(14.5.3) at time t and state y.
+template <int N>
+Coordinates<double, N> accelerations_at(Phase<N>& c, double t, const double y[], double* force) {
+  c.set_time(t);
+  Coordinates<double, N> acc;
+  phase_accelerations(c, load<N>(y, c.dim), acc, force);
+  return acc;
+}
+
 template <int N>
 int phase_rhs(double t, const double y[], double dydt[], void* params) {
   auto& c = *static_cast<Phase<N>*>(params);
-  c.set_time(t);
-  const State<double, N> x = load<N>(y, c.dim);
-  Coordinates<double, N> acc;
   double force[max_balls];
-  phase_accelerations(c, x, acc, force);
+  const Coordinates<double, N> acc = accelerations_at(c, t, y, force);
   for (int i = 0; i < c.d; ++i) {
     dydt[i] = y[c.d + i];
     dydt[c.d + i] = acc(i);
@@ -115,11 +121,8 @@ int phase_rhs(double t, const double y[], double dydt[], void* params) {
 // a stuck ball (mu_i N_i - |F_i|) / force_scale_i (>= 0 while it can stick).
 template <int N>
 void switching_functions(Phase<N>& c, double t, const double y[], double* g) {
-  c.set_time(t);
-  const State<double, N> x = load<N>(y, c.dim);
-  Coordinates<double, N> acc;
   double force[max_balls];
-  phase_accelerations(c, x, acc, force);
+  accelerations_at(c, t, y, force);
   for (int i = 0; i < c.n; ++i)
     g[i] = c.stuck[i] ? (c.friction_limit(i) - std::abs(force[i])) / c.force_scale[i] : c.sigma[i] * y[c.d + 2 + i];
 }
@@ -143,12 +146,9 @@ template <int N>
 void settle_modes(Phase<N>& c, double t, double y[], const bool* was_stuck, const double* was_sigma, SwitchCounts& counts) {
   for (int i = 0; i < c.n; ++i)
     if (!c.stuck[i] && y[c.d + 2 + i] == 0.0) c.stuck[i] = true;
-  c.set_time(t);
   for (int round = 0; round < c.n; ++round) {
-    const State<double, N> x = load<N>(y, c.dim);
-    Coordinates<double, N> acc;
     double force[max_balls];
-    phase_accelerations(c, x, acc, force);
+    accelerations_at(c, t, y, force);
     int worst = -1;
     double worst_excess = 0;
     for (int i = 0; i < c.n; ++i) {

@@ -63,6 +63,30 @@ const ParamsT<double, N>& params_for(const BasinJob& job) {
     return job.params_n;
 }
 
+// The options of one cell's run: recorded (the settle test looks at every sample), Ctrl-C polled.
+SimulationOptions cell_options(const BasinJob& job) {
+  SimulationOptions o = job.sim;
+  o.record = true;
+  o.interrupt = &stop_flag();
+  o.progress = nullptr;
+  return o;
+}
+
+// A cell's end figures from its run; a failed run fails the basin (exit 3, where and why).
+template <int N>
+void take_run(BasinCell& c, const SimulationResult<N>& r) {
+  if (r.status == SimulationStatus::interrupted) throw Interrupted(stop_signal(), "basin cell");
+  if (r.status == SimulationStatus::failed)
+    throw NumericalError(fmt::format("basin cell ({}, {}) from beta1 = {:.9g}, beta2 = {:.9g} rad: {}", c.i, c.j,
+                                     c.beta1, c.beta2, r.reason));
+  c.t_end = r.t_reached;
+  c.state_end.assign(r.x_end.data(), r.x_end.data() + r.x_end.size());
+  c.q_abs_end = std::hypot(r.x_end(0), r.x_end(1));
+  c.max_q_abs = r.summary.max_q_abs;
+  c.steps = r.stats.steps;
+  c.rejected = r.stats.rejected;
+}
+
 // A coulomb-set cell (model.md §14.8): the stick-slip run ends once every ball has stuck and the
 // rotor is within the settle radius of its static displacement (5.4) for settle_samples
 // samples in a row, after the speed change; the end point is checked against the stick set.
@@ -71,10 +95,7 @@ BasinCell stick_slip_cell(const BasinJob& job, const ParamsT<double, N>& p, cons
   const int n = ball_count(p);
   const double L = displacement_scale(p), w = job.final_omega(), t_change = job.speed.end_of_change();
   const std::complex<double> dynamic_stiffness(p.rotor.stiffness - w * w * p.total_mass(), p.rotor.damping * w);
-  SimulationOptions o = job.sim;
-  o.record = true;
-  o.interrupt = &stop_flag();
-  o.progress = nullptr;
+  SimulationOptions o = cell_options(job);
   int run = 0;
   double t_entry = -1;
   o.stop_at_sample = [&](double t, const double* x) {
@@ -96,16 +117,7 @@ BasinCell stick_slip_cell(const BasinJob& job, const ParamsT<double, N>& p, cons
     return run >= job.settle_samples;
   };
   const StickSlipResult<N> r = simulate_stick_slip(p, job.speed, x0, o);
-  if (r.run.status == SimulationStatus::interrupted) throw Interrupted(stop_signal(), "basin cell");
-  if (r.run.status == SimulationStatus::failed)
-    throw NumericalError(fmt::format("basin cell ({}, {}) from beta1 = {:.9g}, beta2 = {:.9g} rad: {}", c.i, c.j,
-                                     c.beta1, c.beta2, r.run.reason));
-  c.t_end = r.run.t_reached;
-  c.state_end.assign(r.run.x_end.data(), r.run.x_end.data() + r.run.x_end.size());
-  c.q_abs_end = std::hypot(r.run.x_end(0), r.run.x_end(1));
-  c.max_q_abs = r.run.summary.max_q_abs;
-  c.steps = r.run.stats.steps;
-  c.rejected = r.run.stats.rejected;
+  take_run(c, r.run);
   c.max_abs_s = r.end.max_abs_s;
   c.in_stick_set = r.end.all_stuck ? (r.end.in_set ? 1 : 0) : -1;
   c.by_settle_test = r.run.stopped_early;
@@ -155,10 +167,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
       d = std::max(d, std::abs(std::remainder(x[2 + k] - t.position[std::size_t(2 + k)], kTwoPi)));
     return d;
   };
-  SimulationOptions o = job.sim;
-  o.record = true;
-  o.interrupt = &stop_flag();
-  o.progress = nullptr;
+  SimulationOptions o = cell_options(job);
   const BasinTarget* inside = nullptr;
   int run = 0;
   double t_entry = -1;
@@ -178,16 +187,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     return inside && ++run >= job.settle_samples;
   };
   const SimulationResult<N> r = simulate(p, job.speed, x0, o);
-  if (r.status == SimulationStatus::interrupted) throw Interrupted(stop_signal(), "basin cell");
-  if (r.status == SimulationStatus::failed)
-    throw NumericalError(fmt::format("basin cell ({}, {}) from beta1 = {:.9g}, beta2 = {:.9g} rad: {}", i, j, c.beta1,
-                                     c.beta2, r.reason));
-  c.t_end = r.t_reached;
-  c.state_end.assign(r.x_end.data(), r.x_end.data() + r.x_end.size());
-  c.q_abs_end = std::hypot(r.x_end(0), r.x_end(1));
-  c.max_q_abs = r.summary.max_q_abs;
-  c.steps = r.stats.steps;
-  c.rejected = r.stats.rejected;
+  take_run(c, r);
   if (r.stopped_early && inside) {
     c.attractor = inside->label;
     c.member = inside->member;
