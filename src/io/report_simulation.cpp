@@ -152,7 +152,13 @@ template <int N>
 std::string stick_slip_csv(const StickSlipResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
                            std::string_view header) {
   const int n = ball_count(p);
-  const std::string base = simulation_csv(r.run, p, speed, header);
+  std::string base = simulation_csv(r.run, p, speed, header);
+  // No stiffness probe here: the phases are not stiff (model.md §14.6).
+  if (const std::size_t at = base.find("# method: "); at != std::string::npos)
+    base.replace(at, base.find('\n', at) - at,
+                 fmt::format("# method: {} between switches, event-driven stick-slip (model.md §14.6); switches: {} "
+                             "slip->stick, {} stick->slip, {} reversals",
+                             to_string(r.run.method), r.sticks, r.slips, r.reversals));
   std::string out;
   out.reserve(base.size() + r.stuck_mask.size() * std::size_t(2 * n + 1) + 200);
   std::size_t row = 0, pos = 0;
@@ -206,6 +212,8 @@ std::string stick_slip_json(const StickSlipResult<N>& r, const ParamsT<double, N
 template <int N>
 std::string stick_slip_text(const StickSlipResult<N>& r, const SpeedProfile& speed) {
   std::string out = simulation_text(r.run, speed);
+  if (const std::size_t at = out.find(" (stiffness ratio"); at != std::string::npos)
+    out.replace(at, out.find('\n', at) - at, " between switches (event-driven stick-slip, model.md §14.6)");
   const auto& e = r.end;
   out += "  balls at the end:";
   for (std::size_t i = 0; i < e.stuck.size(); ++i)
