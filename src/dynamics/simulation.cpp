@@ -259,7 +259,10 @@ std::optional<std::vector<double>> nearest_balanced_angles(const ParamsT<double,
   }
   // The polygon inequality (model.md §13.4): the set exists iff max(U, a_i) <= (U + sum a)/2.
   if (largest > 0.5 * (capacity + p.rotor.unbalance) * (1 + 1e-12)) return std::nullopt;
+  // Wrapped first: after a long run-up the continuous angles reach hundreds of radians, whose
+  // rounding (ulp 1e-13 at 557 rad) keeps |W| above the 1e-14 tolerance below.
   std::vector<double> b = beta;
+  for (auto& v : b) v = std::remainder(v, 2 * kPi);
   const double scale = capacity + p.rotor.unbalance;
   for (int iter = 0; iter < 60; ++iter) {
     // W = U + sum a_j e^{i beta_j}; G = dW/dbeta (2 x n); minimal-norm step -G^T (G G^T)^-1 W.
