@@ -212,8 +212,8 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
 }
 }  // namespace
 
-void refuse_unmodelled(const Scene& scene, std::string_view command) {
-  refuse_lugre(scene, command);
+void refuse_unmodelled(const Scene& scene, std::string_view command, bool handles_lugre) {
+  if (!handles_lugre) refuse_lugre(scene, command);
   refuse_unround(scene, command);
   refuse_anisotropic(scene, command);
   refuse_set_valued(scene, command);

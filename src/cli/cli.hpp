@@ -46,8 +46,9 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
 /// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
 /// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
-/// field; InputError at the `law` key).
-void refuse_unmodelled(const Scene& scene, std::string_view command);
+/// field; InputError at the `law` key). `handles_lugre`: the command carries the LuGre
+/// state itself (model.md §12.7) and only the others are refused.
+void refuse_unmodelled(const Scene& scene, std::string_view command, bool handles_lugre = false);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();
