@@ -84,6 +84,22 @@ LD scaled_error(const LugreMatrix<LD>& J, const LugreMatrix<LD>& ref) {
   return worst;
 }
 
+// df/dx by central differences of the field (with omega' = omega_dot), steps 1e-6 of each
+// component's natural size.
+LugreMatrix<LD> central_differences(const ParamsT<LD, any_balls>& p, const LugreState<LD>& x, LD omega_dot) {
+  const int m = int(x.size());
+  const auto h = natural_sizes(p);
+  LugreMatrix<LD> fd(m, m);
+  for (int k = 0; k < m; ++k) {
+    LugreState<LD> xp = x, xm = x;
+    const LD step = 1e-6L * h(k);
+    xp(k) += step;
+    xm(k) -= step;
+    fd.col(k) = (lugre_vector_field(p, xp, omega_dot) - lugre_vector_field(p, xm, omega_dot)) / (2 * step);
+  }
+  return fd;
+}
+
 }  // namespace
 
 TEST_CASE("lugre: steady sliding gives the stribeck law in its sign limit plus sigma2 (model.md 12.1)", "[lugre]") {
@@ -118,15 +134,7 @@ TEST_CASE("lugre: analytic Jacobian equals central differences at moving states 
       x(2 * d + i) = (0.7L - 0.4L * i) * p.balls[std::size_t(i)].mu_s / p.balls[std::size_t(i)].sigma0;
     }
     const auto J = lugre_jacobian(p, x, RestSide::forward);
-    const auto h = natural_sizes(p);
-    LugreMatrix<LD> fd(m, m);
-    for (int k = 0; k < m; ++k) {
-      LugreState<LD> xp = x, xm = x;
-      const LD step = 1e-6L * h(k);
-      xp(k) += step;
-      xm(k) -= step;
-      fd.col(k) = (lugre_vector_field(p, xp) - lugre_vector_field(p, xm)) / (2 * step);
-    }
+    const LugreMatrix<LD> fd = central_differences(p, x, 0.0L);
     INFO("n = " << n);
     CHECK(scaled_error(J, fd) < 1e-8L);
   }
@@ -148,16 +156,8 @@ TEST_CASE("lugre: run-up field, its Jacobian and df/domega (model.md 12.11-12.12
       x(d + 2 + i) = (i % 2 ? -1 : 1) * (0.15L + 0.2L * i);
       x(2 * d + i) = (0.5L - 0.3L * i) * p.balls[std::size_t(i)].mu_s / p.balls[std::size_t(i)].sigma0;
     }
-    const auto h = natural_sizes(p);
     const auto J = lugre_jacobian(p, x, RestSide::forward, omega_dot);
-    LugreMatrix<LD> fd(m, m);
-    for (int k = 0; k < m; ++k) {
-      LugreState<LD> xp = x, xm = x;
-      const LD step = 1e-6L * h(k);
-      xp(k) += step;
-      xm(k) -= step;
-      fd.col(k) = (lugre_vector_field(p, xp, omega_dot) - lugre_vector_field(p, xm, omega_dot)) / (2 * step);
-    }
+    const LugreMatrix<LD> fd = central_differences(p, x, omega_dot);
     INFO("n = " << n);
     CHECK(scaled_error(J, fd) < 1e-8L);
     // f(x, omega') - f(x, 0) is the frictionless model's omega' part (friction has no omega').

@@ -168,7 +168,9 @@ LugreState<T> lugre_omega_derivative(const ParamsT<T, any_balls>& p, const Lugre
   const State<T, any_balls> xm = x.head(2 * d);
   LugreState<T> df = LugreState<T>::Zero(3 * n + 4);
   df.head(2 * d) = parameter_derivative(pn, xm, ParamRef{Quantity::omega, -1});
-  // The friction's share of s'' is proportional to omega^2 (N_i, (12.3)).
+  // The friction's share of s'' is proportional to omega^2 (N_i, (12.3)); at omega = 0
+  // its derivative 2 m l omega (...) vanishes.
+  if (p.omega == T(0)) return df;
   const LugreState<T> with = lugre_vector_field(p, x);
   const State<T, any_balls> without = vector_field(pn, xm);
   df.segment(d, d) += (T(2) / p.omega) * (with.segment(d, d) - without.segment(d, d));
