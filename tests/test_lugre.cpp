@@ -84,6 +84,22 @@ LD scaled_error(const LugreMatrix<LD>& J, const LugreMatrix<LD>& ref) {
   return worst;
 }
 
+// df/dx by central differences of the field (with omega' = omega_dot), steps 1e-6 of each
+// component's natural size.
+LugreMatrix<LD> central_differences(const ParamsT<LD, any_balls>& p, const LugreState<LD>& x, LD omega_dot) {
+  const int m = int(x.size());
+  const auto h = natural_sizes(p);
+  LugreMatrix<LD> fd(m, m);
+  for (int k = 0; k < m; ++k) {
+    LugreState<LD> xp = x, xm = x;
+    const LD step = 1e-6L * h(k);
+    xp(k) += step;
+    xm(k) -= step;
+    fd.col(k) = (lugre_vector_field(p, xp, omega_dot) - lugre_vector_field(p, xm, omega_dot)) / (2 * step);
+  }
+  return fd;
+}
+
 }  // namespace
 
 TEST_CASE("lugre: steady sliding gives the stribeck law in its sign limit plus sigma2 (model.md 12.1)", "[lugre]") {
@@ -118,17 +134,50 @@ TEST_CASE("lugre: analytic Jacobian equals central differences at moving states 
       x(2 * d + i) = (0.7L - 0.4L * i) * p.balls[std::size_t(i)].mu_s / p.balls[std::size_t(i)].sigma0;
     }
     const auto J = lugre_jacobian(p, x, RestSide::forward);
-    const auto h = natural_sizes(p);
-    LugreMatrix<LD> fd(m, m);
-    for (int k = 0; k < m; ++k) {
-      LugreState<LD> xp = x, xm = x;
-      const LD step = 1e-6L * h(k);
-      xp(k) += step;
-      xm(k) -= step;
-      fd.col(k) = (lugre_vector_field(p, xp) - lugre_vector_field(p, xm)) / (2 * step);
-    }
+    const LugreMatrix<LD> fd = central_differences(p, x, 0.0L);
     INFO("n = " << n);
     CHECK(scaled_error(J, fd) < 1e-8L);
+  }
+}
+
+// During a run-up (model.md (12.11), (12.12)): the Jacobian with omega' against central
+// differences of the field with omega' (as above: 1e-8 has a margin of 1e4), the Euler
+// terms against the frictionless model's (f is affine in omega'), and df/domega against a
+// central difference in omega (step 1e-6 omega: truncation 1e-12, rounding 1e-13).
+TEST_CASE("lugre: run-up field, its Jacobian and df/domega (model.md 12.11-12.12)", "[lugre]") {
+  for (int n : {2, 4}) {
+    auto p = lugre_ring(n);
+    const int d = n + 2, m = 3 * n + 4;
+    const LD omega_dot = 350.0L;
+    LugreState<LD> x = LugreState<LD>::Zero(m);
+    for (int i = 0; i < n; ++i) x(2 + i) = 0.3L + 1.1L * i;
+    x(0) = 2e-6L, x(1) = -1e-6L, x(d) = 3e-4L, x(d + 1) = 1e-4L;
+    for (int i = 0; i < n; ++i) {
+      x(d + 2 + i) = (i % 2 ? -1 : 1) * (0.15L + 0.2L * i);
+      x(2 * d + i) = (0.5L - 0.3L * i) * p.balls[std::size_t(i)].mu_s / p.balls[std::size_t(i)].sigma0;
+    }
+    const auto J = lugre_jacobian(p, x, RestSide::forward, omega_dot);
+    const LugreMatrix<LD> fd = central_differences(p, x, omega_dot);
+    INFO("n = " << n);
+    CHECK(scaled_error(J, fd) < 1e-8L);
+    // f(x, omega') - f(x, 0) is the frictionless model's omega' part (friction has no omega').
+    auto free = p;
+    free.law = FrictionLaw::none;
+    const State<LD, any_balls> xm = x.head(2 * d);
+    const LugreState<LD> euler = lugre_vector_field(p, x, omega_dot) - lugre_vector_field(p, x);
+    const State<LD, any_balls> euler_free = vector_field(free, xm, omega_dot) - vector_field(free, xm);
+    CHECK((euler.head(2 * d) - euler_free).cwiseAbs().maxCoeff() <= 1e-15L * euler_free.cwiseAbs().maxCoeff());
+    CHECK(euler.tail(n).cwiseAbs().maxCoeff() == 0.0L);
+    const LugreState<LD> dfw = lugre_omega_derivative(p, x);
+    const LD w0 = p.omega, dw = 1e-6L * w0;
+    p.omega = w0 + dw;
+    const LugreState<LD> fp = lugre_vector_field(p, x);
+    p.omega = w0 - dw;
+    const LugreState<LD> fm = lugre_vector_field(p, x);
+    p.omega = w0;
+    const LugreState<LD> dfw_fd = (fp - fm) / (2 * dw);
+    for (int k = 0; k < m; ++k)
+      CHECK(std::abs(dfw(k) - dfw_fd(k)) <= 1e-8L * std::max(dfw_fd.segment(d, d).cwiseAbs().maxCoeff(), LD(1e-300)));
   }
 }
 

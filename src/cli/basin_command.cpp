@@ -119,8 +119,9 @@ Action add_basin_command(CLI::App& app) {
   return [o, sub]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
-    // It integrates the base model's field (model.md §3), or its stick-slip dynamics (§14.8).
-    refuse_unmodelled(scene, "basin", /*set_valued_ok=*/true);
+    // It integrates the base model's field (model.md §3), LuGre's 3n + 4 (§12.7) or the
+    // stick-slip dynamics of coulomb-set (§14.8).
+    refuse_unmodelled(scene, "basin", {.lugre = true, .set_valued = true});
     check_output_directory(o->output);
     BasinOptions b = *o;
     b.sim.t_end = 10.0;
@@ -164,7 +165,7 @@ Action add_basin_command(CLI::App& app) {
     job.sim.method = *integration_method_from_string(b.method);
     job.settle_radius = b.settle_radius;
     job.settle_samples = b.settle_samples;
-    job.any_balls = n != 2;
+    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre;  // LuGre: bounded 3n + 4 storage
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
     for (const auto& s : o->scene.overrides) line += " --set " + s;
     line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),

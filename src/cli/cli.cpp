@@ -212,11 +212,11 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
 }
 }  // namespace
 
-void refuse_unmodelled(const Scene& scene, std::string_view command, bool set_valued_ok) {
-  refuse_lugre(scene, command);
+void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles) {
+  if (!handles.lugre) refuse_lugre(scene, command);
   refuse_unround(scene, command);
   refuse_anisotropic(scene, command);
-  if (!set_valued_ok) refuse_set_valued(scene, command);
+  if (!handles.set_valued) refuse_set_valued(scene, command);
 }
 
 namespace {

@@ -46,9 +46,14 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
 /// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
 /// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
-/// field; InputError at the `law` key) unless the command integrates it event-driven
-/// (`simulate`, `basin`: set_valued_ok, model.md §14.5).
-void refuse_unmodelled(const Scene& scene, std::string_view command, bool set_valued_ok = false);
+/// field; InputError at the `law` key) — except what `handles` says the command carries
+/// itself: LuGre's bristle states (model.md §12.7), the event-driven stick-slip of
+/// `coulomb-set` (§14.5).
+struct Handles {
+  bool lugre = false;       ///< the 3n + 4 LuGre state (§12.7, §12.8)
+  bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8)
+};
+void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

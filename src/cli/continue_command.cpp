@@ -328,7 +328,16 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "continue");
+    refuse_unmodelled(scene, "continue", {.lugre = true});
+    if (scene.law == FrictionLaw::lugre) {  // model.md §12.8: n >= 3 balls, one parameter
+      const char* rule = scene.balls.size() == 2 ? "two balls are not continued yet (the n-ball engine needs n >= 3)"
+                         : !o->param2.empty()    ? "--param2 (two-parameter boundaries) is not available for it yet"
+                         : o->cycles             ? "--cycles is not available for it (the field is not smooth at rest)"
+                                                 : nullptr;
+      if (rule)
+        throw InputError(scene.file, scene.law_line, "friction.law",
+                         fmt::format("friction law 'lugre' in 'continue': {} (model.md §12.8)", rule));
+    }
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->to = omega_input(o->scene, o->to);
     if (o->param2 == "omega") o->to2 = omega_input(o->scene, o->to2);

@@ -56,20 +56,8 @@ std::vector<double> parse_ball_angles(const std::string& text, int n) {
 std::string render_lugre(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
   const ParamsN p = params_of<any_balls>(scene);
   const int n = p.n_balls();
-  std::vector<LugreRow> rows;
-  ParamsN free = p;
-  free.law = FrictionLaw::none;
-  const EquilibriumSetN set = find_equilibria(free, o.sampling);
-  for (const auto& e : set.points()) {
-    throw_if_stopped("equilibria (lugre)");
-    if (!e.converged && !(e.residual <= 1e-8))
-      throw NumericalError(fmt::format("omega={}: the Newton polish of a {} point did not converge (residual {:.3g}): "
-                                       "it is not an equilibrium",
-                                       p.omega, to_string(e.family), e.residual));
-    rows.push_back({std::string(to_string(e.family)),
-                    e.family == Family::balanced ? std::string() : pattern_string(e.pattern, n), e.member,
-                    analyze_lugre_rest(p, e.position, true)});
-  }
+  throw_if_stopped("equilibria (lugre)");
+  std::vector<LugreRow> rows = lugre_zero_bristle_rows(p, o.sampling);
   if (!o.at_balls.empty())
     rows.push_back({"stuck", "", 1, analyze_lugre_rest(p, lugre_configuration(p, parse_ball_angles(o.at_balls, n)),
                                                        false)});

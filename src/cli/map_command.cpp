@@ -84,7 +84,7 @@ Action add_map_command(CLI::App& app) {
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "map");
+    refuse_unmodelled(scene, "map", {.lugre = true});
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

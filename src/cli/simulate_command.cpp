@@ -54,13 +54,22 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     throw InputError("simulate", 0, "", "give exactly one start: --balls, --from-state or --from-equilibrium");
   if (o.perturb && o.from_equilibrium.empty())
     throw InputError("--perturb", 0, "", "--perturb goes with --from-equilibrium");
+  SimulationOptions so = o.sim;
+  const bool lugre = p.law == FrictionLaw::lugre;  // 3n + 4 states (model.md §12.7)
   if (!o.balls.empty()) x0 = start_at_rest(p, parse_real_list(o.balls, "--balls"));
   if (!o.from_state.empty()) {
-    const auto v = parse_real_list(o.from_state, "--from-state");
+    auto v = parse_real_list(o.from_state, "--from-state");
+    if (lugre && int(v.size()) == 3 * n + 4) {  // the bristle states z_1..z_n last
+      so.bristle_start.assign(v.end() - n, v.end());
+      v.resize(std::size_t(2 * n + 4));
+    }
     if (int(v.size()) != 2 * n + 4)
       throw InputError("--from-state", 0, "",
-                       fmt::format("a state of {} balls has 2n + 4 = {} values (q1,q2,beta1..,dq1,dq2,dbeta1..), got {}",
-                                   n, 2 * n + 4, v.size()));
+                       fmt::format("a state of {} balls has 2n + 4 = {} values (q1,q2,beta1..,dq1,dq2,dbeta1..){}, got {}",
+                                   n, 2 * n + 4,
+                                   lugre ? fmt::format(", or 3n + 4 = {} with the bristle states z1..z{} last", 3 * n + 4, n)
+                                         : std::string(),
+                                   v.size()));
     x0 = State<double, N>::Zero(2 * n + 4);
     for (int i = 0; i < 2 * n + 4; ++i) x0(i) = v[std::size_t(i)];
   }
@@ -69,9 +78,12 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     if (!(std::isfinite(eps) && eps >= 0 && eps <= 1))
       throw InputError("--perturb", 0, "", fmt::format("EPS must lie in [0, 1] (scaled units), got {}", eps));
     const EquilibriumChoice choice = parse_equilibrium_choice(o.from_equilibrium, "--from-equilibrium");
-    x0 = start_from_equilibrium(p, analyze(p), choice, eps, "--from-equilibrium");
+    // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3); the start is
+    // displaced along that model's rightmost mode, with z(0) = 0 (model.md §12.7).
+    ParamsT<double, N> at = p;
+    if (lugre) at.law = FrictionLaw::none;
+    x0 = start_from_equilibrium(at, analyze(at), choice, eps, "--from-equilibrium");
   }
-  SimulationOptions so = o.sim;
   so.method = *integration_method_from_string(o.method);
   // Validate before any work (nothing is written on bad input).
   if (!(std::isfinite(so.t_end) && so.t_end > 0))
@@ -226,7 +238,7 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o, sub]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "simulate", /*set_valued_ok=*/true);
+    refuse_unmodelled(scene, "simulate", {.lugre = true, .set_valued = true});
     apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
@@ -241,7 +253,8 @@ Action add_simulate_command(CLI::App& app) {
                                : scene.simulate && scene.simulate->speed
                                    ? *scene.simulate->speed
                                    : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
-    if (scene.balls.size() == 2) return run_simulation<2>(scene, *o, speed);
+    // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
+    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre) return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);
   };
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "cli.hpp"
@@ -12,6 +13,7 @@
 #include "abu/io/chart_labels.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/ranges.hpp"
+#include "abu/io/report_lugre.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -33,6 +35,54 @@ struct SweepOptions {
 // The grid must stay inside the parameter's physical range; it is an interval, so the
 // two ends decide. Checked before any work, with the scene's own rules.
 constexpr int kMaxSteps = 1000000;
+
+// The parameter of --param (not the ball count) and its grid's rules, checked.
+ParamRef checked_param(const SweepOptions& o, int n_balls) {
+  const auto ref = parse_param(o.param, n_balls);
+  if (!ref)
+    throw InputError("--param", 0, o.param,
+                     unknown_name_rule("unknown parameter", closest_param(o.param, true), "known",
+                                       fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
+  if (o.steps < 1 || o.steps > kMaxSteps)
+    throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o.steps));
+  if (o.logarithmic && !(o.from > 0 && o.to > 0))
+    throw InputError("--log", 0, o.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", o.from, o.to));
+  return *ref;
+}
+
+// A LuGre scene (model.md §12.8): per value the z = 0 equilibria with both one-sided
+// spectra (what `equilibria` lists), one CSV; the ball count is not a LuGre parameter here.
+int sweep_lugre(const Scene& scene, const SweepOptions& o) {
+  if (o.param == "n")
+    throw InputError("--param", 0, "n", "the ball count is not swept for friction law 'lugre' (model.md §12.8)");
+  const ParamRef ref = checked_param(o, int(scene.balls.size()));
+  const std::string name = to_string(ref);
+  const auto values = grid_values(o.from, o.to, o.steps, o.logarithmic);
+  std::vector<Scene> scenes;
+  for (double v : values) {
+    Scene s = scene;
+    set_checked(s, ref, v, "--from/--to");
+    check_numerical_range(s, "--from/--to", fmt::format("at {}={}", o.param, v));
+    scenes.push_back(s);
+  }
+  std::vector<std::vector<LugreRow>> rows;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    throw_if_stopped("sweep (lugre)");
+    rows.push_back(lugre_zero_bristle_rows(params_of<any_balls>(scenes[i]), o.sampling));
+    const std::string w = lugre_warnings(rows.back());
+    if (!w.empty()) fmt::print(stderr, "at {}={}:\n{}", name, values[i], w);
+  }
+  const ParamsN first = params_of<any_balls>(scenes.front());
+  const auto csv_path = std::filesystem::path(o.output_dir) / fmt::format("sweep_{}.csv", name);
+  OutputTransaction out;
+  out.stage(csv_path, lugre_sweep_csv(name, values, rows, first, provenance_header(command_line(), scene.file, first)));
+  out.commit();
+  std::size_t count = 0;
+  for (const auto& r : rows) count += r.size();
+  fmt::print(stderr, "wrote {} ({} states over {} values; no chart for friction law 'lugre' yet)\n", csv_path.string(),
+             count, values.size());
+  return exit_ok;
+}
 
 // Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
 // ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
@@ -56,15 +106,7 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
       result.values.push_back(n);
     }
   } else {
-    const auto ref = parse_param(o.param, int(scene.balls.size()));
-    if (!ref)
-      throw InputError("--param", 0, o.param,
-                       unknown_name_rule("unknown parameter", closest_param(o.param, true), "known",
-                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
-    if (o.steps < 1 || o.steps > kMaxSteps)
-      throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o.steps));
-    if (o.logarithmic && !(o.from > 0 && o.to > 0))
-      throw InputError("--log", 0, o.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", o.from, o.to));
+    const auto ref = std::optional<ParamRef>(checked_param(o, int(scene.balls.size())));
     result.name = to_string(*ref);
     result.unit = std::string(unit(ref->quantity));
     for (double v : grid_values(o.from, o.to, o.steps, o.logarithmic)) {
@@ -136,23 +178,16 @@ Action add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "sweep");
+    refuse_unmodelled(scene, "sweep", {.lugre = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
+    if (scene.law == FrictionLaw::lugre) return sweep_lugre(scene, *o);
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
-    const auto ref = parse_param(o->param, n_balls);
-    if (!ref)
-      throw InputError("--param", 0, o->param,
-                       unknown_name_rule("unknown parameter", closest_param(o->param, true), "known",
-                                         fmt::format("{}, or n (a ring's ball count)", param_symbols_help())));
-    if (o->steps < 1 || o->steps > kMaxSteps)
-      throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxSteps, o->steps));
-    if (o->logarithmic && !(o->from > 0 && o->to > 0))
-      throw InputError("--log", 0, o->param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", o->from, o->to));
+    const auto ref = std::optional<ParamRef>(checked_param(*o, n_balls));
     {
       Scene probe = scene;
       set_checked(probe, *ref, o->from, "--from");

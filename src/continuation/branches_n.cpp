@@ -142,11 +142,13 @@ class Tracer : public S {
   SpectrumN spectrum_at(const Unknowns& z) {
     ++stats.full_spectra;
     const Linearization<ld, any_balls> lin = this->eq.linearization(z);
+    // LuGre (model.md §12.8): the bristles hold the balls, no direction of the balanced
+    // set is neutral; the full spectrum of (12.10) decides.
     if constexpr (S::balanced) {
-      return compute_normal_spectrum(lin, balanced_tangent_basis(this->eq.params(z), this->eq.position(z)));
-    } else {
-      return compute_spectrum<any_balls>(lin);
+      if (!this->eq.lugre())
+        return compute_normal_spectrum(lin, balanced_tangent_basis(this->eq.params(z), this->eq.position(z)));
     }
+    return compute_spectrum<any_balls>(lin);
   }
 
   SpecialPointN special_at(Label label, const Vec& u, const BranchPointN& a, const BranchPointN& b) const {
@@ -408,9 +410,11 @@ ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, 
   if (const auto rule = range_violation(param.quantity, to)) throw InputError("continuation", 0, to_string(param), *rule);
   if (to == run.from) throw InputError("continuation", 0, to_string(param), "the end value equals the start value");
   const StaticEquationsN eq(p, param, run.from, ld(to) - ld(run.from));
-  ParamsN far = p;
+  ParamsN near = p;  // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3)
+  if (p.law == FrictionLaw::lugre) near.law = FrictionLaw::none;
+  ParamsN far = near;
   set(far, param, to);
-  const EquilibriumSetN here = find_equilibria(p, sampling);
+  const EquilibriumSetN here = find_equilibria(near, sampling);
   const EquilibriumSetN there = find_equilibria(far, sampling);
   run.balanced_set = here.balanced_set;
 

@@ -16,6 +16,7 @@
 #include <numbers>
 
 #include "abu/core/errors.hpp"
+#include "abu/model/lugre.hpp"
 
 namespace abu {
 
@@ -76,8 +77,8 @@ double natural_frequency(double k, double M) { return std::sqrt(k / M); }
 struct ScaledControlState {
   double rtol = 1e-8;
   std::size_t dim = 0;
-  double scale[2 * max_balls + 4] = {};
-  bool relative[2 * max_balls + 4] = {};
+  double scale[lugre_state_capacity] = {};  // LuGre's bristle states too (model.md §12.7)
+  bool relative[lugre_state_capacity] = {};
 };
 
 void* scaled_alloc() { return new (std::nothrow) ScaledControlState; }
@@ -133,11 +134,41 @@ State<double, N> load_state(const double y[], int dim) {
   return x;
 }
 
+// LuGre (model.md §12.7): the (3n + 4) field of model/lugre.hpp; x holds the bristles last.
+int lugre_rhs(const ParamsN& p, double omega_dot, const double y[], double dydt[], int dim) {
+  const LugreState<double> f = lugre_vector_field(p, LugreState<double>(Eigen::Map<const Eigen::VectorXd>(y, dim)), omega_dot);
+  for (int i = 0; i < dim; ++i) {
+    if (!std::isfinite(f(i))) return GSL_EBADFUNC;
+    dydt[i] = f(i);
+  }
+  return GSL_SUCCESS;
+}
+
+// A ball exactly at rest takes the forward one-sided slope (12.9); at z = 0 both agree.
+int lugre_jac(const ParamsN& p, double omega_dot, const double y[], double* dfdy, double dfdt[], int dim) {
+  const LugreState<double> x = Eigen::Map<const Eigen::VectorXd>(y, dim);
+  const LugreMatrix<double> J = lugre_jacobian(p, x, RestSide::forward, omega_dot);
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) {
+      if (!std::isfinite(J(i, j))) return GSL_EBADFUNC;
+      dfdy[i * dim + j] = J(i, j);
+    }
+  if (omega_dot != 0) {
+    const LugreState<double> dfw = lugre_omega_derivative(p, x);
+    for (int i = 0; i < dim; ++i) dfdt[i] = omega_dot * dfw(i);
+  } else {
+    for (int i = 0; i < dim; ++i) dfdt[i] = 0.0;
+  }
+  return GSL_SUCCESS;
+}
+
 template <int N>
 int ode_rhs(double t, const double y[], double dydt[], void* params) {
   auto& c = *static_cast<OdeContext<N>*>(params);
   ++c.rhs;
   c.set_time(t);
+  if constexpr (N == any_balls)
+    if (c.p.law == FrictionLaw::lugre) return lugre_rhs(c.p, c.omega_dot, y, dydt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
   // model.md §3 at constant speed; §9 (Euler terms) while omega' != 0.
   const State<double, N> f = c.omega_dot == 0 ? vector_field(c.p, x) : vector_field(c.p, x, c.omega_dot);
@@ -153,6 +184,8 @@ int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
   auto& c = *static_cast<OdeContext<N>*>(params);
   ++c.jac;
   c.set_time(t);
+  if constexpr (N == any_balls)
+    if (c.p.law == FrictionLaw::lugre) return lugre_jac(c.p, c.omega_dot, y, dfdy, dfdt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
   const StateMatrix<double, N> J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
   for (int i = 0; i < c.dim; ++i)
@@ -300,9 +333,13 @@ template <int N>
 SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& speed, const State<double, N>& x0,
                              const SimulationOptions& o) {
   gsl_handler_off_once();
-  const int n = ball_count(p), dim = 2 * n + 4;
-  check_simulation_input(o, dim, x0.data(), int(x0.size()));
+  const bool lugre = p.law == FrictionLaw::lugre;  // 3n + 4 states, the bristles last (model.md §12.7)
+  if (lugre && N != any_balls) throw std::invalid_argument("simulate: a LuGre scene runs with N = any_balls");
+  const int n = ball_count(p), mech = 2 * n + 4, dim = lugre ? 3 * n + 4 : mech;
+  check_simulation_input(o, mech, x0.data(), int(x0.size()));
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
+  if (!o.bristle_start.empty() && (!lugre || int(o.bristle_start.size()) != n))
+    throw InputError("--from-state", 0, "", fmt::format("bristle states z(0) go with friction law 'lugre', one per ball ({})", n));
 
   SimulationResult<N> r;
   const auto wall0 = std::chrono::steady_clock::now();
@@ -318,20 +355,29 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     pp.omega = w_max;
     State<double, N> xs = x0;
     xs.tail(n).setZero();
-    const StateMatrix<double, N> J = jacobian(pp, xs);
     // A Jacobian that overflowed would give a NaN stiffness ratio (and so a silent choice
     // of the explicit method) or a DBL_MAX spectral radius in the summary: fail here.
-    if (!J.allFinite() || !(J.cwiseAbs().maxCoeff() <= 1e150))
-      throw NumericalError(fmt::format(
-          "simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not finite or beyond 1e150 "
-          "(an overflow of the model at these parameters)",
-          w_max));
-    Eigen::EigenSolver<StateMatrix<double, N>> es(J, false);
+    const auto spectral_radius = [&](const auto& J) {
+      if (!J.allFinite() || !(J.cwiseAbs().maxCoeff() <= 1e150))
+        throw NumericalError(fmt::format(
+            "simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not finite or beyond 1e150 "
+            "(an overflow of the model at these parameters)",
+            w_max));
+      Eigen::EigenSolver<std::decay_t<decltype(J)>> es(J, false);
+      if (es.info() == Eigen::Success && es.eigenvalues().allFinite()) return double(es.eigenvalues().cwiseAbs().maxCoeff());
+      return double(J.cwiseAbs().rowwise().sum().maxCoeff());  // the infinity norm bounds it
+    };
     double rho = 0;
-    if (es.info() == Eigen::Success && es.eigenvalues().allFinite()) {
-      rho = es.eigenvalues().cwiseAbs().maxCoeff();
+    if constexpr (N == any_balls) {
+      if (lugre) {  // bristles at z = 0: the stiffest slope c = 1 of (12.9) at rest
+        LugreState<double> xl = LugreState<double>::Zero(dim);
+        xl.head(mech) = xs;
+        rho = spectral_radius(lugre_jacobian(pp, xl, RestSide::forward));
+      } else {
+        rho = spectral_radius(jacobian(pp, xs));
+      }
     } else {
-      rho = J.cwiseAbs().rowwise().sum().maxCoeff();  // the infinity norm bounds it
+      rho = spectral_radius(jacobian(pp, xs));
     }
     r.spectral_radius = rho;
     r.stiffness_ratio = rho / (w_max + w_n);
@@ -362,25 +408,34 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     cs->scale[i] = angle ? 1.0 : (rotor ? L : 1.0) * (velocity ? w_max : 1.0);
     cs->relative[i] = !angle;
   }
+  for (int i = 0; i < dim - mech; ++i) {  // z_i in its natural size mu_s / sigma0 (the invariant bound, §12.1)
+    const auto& b = p.balls[std::size_t(i)];
+    cs->scale[mech + i] = b.mu_s / b.sigma0;
+    cs->relative[mech + i] = true;
+  }
   if (int st = gsl_odeiv2_control_init(drv->c, o.rtol, o.rtol, 1.0, 0.0); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
   if (int st = gsl_odeiv2_control_set_driver(drv->c, drv.get()); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control: {}", gsl_strerror(st)));
 
-  double y[2 * max_balls + 4];
-  for (int i = 0; i < dim; ++i) y[i] = x0(i);
+  double y[lugre_state_capacity];
+  for (int i = 0; i < mech; ++i) y[i] = x0(i);
+  for (int i = mech; i < dim; ++i) y[i] = o.bristle_start.empty() ? 0.0 : o.bristle_start[std::size_t(i - mech)];
+  r.bristle_count = dim - mech;
   double t = 0, h = h0;
   const auto record = [&](double time) {
     if (!o.record) return;
     TrajectorySample<N> s;
     s.t = time;
     s.omega = speed.omega(time);
-    s.x = load_state<N>(y, dim);
+    s.x = load_state<N>(y, mech);
     r.samples.push_back(s);
+    r.bristle.insert(r.bristle.end(), y + mech, y + dim);
     if (o.progress) o.progress(time);
     if (o.stop_at_sample && o.stop_at_sample(time, y)) r.stopped_early = true;
   };
   if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
+  if (o.record) r.bristle.reserve(std::size_t(dim - mech) * (std::size_t(std::ceil(o.t_end / every)) + 2));
   record(0.0);
 
   std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
@@ -453,7 +508,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   accumulate();
   r.stats.rhs_evaluations = ctx.rhs;
   r.stats.jacobian_evaluations = ctx.jac;
-  r.x_end = load_state<N>(y, dim);
+  r.x_end = load_state<N>(y, mech);
+  r.bristle_end.assign(y + mech, y + dim);
   r.t_reached = t;
   r.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (o.record) r.summary = summarize(p, speed, r.samples, o);

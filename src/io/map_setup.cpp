@@ -142,7 +142,8 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   job.method = request.method;
   job.sampling = request.sampling;
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;
-  job.any_balls = count_axis || scene.balls.size() != 2;
+  // LuGre takes the n-ball cells, which know its spectra (model.md §12.8).
+  job.any_balls = count_axis || scene.balls.size() != 2 || scene.law == FrictionLaw::lugre;
   if (!job.any_balls) {
     job.params = params_of<2>(scene);
     job.provenance = provenance_header(request.command_line, scene.file, job.params);
@@ -171,6 +172,10 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   } else {
     job.provenance = provenance_header(line, scene.file, job.params_n);
   }
+  if (scene.law == FrictionLaw::lugre)
+    job.provenance += "# friction lugre (model.md §12.8): the z = 0 equilibria (the frictionless model's), each judged by "
+                      "the spectrum of (12.10) with c = 1, where both one-sided Jacobians coincide (never non-smooth); "
+                      "the n zeros along the family are not counted\n";
   return job;
 }
 
@@ -300,7 +305,11 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   }
   const std::string x = job.x.name(), y = job.y.name();
   std::filesystem::path curves;
-  if (output.boundaries) {
+  const bool lugre = job.any_balls && job.params_n.law == FrictionLaw::lugre;
+  if (output.boundaries && lugre) {
+    report.boundary_note = "no fold/Hopf boundaries for friction law 'lugre': continuation of its z = 0 branches "
+                           "with the spectra of (12.10) is not implemented (model.md §12.8)";
+  } else if (output.boundaries) {
     const auto started = std::chrono::steady_clock::now();
     if (const auto run = map_boundaries(job)) {
       curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run, job.provenance));

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 
 namespace abu {
@@ -32,13 +33,16 @@ std::string side_name(const LugreRest& r, const LugreSideSpectrum& s) {
 
 }  // namespace
 
-std::string lugre_equilibria_csv(const std::vector<LugreRow>& rows, const ParamsN& p, const std::string& header) {
-  const int n = p.n_balls();
-  std::string out = header;
+namespace {
+
+// The comment lines and the column names of the LuGre equilibria CSV, after `lead`.
+std::string lugre_csv_head(int n, std::string_view lead) {
+  std::string out;
   out += "# lugre (model.md §12): every configuration is an equilibrium; rows: the z = 0 ones (§5, §13) and the stuck "
          "states asked for; side: one-sided Jacobian (12.9), 'both' where z = 0\n";
   out += "# eigenvalues [1/s, rotating frame]: the 2n + 4 normal ones (12.10) by real part, then the n zeros along the "
          "family as 0,0; z [rad]; load = tau/mu_s (|load| <= 1 reachable from z = 0)\n";
+  out += lead;
   out += "family,pattern,member,side,q1,q2";
   for (int i = 1; i <= n; ++i) out += fmt::format(",beta{}", i);
   for (int i = 1; i <= n; ++i) out += fmt::format(",z{}", i);
@@ -46,9 +50,15 @@ std::string lugre_equilibria_csv(const std::vector<LugreRow>& rows, const Params
   out += ",reachable,rotor_residual,spectral_abscissa,side_stable,stable,non_smooth,verdict,n_zero,route_deviation";
   for (int k = 1; k <= 3 * n + 4; ++k) out += fmt::format(",re{},im{}", k, k);
   out += '\n';
+  return out;
+}
+
+// One line per state and side, each starting with `lead`.
+void append_lugre_rows(std::string& out, const std::vector<LugreRow>& rows, int n, std::string_view lead) {
   for (const auto& row : rows) {
     const LugreRest& r = row.rest;
     for (const LugreSideSpectrum* s : sides_of(r)) {
+      out += lead;
       out += fmt::format("{},{},{},{}", row.family, row.pattern, row.member, side_name(r, *s));
       for (int k = 0; k < n + 2; ++k) append_field(out, num(r.position(k), "position"));
       for (int i = 0; i < n; ++i) append_field(out, num(r.bristle[std::size_t(i)], "z"));
@@ -65,6 +75,44 @@ std::string lugre_equilibria_csv(const std::vector<LugreRow>& rows, const Params
       out += '\n';
     }
   }
+}
+
+}  // namespace
+
+std::vector<LugreRow> lugre_zero_bristle_rows(const ParamsN& p, const BalancedSampling& sampling) {
+  const int n = p.n_balls();
+  ParamsN free = p;
+  free.law = FrictionLaw::none;
+  const EquilibriumSetN set = find_equilibria(free, sampling);
+  std::vector<LugreRow> rows;
+  for (const auto& e : set.points()) {
+    if (!e.converged && !(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: the Newton polish of a {} point did not converge (residual {:.3g}): "
+                                       "it is not an equilibrium",
+                                       p.omega, to_string(e.family), e.residual));
+    rows.push_back({std::string(to_string(e.family)),
+                    e.family == Family::balanced ? std::string() : pattern_string(e.pattern, n), e.member,
+                    analyze_lugre_rest(p, e.position, true)});
+  }
+  return rows;
+}
+
+std::string lugre_equilibria_csv(const std::vector<LugreRow>& rows, const ParamsN& p, const std::string& header) {
+  const int n = p.n_balls();
+  std::string out = header + lugre_csv_head(n, "");
+  append_lugre_rows(out, rows, n, "");
+  return out;
+}
+
+std::string lugre_sweep_csv(std::string_view param, const std::vector<double>& values,
+                            const std::vector<std::vector<LugreRow>>& rows, const ParamsN& p, const std::string& header) {
+  const int n = p.n_balls();
+  std::string out = header;
+  out += fmt::format("# sweep of {} (model.md §12.8): per value the z = 0 equilibria with both one-sided spectra; "
+                     "stable = both sides stable, non_smooth = the sides disagree\n",
+                     param);
+  out += lugre_csv_head(n, fmt::format("{},", param));
+  for (std::size_t k = 0; k < values.size(); ++k) append_lugre_rows(out, rows[k], n, num(values[k], param) + ",");
   return out;
 }
 

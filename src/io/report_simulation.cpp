@@ -48,6 +48,8 @@ std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N
          "# unbalance, continuous (not wrapped), dq [m/s], dbeta [rad/s], q_abs = |q| [m], x_fixed y_fixed [m] the\n"
          "# rotor centre in the fixed frame R(theta(t)) q (theta the spin angle), beta_rel_i [rad] = beta_i minus the\n"
          "# nearest balanced configuration's angle (to the end state), in [-pi, pi]; empty if no balanced state exists\n";
+  if (r.bristle_count > 0)
+    out += "# friction lugre: z_i [rad] the bristle deflection of ball i (model.md §12), integrated with the 2n + 4 states\n";
   if (balanced) {
     out += "# balanced reference angles:";
     for (double b : *balanced) {
@@ -62,9 +64,11 @@ std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N
   for (int i = 1; i <= n; ++i) out += fmt::format(",dbeta{}", i);
   out += ",q_abs,x_fixed,y_fixed";
   for (int i = 1; i <= n; ++i) out += fmt::format(",beta_rel{}", i);
+  for (int i = 1; i <= r.bristle_count; ++i) out += fmt::format(",z{}", i);  // LuGre (model.md §12.7)
   out += "\n";
   out.reserve(out.size() + r.samples.size() * std::size_t(60 + 45 * n));
-  for (const auto& s : r.samples) {
+  for (std::size_t k = 0; k < r.samples.size(); ++k) {
+    const auto& s = r.samples[k];
     out += format_number(s.t, "t");
     out += ',';
     out += format_number(s.omega, "omega");
@@ -80,6 +84,10 @@ std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N
     for (int i = 0; i < n; ++i) {
       out += ',';
       if (balanced) out += format_number(std::remainder(s.x(2 + i) - (*balanced)[std::size_t(i)], 2 * std::numbers::pi), "beta_rel");
+    }
+    for (int i = 0; i < r.bristle_count; ++i) {
+      out += ',';
+      out += format_number(r.bristle[k * std::size_t(r.bristle_count) + std::size_t(i)], "z");
     }
     out += '\n';
   }
@@ -104,6 +112,7 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
                      json_string(s.pattern), json_string(s.note));
   out += fmt::format("  \"t_end\": {},\n  \"state_end\": {},\n", format_number(s.t_end, "t_end"),
                      number_list(s.state_end, "state_end"));
+  if (r.bristle_count > 0) out += fmt::format("  \"bristle_end\": {},\n", number_list(r.bristle_end, "bristle_end"));
   out += fmt::format("  \"max_q_abs\": {},\n  \"t_max_q_abs\": {},\n", format_number(s.max_q_abs, "max_q_abs"),
                      format_number(s.t_max_q_abs, "t_max_q_abs"));
   out += fmt::format("  \"max_q_abs_run_up\": {},\n", optional_number(s.max_q_abs_run_up, "max_q_abs_run_up"));

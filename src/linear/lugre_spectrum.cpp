@@ -81,6 +81,10 @@ LugreSideSpectrum side_spectrum(const ParamsT<LD, any_balls>& p, const Coordinat
 
 }  // namespace
 
+SpectrumN lugre_zero_bristle_spectrum(const ParamsN& p, const Coordinates<long double, any_balls>& s) {
+  return compute_spectrum<any_balls>(lugre_rest_linearization(p.cast<LD>(), s, RestSide::forward, true));
+}
+
 std::string_view LugreRest::verdict() const {
   if (non_smooth) return "non-smooth";
   return to_string(forward.normal.stability);

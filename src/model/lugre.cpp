@@ -139,6 +139,45 @@ LugreMatrix<T> lugre_jacobian(const ParamsT<T, any_balls>& p, const LugreState<T
 }
 
 template <class T>
+LugreState<T> lugre_vector_field(const ParamsT<T, any_balls>& p, const LugreState<T>& x, const T& omega_dot) {
+  LugreState<T> f = lugre_vector_field(p, x);
+  if (omega_dot == T(0)) return f;
+  const int d = p.n_balls() + 2;
+  const State<T, any_balls> euler = angular_acceleration_derivative(frictionless(p), State<T, any_balls>(x.head(2 * d)));
+  f.head(2 * d) += omega_dot * euler;  // (12.11)
+  return f;
+}
+
+template <class T>
+LugreMatrix<T> lugre_jacobian(const ParamsT<T, any_balls>& p, const LugreState<T>& x, RestSide side,
+                              const T& omega_dot) {
+  LugreMatrix<T> J = lugre_jacobian(p, x, side);
+  if (omega_dot == T(0)) return J;
+  const int d = p.n_balls() + 2;
+  const auto pn = frictionless(p);
+  const State<T, any_balls> xm = x.head(2 * d);
+  // The Euler terms' Jacobian: the frictionless model's with and without omega'.
+  J.topLeftCorner(2 * d, 2 * d) += jacobian(pn, xm, omega_dot) - jacobian(pn, xm);
+  return J;
+}
+
+template <class T>
+LugreState<T> lugre_omega_derivative(const ParamsT<T, any_balls>& p, const LugreState<T>& x) {
+  const int n = p.n_balls(), d = n + 2;
+  const auto pn = frictionless(p);
+  const State<T, any_balls> xm = x.head(2 * d);
+  LugreState<T> df = LugreState<T>::Zero(3 * n + 4);
+  df.head(2 * d) = parameter_derivative(pn, xm, ParamRef{Quantity::omega, -1});
+  // The friction's share of s'' is proportional to omega^2 (N_i, (12.3)); at omega = 0
+  // its derivative 2 m l omega (...) vanishes.
+  if (p.omega == T(0)) return df;
+  const LugreState<T> with = lugre_vector_field(p, x);
+  const State<T, any_balls> without = vector_field(pn, xm);
+  df.segment(d, d) += (T(2) / p.omega) * (with.segment(d, d) - without.segment(d, d));
+  return df;
+}
+
+template <class T>
 T lugre_load_ratio(const ParamsT<T, any_balls>& p, const Coordinates<T, any_balls>& s, int ball) {
   using std::cos;
   using std::sin;
@@ -193,6 +232,9 @@ Linearization<T, any_balls> lugre_rest_linearization(const ParamsT<T, any_balls>
   template T bristle_rate_dv<T>(const BallT<T>&, const T&, const T&, RestSide);                                \
   template LugreState<T> lugre_vector_field<T>(const ParamsT<T, any_balls>&, const LugreState<T>&);            \
   template LugreMatrix<T> lugre_jacobian<T>(const ParamsT<T, any_balls>&, const LugreState<T>&, RestSide);     \
+  template LugreState<T> lugre_vector_field<T>(const ParamsT<T, any_balls>&, const LugreState<T>&, const T&);      \
+  template LugreMatrix<T> lugre_jacobian<T>(const ParamsT<T, any_balls>&, const LugreState<T>&, RestSide, const T&); \
+  template LugreState<T> lugre_omega_derivative<T>(const ParamsT<T, any_balls>&, const LugreState<T>&);          \
   template LugreState<T> lugre_equilibrium<T>(const ParamsT<T, any_balls>&, const Coordinates<T, any_balls>&); \
   template T lugre_load_ratio<T>(const ParamsT<T, any_balls>&, const Coordinates<T, any_balls>&, int);         \
   template T lugre_rest_slope<T>(const ParamsT<T, any_balls>&, const Coordinates<T, any_balls>&, int, RestSide); \

@@ -1,10 +1,16 @@
 #include "abu/model/static_equations.hpp"
 
+#include "abu/model/lugre.hpp"
+
 namespace abu {
 
 template <int N>
 StaticEquationsT<N>::StaticEquationsT(const ParamsT<double, N>& base, ParamRef param, ld origin, ld span)
     : base_(base), base_ld_(base.template cast<ld>()), param_(param), origin_(origin), span_(span) {
+  if (base.law == FrictionLaw::lugre) {  // model.md §12.8: the z = 0 branches solve b(s, 0) = 0 without friction
+    lugre_ = true;
+    base_.law = base_ld_.law = FrictionLaw::none;
+  }
   length_ = displacement_scale(base_ld_);
   dofs_ = dofs_of<N>(ball_count(base) + 2);
 }
@@ -69,6 +75,8 @@ typename StaticEquationsT<N>::JacobianMatrix StaticEquationsT<N>::jacobian(const
 
 template <int N>
 Linearization<long double, N> StaticEquationsT<N>::linearization(const Unknowns& z) const {
+  if constexpr (N == any_balls)
+    if (lugre_) return lugre_rest_linearization(params_ld(z), position(z), RestSide::forward, true);
   return linearize(params_ld(z), at_rest<ld, N>(position(z)));
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "abu/linear/lugre_spectrum.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/friction.hpp"
 
@@ -170,7 +171,12 @@ ParamsN CellAnalyzerN::cell_params(int ix, int iy) const {
 void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
   const ParamsN p = cell_params(ix, iy);
   const auto pl = p.cast<long double>();
-  find_equilibria(p, sampling_, set_);
+  // LuGre (model.md §12.8): the z = 0 equilibria are the frictionless model's; their
+  // stability is (12.10) with c = 1, where both one-sided spectra coincide.
+  const bool lugre = p.law == FrictionLaw::lugre;
+  ParamsN frictionless = p;
+  if (lugre) frictionless.law = FrictionLaw::none;
+  find_equilibria(frictionless, sampling_, set_);
   out.n_balls = p.n_balls();
   out.capacity = 0;
   for (const auto& b : p.balls) out.capacity += b.mass * b.race_radius;
@@ -185,10 +191,12 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     const EquilibriumN& e = points[k];
     // As equilibrium_spectrum (scan.hpp): on the balanced set the normal spectrum, the
     // tangent directions deflated (model.md §13.5); elsewhere the refined spectrum.
-    const auto lin = linearize(pl, e.state());
-    const SpectrumN sp = e.on_balanced_set
-                             ? compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position))
-                             : compute_spectrum(lin, SpectrumMethod::refined, e.structural_zeros);
+    const SpectrumN sp = [&] {
+      if (lugre) return lugre_zero_bristle_spectrum(p, e.position);
+      const auto lin = linearize(pl, e.state());
+      return e.on_balanced_set ? compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position))
+                               : compute_spectrum(lin, SpectrumMethod::refined, e.structural_zeros);
+    }();
     MapEquilibriumN& m = out.equilibria[k];
     m.family = e.family;
     m.pattern = e.pattern;

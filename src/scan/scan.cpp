@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "abu/core/cancel.hpp"
+#include "abu/linear/lugre_spectrum.hpp"
 
 namespace abu {
 
@@ -11,6 +12,7 @@ Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMet
 }
 
 SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, SpectrumMethod method) {
+  if (p.law == FrictionLaw::lugre) return lugre_zero_bristle_spectrum(p, e.position);  // model.md §12.8
   const auto lin = linearize(p.cast<long double>(), e.state());
   if (!e.on_balanced_set) return compute_spectrum(lin, method, e.structural_zeros);
   return compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position), method);
@@ -18,7 +20,9 @@ SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, Spectrum
 
 AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMethod method) {
   AnalysisN a;
-  a.equilibria = find_equilibria(p, sampling);
+  ParamsN where = p;  // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3)
+  if (p.law == FrictionLaw::lugre) where.law = FrictionLaw::none;
+  a.equilibria = find_equilibria(where, sampling);
   a.unbalance = p.rotor.unbalance;
   for (const auto& b : p.balls) a.capacity += b.mass * b.race_radius;
   const auto points = a.equilibria.points();

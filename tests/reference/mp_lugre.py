@@ -17,6 +17,8 @@ spectrum.
 Usage:
   mp_lugre.py SCENE [--at-balls B1,..,BN]           print the reference rows
   mp_lugre.py --compare CSV SCENE [--rtol 1e-8]     check `equilibria --format csv` output
+  mp_lugre.py --compare-sweep CSV SCENE [--rtol R]  check `sweep --param omega` output (model.md
+                                                    §12.8): each value's block as --compare at it
 Compare checks (why the tolerances: see tests/reference/README.md, "LuGre"):
   * aligned rows: exactly the reference's aligned equilibria (count per pattern and member),
     each state to 1e-10 of the displacement scale / 1e-9 rad; balanced rows: on B
@@ -295,10 +297,38 @@ def compare(csv_path, p, rtol):
     return fails, len(table)
 
 
+def compare_sweep(csv_path, scene, rtol):
+    """`sweep --param omega` of a LuGre scene: the rows of each omega, without the first
+    column, are an `equilibria` CSV at that omega (the value printed with 17 digits, so
+    float() gives the double the program used); each block is compared as --compare."""
+    import tempfile
+    with open(csv_path) as fh:
+        lines = [ln for ln in fh if not ln.startswith("#")]
+    if not lines or not lines[0].startswith("omega,"):
+        raise ref.InputError(f"{csv_path}: not a LuGre sweep of omega (first column omega)")
+    head = lines[0].split(",", 1)[1]
+    blocks = {}
+    for ln in lines[1:]:
+        value, rest = ln.split(",", 1)
+        blocks.setdefault(value, []).append(rest)
+    fails, count = [], 0
+    for value, rows in blocks.items():
+        with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as tmp:
+            tmp.write(head + "".join(rows))
+        try:
+            f, c = compare(tmp.name, load(scene, float(value)), rtol)
+        finally:
+            os.unlink(tmp.name)
+        fails += [f"omega={value}: {x}" for x in f]
+        count += c
+    return fails, count, len(blocks)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?")
     ap.add_argument("--compare", metavar="CSV")
+    ap.add_argument("--compare-sweep", metavar="CSV")
     ap.add_argument("--at-balls")
     ap.add_argument("--rtol", type=float, default=1e-8)
     ap.add_argument("--set", dest="overrides", action="append", default=[], help="omega=V only")
@@ -310,6 +340,15 @@ def main():
             if name.strip() != "omega":
                 raise ref.InputError(f"--set {ov}: the LuGre reference overrides omega only")
             omega = float(value)
+        if a.compare_sweep:
+            if not a.scene:
+                raise ref.InputError("--compare-sweep CSV SCENE")
+            fails, count, values = compare_sweep(a.compare_sweep, a.scene, mpf(a.rtol))
+            for f in fails:
+                print("FAIL", f)
+            print(f"{'FAIL' if fails else 'PASS'}: {count} rows at {values} values of {a.compare_sweep} against the "
+                  f"LuGre reference ({WORK_DPS} digits, rtol {a.rtol})")
+            return 1 if fails or values < 2 else 0
         if a.compare:
             if not a.scene:
                 raise ref.InputError("--compare CSV SCENE")

@@ -58,6 +58,9 @@ struct SimulationOptions {
   /// ends the run there (status completed, SimulationResult::stopped_early): the settle
   /// test of `basin` (model.md §15.5).
   std::function<bool(double t, const double* x)> stop_at_sample;
+  /// Friction law `lugre` only: the bristle states z_i(0) [rad], one per ball; empty: 0
+  /// (model.md §12.7).
+  std::vector<double> bristle_start;
 };
 
 enum class SimulationStatus { completed, interrupted, failed };
@@ -116,6 +119,11 @@ struct SimulationResult {
   State<double, N> x_end;       ///< the state at the last time reached
   double t_reached = 0;
   bool stopped_early = false;   ///< options.stop_at_sample ended the run at t_reached
+  /// Friction law `lugre` (model.md §12.7): the n bristle states integrated beside x; the
+  /// z_i of every sample (bristle_count per sample, in sample order) and at t_reached.
+  int bristle_count = 0;
+  std::vector<double> bristle;
+  std::vector<double> bristle_end;
 };
 
 /// Balls at rest in the rotor frame at the given angles [rad], rotor at rest (q = q' = 0).

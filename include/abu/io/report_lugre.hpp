@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "abu/core/params.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/lugre_spectrum.hpp"
 
 namespace abu {
@@ -21,6 +22,16 @@ struct LugreRow {
   int member = 1;
   LugreRest rest;
 };
+
+/// The z = 0 equilibria of a LuGre scene (model.md §12.3: those of §5 / §13, found with the
+/// friction left out, which does not move them) with both one-sided spectra each. Throws
+/// NumericalError for a state whose Newton polish did not converge.
+std::vector<LugreRow> lugre_zero_bristle_rows(const ParamsN& p, const BalancedSampling& sampling);
+
+/// `sweep` of a LuGre scene (model.md §12.8): the columns of lugre_equilibria_csv after a
+/// first column named `param` with the value; one block of rows per value.
+std::string lugre_sweep_csv(std::string_view param, const std::vector<double>& values,
+                            const std::vector<std::vector<LugreRow>>& rows, const ParamsN& p, const std::string& header);
 
 /// CSV: one line per state and side (side "both" at z = 0, where the sides coincide).
 /// Columns family,pattern,member,side,q1,q2,beta1..n,z1..n,load1..n,reachable,

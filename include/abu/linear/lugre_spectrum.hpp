@@ -48,6 +48,11 @@ struct LugreRest {
 /// exact arithmetic), so z = 0 and c = 1 are taken exactly.
 LugreRest analyze_lugre_rest(const ParamsN& p, const Coordinates<long double, any_balls>& s, bool zero_bristle);
 
+/// The normal spectrum at a z = 0 equilibrium s of §5 / §13 (model.md §12.8): (12.10) with
+/// c = 1, where both one-sided Jacobians coincide; route (a) alone (what a map cell and a
+/// continuation point need; analyze_lugre_rest adds the cross-check). No heap per call.
+SpectrumN lugre_zero_bristle_spectrum(const ParamsN& p, const Coordinates<long double, any_balls>& s);
+
 /// s = (q(beta), beta) with q from (5.4) in long double.
 Coordinates<long double, any_balls> lugre_configuration(const ParamsN& p, const std::vector<double>& beta);
 

@@ -58,6 +58,20 @@ LugreState<T> lugre_vector_field(const ParamsT<T, any_balls>& p, const LugreStat
 template <class T>
 LugreMatrix<T> lugre_jacobian(const ParamsT<T, any_balls>& p, const LugreState<T>& x, RestSide side);
 
+/// During a run-up (model.md §9, §12.7): the field of a prescribed omega(t) with
+/// omega' = omega_dot. The friction does not contain omega', so the Euler terms are those
+/// of the frictionless model: f + omega' df/domega' (angular_acceleration_derivative).
+template <class T>
+LugreState<T> lugre_vector_field(const ParamsT<T, any_balls>& p, const LugreState<T>& x, const T& omega_dot);
+template <class T>
+LugreMatrix<T> lugre_jacobian(const ParamsT<T, any_balls>& p, const LugreState<T>& x, RestSide side,
+                              const T& omega_dot);
+/// df/domega at fixed x (what df/dt = omega' df/domega of a run-up needs, model.md (12.12)):
+/// the frictionless model's parameter derivative plus 2/omega times the friction's share of
+/// s'' (N_i = m_i l_i omega^2).
+template <class T>
+LugreState<T> lugre_omega_derivative(const ParamsT<T, any_balls>& p, const LugreState<T>& x);
+
 /// The equilibrium of configuration s (model.md §12.3): s' = 0 and the bristle states that
 /// hold every ball, sigma0 z_i = -tau_i with tau_i = (q1 sin beta_i - q2 cos beta_i) / l_i.
 /// Requires b(s, 0) = 0 in the rotor rows (q = q(beta)); the ball rows are what z holds.

@@ -53,8 +53,12 @@ class StaticEquationsT {
   Forces residual_scale(const Unknowns& z) const { return row_scale(z); }
   /// [dF/ds * diag(L, L, 1, .., 1), dF/dp * P] with the same row scaling as residual(z).
   JacobianMatrix jacobian(const Unknowns& z) const;
-  /// The second-order linearization at z (for spectra and augmented systems).
+  /// The second-order linearization at z (for spectra and augmented systems). LuGre
+  /// (model.md §12.8): the equations are the frictionless model's (its z = 0 equilibria),
+  /// the linearization the spring-dashpot one of (12.10) with c = 1.
   Linearization<ld, N> linearization(const Unknowns& z) const;
+  /// The base parameters had friction law `lugre` (params() then gives law `none`).
+  bool lugre() const { return lugre_; }
 
   ParamRef param() const { return param_; }
   ld length() const { return length_; }
@@ -68,6 +72,7 @@ class StaticEquationsT {
   ParamRef param_;
   ld origin_, span_, length_;
   Eigen::Index dofs_;
+  bool lugre_ = false;
 };
 
 using StaticEquations = StaticEquationsT<2>;
