@@ -24,6 +24,7 @@
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "stick_options.hpp"
 
 namespace abu::cli {
 
@@ -83,7 +84,7 @@ std::string render_lugre(const Scene& scene, const EquilibriaOptions& o, std::st
 // --stick-set DIR also DIR/stick_boundary.csv (traced curves) and DIR/stick_set.png.
 std::string render_stick_set(const Scene& scene, const EquilibriaOptions& o, OutputTransaction& out) {
   const ParamsN p = params_of<any_balls>(scene);
-  const StickSet s = stick_set(p, o.stick);
+  const StickSet s = stick_set(p, stick_resolution(o.stick));
   const std::string header = provenance_header(command_line(), scene.file, p);
   if (!o.stick_dir.empty()) {
     const std::filesystem::path d(o.stick_dir);
@@ -265,10 +266,7 @@ Action add_equilibria_command(CLI::App& app) {
                   "coulomb-set scenes: also write DIR/stick_set.csv, and for two balls DIR/stick_boundary.csv (the "
                   "traced boundary curves), DIR/stick_raster.dat and DIR/stick_set.png (model.md §14)")
       ->type_name("DIR");
-  sub->add_option("--stick-grid", options->stick.grid_budget,
-                  "coulomb-set, n >= 3 balls: at most this many grid points on the torus (G = floor(B^(1/n)) per angle)")
-      ->check(CLI::Range(1L << 10, 1L << 26))
-      ->capture_default_str();
+  add_stick_resolution_options(*sub, options->stick);
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work

@@ -15,6 +15,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "stick_options.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -29,19 +30,23 @@ struct SweepOptions {
   bool chart = true;
   std::string output_dir = "out";
   BalancedSampling sampling;
+  StickSetOptions stick;  // coulomb-set scenes
 };
 // The grid must stay inside the parameter's physical range; it is an interval, so the
 // two ends decide. Checked before any work, with the scene's own rules.
 constexpr int kMaxSteps = 1000000;
 
-// Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
-// ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
-// summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
-// stable |q|) and its chart.
-int sweep_any_balls(Scene scene, const SweepOptions& o) {
-  SweepResultN result;
-  result.name = o.param;
+// The values of a sweep over any parameter, or the ball count of a ring scene (`--param n`:
+// every integer from --from to --to), each value's scene checked against its rules.
+struct SweepGrid {
+  std::string name, unit;
+  std::vector<double> values;
   std::vector<Scene> scenes;  // one per value
+};
+SweepGrid sweep_grid(const Scene& scene, const SweepOptions& o) {
+  SweepGrid result;
+  result.name = o.param;
+  std::vector<Scene>& scenes = result.scenes;
   if (o.param == "n") {
     if (!scene.ring)
       throw InputError("--param", 0, "n", "the ball count is a study parameter only for a [balls] ring scene");
@@ -75,6 +80,20 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
       result.values.push_back(v);
     }
   }
+  return result;
+}
+
+// Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
+// ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
+// summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
+// stable |q|) and its chart.
+int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
+  SweepResultN result;
+  SweepGrid grid = sweep_grid(scene, o);
+  result.name = grid.name;
+  result.unit = grid.unit;
+  result.values = grid.values;
+  const std::vector<Scene>& scenes = grid.scenes;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     throw_if_stopped("sweep");
     result.points.push_back(analyze(params_of<any_balls>(scenes[i]), o.sampling));
@@ -134,14 +153,25 @@ Action add_sweep_command(CLI::App& app) {
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  add_stick_resolution_options(*sub, o->stick);
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "sweep");
+    const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
+    if (stick)
+      refuse_stick_set_combinations(scene, "sweep");
+    else
+      refuse_unmodelled(scene, "sweep");
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
+    if (stick) {
+      SweepGrid grid = sweep_grid(scene, *o);
+      return sweep_stick_set(scene, {std::move(grid.name), std::move(grid.unit), std::move(grid.values),
+                                     std::move(grid.scenes), o->logarithmic, o->chart, o->output_dir,
+                                     stick_resolution(o->stick), o->scene.overrides});
+    }
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
