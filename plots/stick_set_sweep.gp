@@ -37,6 +37,8 @@ set multiplot layout 2,1 title heading noenhanced
 if (logx eq '1') { set logscale x }
 set grid
 set tics out
+set autoscale xfix
+if (logx eq '1') { set format x '%g' }
 set lmargin 12
 set key top left box opaque
 set logscale y

@@ -212,11 +212,12 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene, o.chart);
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
     const PointAnswer answer = point_answer(a, p);
+    const ParamsN pn = params_of<any_balls>(scene);
     if (o.format == "csv")
       return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                                   creep_lines(a, p, "# "));
+                                   creep_lines(a, p, "# ") + stick_verdict_lines(pn, stick_resolution(o.stick), "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return equilibria_report(a, p, unit);
+    return equilibria_report(a, p, unit) + stick_verdict_lines(pn, stick_resolution(o.stick), "");
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -227,10 +228,10 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   if (o.format == "csv")
     return equilibria_csv(a,
                           provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                              creep_lines(a, p, "# "),
+                              creep_lines(a, p, "# ") + stick_verdict_lines(p, stick_resolution(o.stick), "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return equilibria_report(a, p, unit);
+  return equilibria_report(a, p, unit) + stick_verdict_lines(p, stick_resolution(o.stick), "");
 }
 }  // namespace
 

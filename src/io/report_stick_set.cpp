@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 
 namespace abu {
@@ -193,6 +194,39 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
     }
     out += "\n";
   }
+  return out;
+}
+
+std::string stick_verdict_lines(const ParamsN& smooth, const StickSetOptions& options, std::string_view prefix) {
+  if (smooth.law != FrictionLaw::coulomb && smooth.law != FrictionLaw::stribeck) return {};
+  ParamsN p = smooth;
+  p.law = FrictionLaw::coulomb_set;
+  if (smooth.law == FrictionLaw::stribeck)
+    for (auto& b : p.balls) b.mu = b.mu_s;  // the breakaway level holds a ball at rest
+  StickSetOptions o = options;
+  o.trace = false;
+  const std::string which = smooth.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
+  std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md §14): ", prefix, which);
+  StickSet s;
+  try {
+    s = stick_set(p, o);
+  } catch (const NotSupportedError& e) {
+    return out + fmt::format("not defined: {}\n", e.what());
+  }
+  const std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
+                                      s.area, s.n_balls, s.area_fraction, s.whole_torus ? ": every arrangement sticks" : "",
+                                      s.components.size(), s.components.size() == 1 ? "" : "s");
+  if (s.balanced_exists)
+    out += fmt::format("the balls stick inside the set, residual vibration at most V = {:.6g} m ({:.3g} x the rotor "
+                       "without balls, {:.6g} m; V_E = {:.6g} m over the whole set); {}\n",
+                       s.worst_q_abs, s.bare_rotor_q_abs > 0 ? s.worst_q_abs / s.bare_rotor_q_abs : 0.0,
+                       s.bare_rotor_q_abs, s.worst_q_abs_any, set);
+  else
+    out += fmt::format("no balanced point in the stick set ({}); a stuck state leaves at most V_E = {:.6g} m; {}\n",
+                       s.status.reason, s.worst_q_abs_any, set);
+  out += fmt::format("{}  the smooth law's stability above is that of its arctan regularization: its creep modes "
+                     "(lambda ~ 1/kappa) are the balls creeping through this set, not settling\n",
+                     prefix);
   return out;
 }
 

@@ -31,6 +31,12 @@ std::string stick_boundary_csv(const StickSet& s, const std::string& header);
 /// of any value; empty beyond a value's count or without a balanced state).
 std::string stick_sweep_csv(std::string_view name, std::string_view unit, const std::vector<double>& values,
                             const std::vector<StickSet>& sets, const std::string& header);
+/// The dry-friction verdict next to a smooth `coulomb` / `stribeck` analysis (issue 8 item 2,
+/// model.md §14.5): the stick set of set-valued Coulomb friction with the same mu_i (stribeck:
+/// the static mu_s, the most a resting ball can hold), one line per sentence, each line
+/// starting with `prefix`. Empty for any other law. Never throws for a set that is not
+/// defined (mu = 0, K = C = 0): the line says why.
+std::string stick_verdict_lines(const ParamsN& smooth, const StickSetOptions& options, std::string_view prefix);
 /// A raster of the set for the chart's fill: rows beta1,beta2,inside (0/1), comma-separated, `cells` per angle.
 std::string stick_raster_dat(const ParamsN& p, int cells);
 
