@@ -215,9 +215,9 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     const ParamsN pn = params_of<any_balls>(scene);
     if (o.format == "csv")
       return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                                   creep_lines(a, p, "# ") + stick_verdict_lines(pn, stick_resolution(o.stick), "# "));
+                                   creep_lines(a, p, "# ") + stick_verdict_lines(pn, StickSetOptions{}, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return equilibria_report(a, p, unit) + stick_verdict_lines(pn, stick_resolution(o.stick), "");
+    return equilibria_report(a, p, unit);  // ends with the dry-friction verdict
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -228,10 +228,10 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   if (o.format == "csv")
     return equilibria_csv(a,
                           provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                              creep_lines(a, p, "# ") + stick_verdict_lines(p, stick_resolution(o.stick), "# "),
+                              creep_lines(a, p, "# ") + stick_verdict_lines(p, StickSetOptions{}, "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return equilibria_report(a, p, unit) + stick_verdict_lines(p, stick_resolution(o.stick), "");
+  return equilibria_report(a, p, unit);  // ends with the dry-friction verdict
 }
 }  // namespace
 

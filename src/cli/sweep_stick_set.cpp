@@ -15,6 +15,16 @@ namespace abu::cli {
 int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
   StickSetOptions options = in.stick;
   options.trace = false;  // the boundary curves are not part of a sweep's figures
+  // Every value's set must be defined (mu > 0, not K = C = 0) before any work: refused,
+  // nothing computed or written (stick_point checks what stick_set would).
+  for (std::size_t i = 0; i < in.scenes.size(); ++i) {
+    const ParamsN p = params_of<any_balls>(in.scenes[i]);
+    try {
+      (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
+    } catch (const NotSupportedError& e) {
+      throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
+    }
+  }
   std::vector<StickSet> sets;
   sets.reserve(in.values.size());
   for (std::size_t i = 0; i < in.scenes.size(); ++i) {

@@ -21,6 +21,7 @@
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/map_mpi.hpp"
+#include "abu/scan/stick_map.hpp"
 
 namespace abu {
 
@@ -154,6 +155,17 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
                                                   format_number(request.stick.area_tolerance))
                                     : fmt::format(" --stick-grid {}", request.stick.grid_budget));
     job.provenance = provenance_header(line, scene.file, job.params_n);
+    // Every cell's set must be defined (mu > 0, not K = C = 0) before any work.
+    for (int ix = 0; ix < job.x.count; ++ix)
+      for (int iy = 0; iy < job.y.count; ++iy) {
+        const ParamsN p = stick_cell_params(job, ix, iy);
+        try {
+          (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
+        } catch (const NotSupportedError& e) {
+          throw NotSupportedError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {}", ix, iy, job.x.name(),
+                                             job.x.value(ix), job.y.name(), job.y.value(iy), e.what()));
+        }
+      }
     return job;
   }
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;

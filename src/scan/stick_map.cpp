@@ -33,6 +33,16 @@ std::string common_stick_header(const MapJob& job) {
                                       axis(job.x), axis(job.y), resolution_line(job));
 }
 
+// The common header, then `text` with {0}, {1} the axis names, {2}, {3} their units, {4} the
+// ball count and {5} one column per ball named by `per_ball` ("{}" the 1-based index).
+std::string stick_header(const MapJob& job, std::string_view per_ball, std::string_view text) {
+  const int n = job.params_n.n_balls();
+  std::string columns;
+  for (int i = 1; i <= n; ++i) columns += fmt::format(fmt::runtime(per_ball), i);
+  return common_stick_header(job) + fmt::format(fmt::runtime(text), job.x.name(), job.y.name(), axis_unit(job.x),
+                                                axis_unit(job.y), n, columns);
+}
+
 void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
   if (!std::isfinite(value))
     throw NumericalError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {} of the stick set is not finite", ix, iy,
@@ -42,38 +52,30 @@ void check_finite(double value, const MapJob& job, int ix, int iy, const char* w
 }  // namespace
 
 std::string stick_map_csv_header(const MapJob& job) {
-  const int n = job.params_n.n_balls();
-  std::string betas;
-  for (int i = 1; i <= n; ++i) betas += fmt::format(",beta{}_at_max", i);
-  return common_stick_header(job) +
-         fmt::format("# one row per connected component of the stick set per cell, cells in order ix outer, iy inner\n"
-                     "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; component = its index in the cell; area "
-                     "[rad^{4}]; q_abs_max [m] = max |q| over it (rotating frame; the whirl radius in the fixed frame), "
-                     "at beta_i_at_max [rad];\n"
-                     "#   balanced_points, smooth_equilibria = how many of each it holds; mean_q_abs [m] = mean |q| "
-                     "over it\n"
-                     "ix,iy,{0},{1},component,area,q_abs_max,balanced_points,smooth_equilibria,mean_q_abs{5}\n",
-                     job.x.name(), job.y.name(), axis_unit(job.x), axis_unit(job.y), n, betas);
+  return stick_header(job, ",beta{}_at_max",
+                      "# one row per connected component of the stick set per cell, cells in order ix outer, iy inner\n"
+                      "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; component = its index in the cell; area "
+                      "[rad^{4}]; q_abs_max [m] = max |q| over it (rotating frame; the whirl radius in the fixed frame), "
+                      "at beta_i_at_max [rad];\n"
+                      "#   balanced_points, smooth_equilibria = how many of each it holds; mean_q_abs [m] = mean |q| "
+                      "over it\n"
+                      "ix,iy,{0},{1},component,area,q_abs_max,balanced_points,smooth_equilibria,mean_q_abs{5}\n");
 }
 
 std::string stick_summary_csv_header(const MapJob& job) {
-  const int n = job.params_n.n_balls();
-  std::string spreads;
-  for (int i = 1; i <= n; ++i) spreads += fmt::format(",spread{}", i);
-  return common_stick_header(job) +
-         fmt::format("# one row per cell, in order ix outer, iy inner\n"
-                     "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; area [rad^{4}] of the stick set E, "
-                     "area_fraction = area / (2 pi)^{4}; whole_torus = 1 if every arrangement sticks; components = "
-                     "connected components of E;\n"
-                     "#   balanced_exists = 1 if a component holds a balanced point; worst_q_abs [m] = V, max |q| over "
-                     "the components holding a balanced point (empty if none does); worst_q_abs_any [m] = V_E, max "
-                     "|q| over E;\n"
-                     "#   mean_q_abs [m] = mean |q| over E; bare_rotor_q_abs [m] = omega^2 U / |K + iC|, the rotor "
-                     "without balls; spread_i [rad] = the largest angular spread of ball i over a balanced component "
-                     "(empty if none); |q| is in the rotating frame, the whirl radius in the fixed frame\n"
-                     "ix,iy,{0},{1},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,"
-                     "worst_q_abs_any,mean_q_abs,bare_rotor_q_abs{5}\n",
-                     job.x.name(), job.y.name(), axis_unit(job.x), axis_unit(job.y), n, spreads);
+  return stick_header(job, ",spread{}",
+                      "# one row per cell, in order ix outer, iy inner\n"
+                      "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; area [rad^{4}] of the stick set E, "
+                      "area_fraction = area / (2 pi)^{4}; whole_torus = 1 if every arrangement sticks; components = "
+                      "connected components of E;\n"
+                      "#   balanced_exists = 1 if a component holds a balanced point; worst_q_abs [m] = V, max |q| over "
+                      "the components holding a balanced point (empty if none does); worst_q_abs_any [m] = V_E, max "
+                      "|q| over E;\n"
+                      "#   mean_q_abs [m] = mean |q| over E; bare_rotor_q_abs [m] = omega^2 U / |K + iC|, the rotor "
+                      "without balls; spread_i [rad] = the largest angular spread of ball i over a balanced component "
+                      "(empty if none); |q| is in the rotating frame, the whirl radius in the fixed frame\n"
+                      "ix,iy,{0},{1},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,"
+                      "worst_q_abs_any,mean_q_abs,bare_rotor_q_abs{5}\n");
 }
 
 std::size_t stick_map_bytes_per_cell(const MapJob& job) {
