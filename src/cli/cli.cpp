@@ -232,7 +232,7 @@ std::string decimal(std::string text) {
   return text.substr(0, sign) + text.substr(first);
 }
 bool integer_option(std::string_view name) {
-  for (const char* o : {"--steps", "--threads", "--max-steps", "--set-samples"})
+  for (const char* o : {"--steps", "--threads", "--max-steps", "--set-samples", "--stick-columns", "--stick-grid"})
     if (name == o) return true;
   return false;
 }

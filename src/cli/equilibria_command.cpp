@@ -24,6 +24,7 @@
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "stick_options.hpp"
 
 namespace abu::cli {
 
@@ -71,7 +72,7 @@ std::string render_lugre(const Scene& scene, const EquilibriaOptions& o, std::st
 // --stick-set DIR also DIR/stick_boundary.csv (traced curves) and DIR/stick_set.png.
 std::string render_stick_set(const Scene& scene, const EquilibriaOptions& o, OutputTransaction& out) {
   const ParamsN p = params_of<any_balls>(scene);
-  const StickSet s = stick_set(p, o.stick);
+  const StickSet s = stick_set(p, stick_resolution(o.stick));
   const std::string header = provenance_header(command_line(), scene.file, p);
   if (!o.stick_dir.empty()) {
     const std::filesystem::path d(o.stick_dir);
@@ -199,11 +200,12 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     if (!o.mode_shapes.empty()) stage_mode_shapes(out, o.mode_shapes, a, p, scene, o.chart);
     warnings = analysis_warnings(a, fmt::format("omega={}", p.omega));
     const PointAnswer answer = point_answer(a, p);
+    const ParamsN pn = params_of<any_balls>(scene);
     if (o.format == "csv")
       return equilibria_csv(a, provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                                   creep_lines(a, p, "# "));
+                                   creep_lines(a, p, "# ") + stick_verdict_lines(pn, StickSetOptions{}, "# "));
     if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-    return equilibria_report(a, p, unit);
+    return equilibria_report(a, p, unit);  // ends with the dry-friction verdict
   }
   const ParamsN p = params_of<any_balls>(scene);
   const AnalysisN a = analyze(p, o.sampling);
@@ -214,10 +216,10 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
   if (o.format == "csv")
     return equilibria_csv(a,
                           provenance_header(command_line(), scene.file, p) + answer_lines(answer, unit, "# ") +
-                              creep_lines(a, p, "# "),
+                              creep_lines(a, p, "# ") + stick_verdict_lines(p, StickSetOptions{}, "# "),
                           p.n_balls());
   if (o.format == "json") return equilibria_json(a, command_line(), scene.file, p);
-  return equilibria_report(a, p, unit);
+  return equilibria_report(a, p, unit);  // ends with the dry-friction verdict
 }
 }  // namespace
 
@@ -253,10 +255,7 @@ Action add_equilibria_command(CLI::App& app) {
                   "coulomb-set scenes: also write DIR/stick_set.csv, and for two balls DIR/stick_boundary.csv (the "
                   "traced boundary curves), DIR/stick_raster.dat and DIR/stick_set.png (model.md §14)")
       ->type_name("DIR");
-  sub->add_option("--stick-grid", options->stick.grid_budget,
-                  "coulomb-set, n >= 3 balls: at most this many grid points on the torus (G = floor(B^(1/n)) per angle)")
-      ->check(CLI::Range(1L << 10, 1L << 26))
-      ->capture_default_str();
+  add_stick_resolution_options(*sub, options->stick);
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work

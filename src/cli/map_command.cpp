@@ -17,6 +17,7 @@
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "stick_options.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -33,6 +34,7 @@ struct MapOptions {
   bool chart = true, boundaries = true;
   bool long_csv = false;
   BalancedSampling sampling;
+  StickSetOptions stick;  // coulomb-set scenes
 };
 
 // The command line that determines the output: thread count, progress, resume and the
@@ -81,16 +83,20 @@ Action add_map_command(CLI::App& app) {
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  add_stick_resolution_options(*sub, o->stick);
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "map", {.lugre = true});
+    const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
+    if (stick) refuse_stick_set_combinations(scene, "map");
+    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);
     request.y = omega_axis_input(o->scene, o->y);
     request.method = o->method == "full" ? CellMethod::full : CellMethod::fast;
     request.sampling = o->sampling;
+    request.stick = stick_resolution(o->stick);
     request.command_line = canonical_command_line(*o);
     const MapJob job = map_job(scene, request);
     for (const Axis* a : {&job.x, &job.y})
@@ -131,15 +137,18 @@ Action add_map_command(CLI::App& app) {
     const MapRunStats& stats = r.stats;
     const std::filesystem::path dir(o->output_dir);
     // The stable speed ranges per value of the other axis (docs/views.md), from the summary.
-    write_map_ranges(dir, o->x.substr(0, o->x.find(':')), o->y.substr(0, o->y.find(':')), scene, o->scene,
-                     canonical_command_line(*o), o->quiet);
+    if (!stick)  // a stick-set map has no stability verdicts to turn into speed ranges
+      write_map_ranges(dir, o->x.substr(0, o->x.find(':')), o->y.substr(0, o->y.find(':')), scene, o->scene,
+                       canonical_command_line(*o), o->quiet);
     if (!o->quiet && r.boundary_seconds >= 0) fmt::print(stderr, "boundaries: {:.2f} s\n", r.boundary_seconds);
     if (!o->quiet && !r.boundary_note.empty()) fmt::print(stderr, "{}\n", r.boundary_note);
     if (!o->quiet)
       fmt::print(stderr,
-                 "{} cells, {} equilibria ({} decided by full eigenvalues), {} tiles computed in {:.2f} s "
-                 "({:.3g} cells/s) -> {}\n",
-                 stats.cells, stats.equilibria, stats.fallbacks, stats.tiles, stats.seconds,
+                 "{} cells, {} {}, {} tiles computed in {:.2f} s ({:.3g} cells/s) -> {}\n", stats.cells,
+                 stats.equilibria,
+                 stick ? "stick-set components"
+                       : fmt::format("equilibria ({} decided by full eigenvalues)", stats.fallbacks),
+                 stats.tiles, stats.seconds,
                  stats.seconds > 0 ? double(stats.cells) / stats.seconds : 0.0, dir.string());
     return exit_ok;
   };

@@ -17,6 +17,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "stick_options.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -31,6 +32,7 @@ struct SweepOptions {
   bool chart = true;
   std::string output_dir = "out";
   BalancedSampling sampling;
+  StickSetOptions stick;  // coulomb-set scenes
 };
 // The grid must stay inside the parameter's physical range; it is an interval, so the
 // two ends decide. Checked before any work, with the scene's own rules.
@@ -50,48 +52,17 @@ ParamRef checked_param(const SweepOptions& o, int n_balls) {
   return *ref;
 }
 
-// A LuGre scene (model.md §12.8): per value the z = 0 equilibria with both one-sided
-// spectra (what `equilibria` lists), one CSV; the ball count is not a LuGre parameter here.
-int sweep_lugre(const Scene& scene, const SweepOptions& o) {
-  if (o.param == "n")
-    throw InputError("--param", 0, "n", "the ball count is not swept for friction law 'lugre' (model.md §12.8)");
-  const ParamRef ref = checked_param(o, int(scene.balls.size()));
-  const std::string name = to_string(ref);
-  const auto values = grid_values(o.from, o.to, o.steps, o.logarithmic);
-  std::vector<Scene> scenes;
-  for (double v : values) {
-    Scene s = scene;
-    set_checked(s, ref, v, "--from/--to");
-    check_numerical_range(s, "--from/--to", fmt::format("at {}={}", o.param, v));
-    scenes.push_back(s);
-  }
-  std::vector<std::vector<LugreRow>> rows;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    throw_if_stopped("sweep (lugre)");
-    rows.push_back(lugre_zero_bristle_rows(params_of<any_balls>(scenes[i]), o.sampling));
-    const std::string w = lugre_warnings(rows.back());
-    if (!w.empty()) fmt::print(stderr, "at {}={}:\n{}", name, values[i], w);
-  }
-  const ParamsN first = params_of<any_balls>(scenes.front());
-  const auto csv_path = std::filesystem::path(o.output_dir) / fmt::format("sweep_{}.csv", name);
-  OutputTransaction out;
-  out.stage(csv_path, lugre_sweep_csv(name, values, rows, first, provenance_header(command_line(), scene.file, first)));
-  out.commit();
-  std::size_t count = 0;
-  for (const auto& r : rows) count += r.size();
-  fmt::print(stderr, "wrote {} ({} states over {} values; no chart for friction law 'lugre' yet)\n", csv_path.string(),
-             count, values.size());
-  return exit_ok;
-}
-
-// Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
-// ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
-// summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
-// stable |q|) and its chart.
-int sweep_any_balls(Scene scene, const SweepOptions& o) {
-  SweepResultN result;
-  result.name = o.param;
+// The values of a sweep over any parameter, or the ball count of a ring scene (`--param n`:
+// every integer from --from to --to), each value's scene checked against its rules.
+struct SweepGrid {
+  std::string name, unit;
+  std::vector<double> values;
   std::vector<Scene> scenes;  // one per value
+};
+SweepGrid sweep_grid(const Scene& scene, const SweepOptions& o) {
+  SweepGrid result;
+  result.name = o.param;
+  std::vector<Scene>& scenes = result.scenes;
   if (o.param == "n") {
     if (!scene.ring)
       throw InputError("--param", 0, "n", "the ball count is a study parameter only for a [balls] ring scene");
@@ -117,6 +88,48 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
       result.values.push_back(v);
     }
   }
+  return result;
+}
+
+// A LuGre scene (model.md §12.8): per value the z = 0 equilibria with both one-sided
+// spectra (what `equilibria` lists), one CSV; the ball count is not a LuGre parameter here.
+int sweep_lugre(const Scene& scene, const SweepOptions& o) {
+  if (o.param == "n")
+    throw InputError("--param", 0, "n", "the ball count is not swept for friction law 'lugre' (model.md §12.8)");
+  const SweepGrid grid = sweep_grid(scene, o);
+  const std::string& name = grid.name;
+  const std::vector<double>& values = grid.values;
+  const std::vector<Scene>& scenes = grid.scenes;
+  std::vector<std::vector<LugreRow>> rows;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    throw_if_stopped("sweep (lugre)");
+    rows.push_back(lugre_zero_bristle_rows(params_of<any_balls>(scenes[i]), o.sampling));
+    const std::string w = lugre_warnings(rows.back());
+    if (!w.empty()) fmt::print(stderr, "at {}={}:\n{}", name, values[i], w);
+  }
+  const ParamsN first = params_of<any_balls>(scenes.front());
+  const auto csv_path = std::filesystem::path(o.output_dir) / fmt::format("sweep_{}.csv", name);
+  OutputTransaction out;
+  out.stage(csv_path, lugre_sweep_csv(name, values, rows, first, provenance_header(command_line(), scene.file, first)));
+  out.commit();
+  std::size_t count = 0;
+  for (const auto& r : rows) count += r.size();
+  fmt::print(stderr, "wrote {} ({} states over {} values; no chart for friction law 'lugre' yet)\n", csv_path.string(),
+             count, values.size());
+  return exit_ok;
+}
+
+// Any ball count, and the ball count itself as the parameter (`--param n` on a [balls]
+// ring scene: every integer from --from to --to, --steps ignored): the long CSV, a
+// summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
+// stable |q|) and its chart.
+int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
+  SweepResultN result;
+  SweepGrid grid = sweep_grid(scene, o);
+  result.name = grid.name;
+  result.unit = grid.unit;
+  result.values = grid.values;
+  const std::vector<Scene>& scenes = grid.scenes;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     throw_if_stopped("sweep");
     result.points.push_back(analyze(params_of<any_balls>(scenes[i]), o.sampling));
@@ -176,15 +189,24 @@ Action add_sweep_command(CLI::App& app) {
                   "Samples per sheet of the balanced set (n >= 3 balls), as for `equilibria`")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  add_stick_resolution_options(*sub, o->stick);
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "sweep", {.lugre = true});
+    const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
+    if (stick) refuse_stick_set_combinations(scene, "sweep");
+    refuse_unmodelled(scene, "sweep", {.lugre = true, .set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
     if (scene.law == FrictionLaw::lugre) return sweep_lugre(scene, *o);
+    if (stick) {
+      SweepGrid grid = sweep_grid(scene, *o);
+      return sweep_stick_set(scene, {std::move(grid.name), std::move(grid.unit), std::move(grid.values),
+                                     std::move(grid.scenes), o->logarithmic, o->chart, o->output_dir,
+                                     stick_resolution(o->stick), o->scene.overrides});
+    }
     const int n_balls = int(scene.balls.size());
     if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
     const auto ref = std::optional<ParamRef>(checked_param(*o, n_balls));

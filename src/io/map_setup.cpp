@@ -21,6 +21,7 @@
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "abu/scan/map_mpi.hpp"
+#include "abu/scan/stick_map.hpp"
 
 namespace abu {
 
@@ -141,6 +142,32 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
                                  job.x.count, job.y.count, kMaxCells));
   job.method = request.method;
   job.sampling = request.sampling;
+  if (scene.law == FrictionLaw::coulomb_set) {  // the stick set per cell (model.md §14, stick_map.hpp)
+    if (job.x.ball_count || job.y.ball_count)
+      throw InputError(job.x.ball_count ? "--x" : "--y", 0, "n",
+                       "a coulomb-set map takes one ball count: the ball count is not an axis of a stick-set map");
+    job.stick_set = true;
+    job.stick = request.stick;
+    job.params_n = params_of<any_balls>(scene);
+    const std::string line =
+        request.command_line + (scene.balls.size() == 2
+                                    ? fmt::format(" --stick-columns {} --stick-area-tolerance {}", request.stick.columns,
+                                                  format_number(request.stick.area_tolerance))
+                                    : fmt::format(" --stick-grid {}", request.stick.grid_budget));
+    job.provenance = provenance_header(line, scene.file, job.params_n);
+    // Every cell's set must be defined (mu > 0, not K = C = 0) before any work.
+    for (int ix = 0; ix < job.x.count; ++ix)
+      for (int iy = 0; iy < job.y.count; ++iy) {
+        const ParamsN p = stick_cell_params(job, ix, iy);
+        try {
+          (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
+        } catch (const NotSupportedError& e) {
+          throw NotSupportedError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {}", ix, iy, job.x.name(),
+                                             job.x.value(ix), job.y.name(), job.y.value(iy), e.what()));
+        }
+      }
+    return job;
+  }
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;
   // LuGre takes the n-ball cells, which know its spectra (model.md §12.8).
   job.any_balls = count_axis || scene.balls.size() != 2 || scene.law == FrictionLaw::lugre;
@@ -317,12 +344,28 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     } else if (const auto run_n = map_boundaries_n(job)) {
       curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run_n, job.provenance));
       report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    } else if (job.stick_set) {
+      report.boundary_note = "no fold/Hopf boundaries: a coulomb-set map has stick sets, not isolated equilibria";
     } else {
       report.boundary_note = "no fold/Hopf boundaries: the ball count is an axis of this map (continuation needs "
                              "one ball count)";
     }
   }
-  if (output.chart) {
+  if (output.chart && job.stick_set) {
+    // V and the area of the stick set per cell (plots/stick_set_map.gp)
+    const auto name = [&](const char* kind) { return out.reserve(dir / fmt::format("{}_{}_{}.png", kind, x, y)).string(); };
+    run_gnuplot(plots_dir() / "stick_set_map.gp",
+                {{"summary", summary_path.string()},
+                 {"png_worst", name("stick_worst")},
+                 {"png_area", name("stick_area")},
+                 {"xname", x},
+                 {"xunit", std::string(unit(job.x.param.quantity))},
+                 {"yname", y},
+                 {"yunit", std::string(unit(job.y.param.quantity))},
+                 {"logx", job.x.logarithmic ? "1" : "0"},
+                 {"logy", job.y.logarithmic ? "1" : "0"},
+                 {"title", output.title}});
+  } else if (output.chart) {
     const auto name = [&](const char* kind, const char* ext) {
       return out.reserve(dir / fmt::format("{}_{}_{}.{}", kind, x, y, ext)).string();
     };

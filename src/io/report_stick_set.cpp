@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "abu/core/errors.hpp"
 #include "abu/io/io.hpp"
 
 namespace abu {
@@ -154,6 +156,77 @@ std::string stick_boundary_csv(const StickSet& s, const std::string& header) {
     }
     out += "\n";
   }
+  return out;
+}
+
+std::string stick_sweep_csv(std::string_view name, std::string_view unit, const std::vector<double>& values,
+                            const std::vector<StickSet>& sets, const std::string& header) {
+  int n_max = 0;
+  for (const auto& s : sets) n_max = std::max(n_max, s.n_balls);
+  std::string out = header;
+  out += fmt::format(
+      "# sweep of {0} [{1}], friction coulomb-set: per value the stick set E (model.md §14) as `equilibria` computes it\n"
+      "# columns: {0} [{1}]; area [rad^n] of E, area_fraction = area / (2 pi)^n; whole_torus = 1 if every arrangement "
+      "sticks; components = connected components of E;\n"
+      "#   balanced_exists = 1 if a component holds a balanced point; worst_q_abs [m] = V, max |q| over the components "
+      "holding a balanced point (empty if none); worst_q_abs_any [m] = V_E, max |q| over E;\n"
+      "#   mean_q_abs [m] = mean |q| over E; bare_rotor_q_abs [m] = omega^2 U / |K + iC|, the rotor without balls; "
+      "worst_over_bare = V / bare_rotor_q_abs;\n"
+      "#   spread_i [rad] = the largest angular spread of ball i over a balanced component (empty if none); |q| is in "
+      "the rotating frame, the whirl radius in the fixed frame\n",
+      name, unit);
+  out += fmt::format("{},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,worst_q_abs_any,"
+                     "mean_q_abs,bare_rotor_q_abs,worst_over_bare",
+                     name);
+  for (int i = 1; i <= n_max; ++i) out += fmt::format(",spread{}", i);
+  out += "\n";
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const StickSet& s = sets[k];
+    const bool v = s.balanced_exists;
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}", num(values[k], name), num(s.area, "area"),
+                       num(s.area_fraction, "area fraction"), int(s.whole_torus), s.components.size(), int(v),
+                       v ? num(s.worst_q_abs, "V") : std::string(), num(s.worst_q_abs_any, "V_E"),
+                       num(s.mean_q_abs, "mean |q|"), num(s.bare_rotor_q_abs, "bare rotor |q|"),
+                       v && s.bare_rotor_q_abs > 0 ? num(s.worst_q_abs / s.bare_rotor_q_abs, "V / bare") : std::string());
+    for (int i = 0; i < n_max; ++i) {
+      out += ',';
+      if (v && i < s.n_balls) out += num(s.spread[std::size_t(i)], "spread");
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string stick_verdict_lines(const ParamsN& smooth, const StickSetOptions& options, std::string_view prefix) {
+  if (smooth.law != FrictionLaw::coulomb && smooth.law != FrictionLaw::stribeck) return {};
+  ParamsN p = smooth;
+  p.law = FrictionLaw::coulomb_set;
+  if (smooth.law == FrictionLaw::stribeck)
+    for (auto& b : p.balls) b.mu = b.mu_s;  // the breakaway level holds a ball at rest
+  StickSetOptions o = options;
+  o.trace = false;
+  const std::string which = smooth.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
+  std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md §14): ", prefix, which);
+  StickSet s;
+  try {
+    s = stick_set(p, o);
+  } catch (const NotSupportedError& e) {
+    return out + fmt::format("not defined: {}\n", e.what());
+  }
+  const std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
+                                      s.area, s.n_balls, s.area_fraction, s.whole_torus ? ": every arrangement sticks" : "",
+                                      s.components.size(), s.components.size() == 1 ? "" : "s");
+  if (s.balanced_exists)
+    out += fmt::format("the balls stick inside the set, residual vibration at most V = {:.6g} m ({:.3g} x the rotor "
+                       "without balls, {:.6g} m; V_E = {:.6g} m over the whole set); {}\n",
+                       s.worst_q_abs, s.bare_rotor_q_abs > 0 ? s.worst_q_abs / s.bare_rotor_q_abs : 0.0,
+                       s.bare_rotor_q_abs, s.worst_q_abs_any, set);
+  else
+    out += fmt::format("no balanced point in the stick set ({}); a stuck state leaves at most V_E = {:.6g} m; {}\n",
+                       s.status.reason, s.worst_q_abs_any, set);
+  out += fmt::format("{}  the smooth law's stability above is that of its arctan regularization: its creep modes "
+                     "(lambda ~ 1/kappa) are the balls creeping through this set, not settling\n",
+                     prefix);
   return out;
 }
 

@@ -23,6 +23,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/temp_files.hpp"
+#include "abu/scan/stick_map.hpp"
 
 namespace abu {
 
@@ -74,12 +75,13 @@ std::string common_header(const MapJob& job) {
 // A worker holds one tile's text in memory: with a long y axis fewer columns per tile keep
 // that under kTileBudgetBytes (the maps of up to ~5000 rows keep kTileColumns).
 int MapJob::tile_columns() const {
-  if (any_balls) return 1;
+  if (any_balls || stick_set) return 1;  // cells of up to seconds each
   const long per_column = long(y.count) * long(map_bytes_per_cell(*this));
   return int(std::clamp<long>(kTileBudgetBytes / std::max(per_column, 1L), 1, kTileColumns));
 }
 
 std::size_t map_bytes_per_cell(const MapJob& job) {
+  if (job.stick_set) return stick_map_bytes_per_cell(job);
   if (!job.any_balls) return kMapBytesPerCell;
   // n balls: up to 2^n aligned rows and the balanced samples, each with n angle columns.
   const int n = job.max_balls_in_map();
@@ -153,10 +155,11 @@ std::string summary_csv_header_n(const MapJob& job) {
 int MapJob::max_balls_in_map() const {
   if (x.ball_count) return int(x.to);
   if (y.ball_count) return int(y.to);
-  return any_balls ? params_n.n_balls() : 2;
+  return any_balls || stick_set ? params_n.n_balls() : 2;
 }
 
 CellWorkspace::CellWorkspace(const MapJob& job) {
+  if (job.stick_set) return;  // stick_set() keeps no state between cells
   if (job.any_balls)
     any_balls.emplace(job.params_n, job.by_count, job.x, job.y, job.sampling);
   else
@@ -164,6 +167,7 @@ CellWorkspace::CellWorkspace(const MapJob& job) {
 }
 
 std::string map_csv_header(const MapJob& job) {
+  if (job.stick_set) return stick_map_csv_header(job);
   if (job.any_balls) return map_csv_header_n(job);
   const std::string x = axis_name(job.x), y = axis_name(job.y);
   return common_header(job) +
@@ -182,6 +186,7 @@ std::string map_csv_header(const MapJob& job) {
 }
 
 std::string summary_csv_header(const MapJob& job) {
+  if (job.stick_set) return stick_summary_csv_header(job);
   if (job.any_balls) return summary_csv_header_n(job);
   const std::string x = axis_name(job.x), y = axis_name(job.y);
   return common_header(job) +
@@ -266,6 +271,19 @@ TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace
   const auto maybe_spill = [&] {
     if (spill && (rows.size() >= kSpillBytes || summary.size() >= kSpillBytes)) spill(rows, summary);
   };
+  if (job.stick_set) {  // coulomb-set: the stick set of every cell (stick_map.hpp)
+    for (int ix = first; ix < last; ++ix) {
+      const std::string x_value = format_number(job.x.value(ix), "x value");
+      for (int iy = 0; iy < job.y.count; ++iy) {
+        throw_if_stopped("a map tile");
+        ++text.cells;
+        text.equilibria +=
+            write_stick_cell(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), rows, summary);
+        maybe_spill();
+      }
+    }
+    return text;
+  }
   if (job.any_balls) {
     for (int ix = first; ix < last; ++ix) {
       const std::string x_value = format_number(job.x.value(ix), "x value");
@@ -819,7 +837,7 @@ BoundaryRunT along_edges(const MapJob& job, const P& base, Trace trace) {
 }  // namespace
 
 std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
-  if (job.any_balls) return std::nullopt;
+  if (job.any_balls || job.stick_set) return std::nullopt;
   const ContinuationOptions options;
   return along_edges<BoundaryRun>(job, job.params, [&](const Params& p, double to2) {
     const ContinuationRun run = continue_branches(p, job.x.param, job.x.to, options, StartSelection{});
@@ -828,7 +846,7 @@ std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
 }
 
 std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job) {
-  if (!job.any_balls || job.x.ball_count || job.y.ball_count || job.params_n.n_balls() < 3) return std::nullopt;
+  if (!job.any_balls || job.stick_set || job.x.ball_count || job.y.ball_count || job.params_n.n_balls() < 3) return std::nullopt;
   const ContinuationOptions options;
   BoundaryRunN all = along_edges<BoundaryRunN>(job, job.params_n, [&](const ParamsN& p, double to2) {
     const ContinuationRunN run = continue_branches(p, job.x.param, job.x.to, options, job.sampling);

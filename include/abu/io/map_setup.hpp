@@ -29,6 +29,7 @@ struct MapRequest {
   std::string x, y;  ///< the axis specifications
   CellMethod method = CellMethod::fast;
   BalancedSampling sampling;
+  StickSetOptions stick;  ///< coulomb-set scenes: the stick set's resolution per cell (stick_map.hpp)
   /// The command line that determines the output (without threads, resume, output
   /// directory), for the provenance header; n-ball maps get " --set-samples S" added.
   std::string command_line;

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "abu/core/params.hpp"
 #include "abu/equilibria/stick_set.hpp"
@@ -23,6 +24,19 @@ std::string stick_set_json(const StickSet& s, std::string_view command_line, std
 /// The traced boundary: one row per point (arc, ball, sign, beta1, beta2); arcs separated
 /// by a blank line (gnuplot's index-free line break) and a wrap by 2 pi too.
 std::string stick_boundary_csv(const StickSet& s, const std::string& header);
+/// The CSV of a sweep of a coulomb-set scene over parameter `name` [unit]: `header`, a
+/// comment naming the columns, then one row per value: area, area_fraction, whole_torus,
+/// components, balanced_exists, worst_q_abs (V, empty if no balanced state), worst_q_abs_any
+/// (V_E), mean_q_abs, bare_rotor_q_abs, worst_over_bare, spread1..spreadN (N the most balls
+/// of any value; empty beyond a value's count or without a balanced state).
+std::string stick_sweep_csv(std::string_view name, std::string_view unit, const std::vector<double>& values,
+                            const std::vector<StickSet>& sets, const std::string& header);
+/// The dry-friction verdict next to a smooth `coulomb` / `stribeck` analysis (issue 8 item 2,
+/// model.md §14.10): the stick set of set-valued Coulomb friction with the same mu_i (stribeck:
+/// the static mu_s, the most a resting ball can hold), one line per sentence, each line
+/// starting with `prefix`. Empty for any other law. Never throws for a set that is not
+/// defined (mu = 0, K = C = 0): the line says why.
+std::string stick_verdict_lines(const ParamsN& smooth, const StickSetOptions& options, std::string_view prefix);
 /// A raster of the set for the chart's fill: rows beta1,beta2,inside (0/1), comma-separated, `cells` per angle.
 std::string stick_raster_dat(const ParamsN& p, int cells);
 

@@ -26,6 +26,7 @@
 #include "abu/continuation/boundaries.hpp"
 
 #include "abu/continuation/boundaries_n.hpp"
+#include "abu/equilibria/stick_set.hpp"
 #include "abu/scan/map.hpp"
 
 namespace abu {
@@ -58,6 +59,11 @@ struct MapJob {
   ParamsN params_n;               ///< the scene (any_balls)
   std::vector<ParamsN> by_count;  ///< ball-count axis: the ring with x/y.from + k balls
   BalancedSampling sampling;      ///< of the balanced set (model.md §13.5)
+  /// coulomb-set friction (model.md §14): every cell is the stick set of `params_n` at the
+  /// cell's parameters with resolution `stick` (stick_map.hpp), not equilibria; one ball
+  /// count (no ball-count axis), any_balls false, `method` and `sampling` not used.
+  bool stick_set = false;
+  StickSetOptions stick;
   /// The most balls of any cell: the number of beta columns of the n-ball long CSV.
   int max_balls_in_map() const;
   /// Columns per tile: kTileColumns for two balls; 1 for n balls, whose cells cost up to

@@ -1,0 +1,63 @@
+// `sweep` of a coulomb-set scene: the stick set of every value (model.md §14) as one CSV
+// row each and a chart of V, V_E, the rotor without balls and the area.
+#include <fmt/format.h>
+
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/io/chart_labels.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/report_stick_set.hpp"
+#include "cli.hpp"
+#include "stick_options.hpp"
+
+namespace abu::cli {
+
+int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
+  StickSetOptions options = in.stick;
+  options.trace = false;  // the boundary curves are not part of a sweep's figures
+  // Every value's set must be defined (mu > 0, not K = C = 0) before any work: refused,
+  // nothing computed or written (stick_point checks what stick_set would).
+  for (std::size_t i = 0; i < in.scenes.size(); ++i) {
+    const ParamsN p = params_of<any_balls>(in.scenes[i]);
+    try {
+      (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
+    } catch (const NotSupportedError& e) {
+      throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
+    }
+  }
+  std::vector<StickSet> sets;
+  sets.reserve(in.values.size());
+  for (std::size_t i = 0; i < in.scenes.size(); ++i) {
+    throw_if_stopped("sweep");
+    try {
+      sets.push_back(stick_set(params_of<any_balls>(in.scenes[i]), options));
+    } catch (const NotSupportedError& e) {
+      throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
+    }
+    if (!sets.back().status.ok())
+      fmt::print(stderr, "stability-scan: note: at {}={}: {}\n", in.name, in.values[i], sets.back().status.reason);
+  }
+  const ParamsN first = params_of<any_balls>(in.scenes.front());
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const std::filesystem::path dir(in.output_dir);
+  const auto csv_path = dir / fmt::format("sweep_stick_{}.csv", in.name);
+  const auto png_path = dir / fmt::format("sweep_stick_{}.png", in.name);
+  OutputTransaction out;
+  const auto staged = out.stage(csv_path, stick_sweep_csv(in.name, in.unit, in.values, sets, header));
+  if (in.chart)
+    run_gnuplot(plots_dir() / "stick_set_sweep.gp",
+                {{"csv", staged.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", in.name},
+                 {"unit", in.unit},
+                 {"logx", in.logarithmic ? "1" : "0"},
+                 {"nballs", std::to_string(first.n_balls())},
+                 {"title", fmt::format("{}: stick set of coulomb-set friction, sweep of {}", scene.file, in.name)},
+                 {"subtitle", chart_subtitle(scene, in.overrides)}});
+  out.commit();
+  fmt::print(stderr, "wrote {} ({} values){}\n", csv_path.string(), sets.size(),
+             in.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+}  // namespace abu::cli
