@@ -8,6 +8,7 @@
 #include <complex>
 #include <numbers>
 
+#include "abu/continuation/unround_branches.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/model/model.hpp"
@@ -219,4 +220,73 @@ TEST_CASE("unround race: the reference values of model.md §11.9", "[unround]") 
       CHECK(it->spectrum.stability == Stability::stable);
     }
   }
+}
+
+namespace {
+// Branch crossings of the level e = f (f strictly between the branch points' factors).
+std::vector<UnroundBranchPoint> crossings(const UnroundBranches& b, double f) {
+  std::vector<UnroundBranchPoint> out;
+  for (const auto& br : b.branches)
+    for (std::size_t k = 0; k + 1 < br.points.size(); ++k)
+      if ((br.points[k].factor - f) * (br.points[k + 1].factor - f) < 0) out.push_back(br.points[k]);
+  return out;
+}
+}  // namespace
+
+TEST_CASE("unround race: continuation in the unroundness agrees with the complete search (§11.10)", "[unround]") {
+  // An oval (k = 2, phase 0) of 1e-4 on both balls of the default scene, e in [0, 10]: the
+  // count grows from 6 (round race) to 16 at e = 10 through folds (§11.9). Every branch
+  // point checked is an equilibrium the search finds at its own e, beta to 1e-10 rad and
+  // |q| to 1e-10 relative (both solve g = 0 to rounding: Newton in long double); the
+  // number of branches crossing e = 0.5 and e = 5 is the search's count there.
+  const ParamsN p = base(2);
+  const RaceShape race = same_for_all(2, {{2, 1e-4, 0.0}});
+  const UnroundBranches b = continue_unround(p, race, 10.0);
+  CHECK(b.doubt == "");
+  REQUIRE(!b.branches.empty());
+  int folds = 0;
+  for (const auto& br : b.branches)
+    for (const auto& s : br.specials) folds += s.kind == "LP" ? 1 : 0;
+  CHECK(folds >= 2);  // 6 -> 16 equilibria: at least 5 pairs born, some at folds inside (0, 10)
+  for (double f : {0.5, 5.0}) {
+    const UnroundResult r = find_unround_equilibria(p, scaled_race(race, f));
+    INFO("e " << f);
+    CHECK(crossings(b, f).size() == r.list.size());
+  }
+  // Every 7th point of every branch against the search at its own factor.
+  int checked = 0;
+  for (const auto& br : b.branches)
+    for (std::size_t k = 0; k < br.points.size(); k += 7) {
+      const auto& pt = br.points[k];
+      const UnroundResult r = find_unround_equilibria(p, scaled_race(race, pt.factor));
+      const auto match = std::find_if(r.list.begin(), r.list.end(), [&](const UnroundEquilibrium& e) {
+        L d = 0;
+        for (int i = 2; i < 4; ++i)
+          d = std::max(d, std::abs(std::remainder(e.position(i) - pt.state.position(i), 2 * std::numbers::pi_v<L>)));
+        return d < 1e-10L;
+      });
+      INFO("branch point at e " << pt.factor);
+      REQUIRE(match != r.list.end());
+      CHECK(std::abs(match->amplitude - pt.state.amplitude) <= 1e-10 * match->amplitude + 1e-20);
+      CHECK(match->spectrum.stability == pt.state.spectrum.stability);
+      if (++checked >= 12) break;
+    }
+  CHECK(checked >= 6);
+}
+
+TEST_CASE("unround race: the eccentric race's balanced branch keeps |q| = e d (§11.4, §11.10)", "[unround]") {
+  // Along e the exact solution q = -e D of (11.4.4) is followed from the round race's
+  // balanced states: every point's |q| = e l eps to 1e-12 relative.
+  const double l = 0.018, eps = 2e-4, phi = 0.7;
+  const ParamsN p = base(2, FrictionLaw::coulomb);
+  const UnroundBranches b = continue_unround(p, same_for_all(2, {{1, eps, phi}}), 3.0);
+  int on = 0;
+  for (const auto& br : b.branches) {
+    if (br.start_factor != 0 || br.points.front().state.amplitude > 1e-15) continue;  // the balanced states
+    ++on;
+    CHECK(br.points.back().factor == Approx(3.0).epsilon(1e-15));
+    for (const auto& pt : br.points)
+      CHECK(std::abs(pt.state.amplitude - pt.factor * l * eps) <= 1e-12 * pt.factor * l * eps + 1e-20);
+  }
+  CHECK(on == 2);
 }

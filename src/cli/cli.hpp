@@ -46,8 +46,9 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
 /// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
 /// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
-/// field; InputError at the `law` key).
-void refuse_unmodelled(const Scene& scene, std::string_view command);
+/// field; InputError at the `law` key). `unround_handled`: the command has its own path for
+/// an unround race (unround_commands.hpp), only the other three are refused.
+void refuse_unmodelled(const Scene& scene, std::string_view command, bool unround_handled = false);
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

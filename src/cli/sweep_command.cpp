@@ -15,6 +15,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "unround_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -121,7 +122,7 @@ Action add_sweep_command(CLI::App& app) {
       "chart of |q| and the spectral abscissa (stable solid, unstable dashed).");
   add_scene_options(*sub, o->scene);
   sub->add_option("--param", o->param,
-                  fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene)", param_symbols_help()))
+                  fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene), or unroundness (every race amplitude times a factor, model.md §11.10)", param_symbols_help()))
       ->required();
   sub->add_option("--from", o->from, "First value (SI; omega in --units)")->required();
   sub->add_option("--to", o->to, "Last value (SI; omega in --units)")->required();
@@ -136,9 +137,12 @@ Action add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "sweep");
+    refuse_unmodelled(scene, "sweep", /*unround_handled=*/true);
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
+    if (!scene.race.round() || o->param == kUnroundnessParam)  // model.md §11.10
+      return sweep_unround(scene, o->scene,
+                           {o->param, o->from, o->to, o->steps, o->logarithmic, o->chart, o->output_dir});
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);

@@ -17,8 +17,8 @@ namespace abu {
 
 namespace {
 using L = long double;
-using Angles = Eigen::Matrix<L, Eigen::Dynamic, 1, 0, max_balls, 1>;
-using AngleMatrix = Eigen::Matrix<L, Eigen::Dynamic, Eigen::Dynamic, 0, max_balls, max_balls>;
+using Angles = UnroundAngles;
+using AngleMatrix = UnroundAngleMatrix;
 constexpr L kTwoPi = 2 * std::numbers::pi_v<L>;
 
 const RaceHarmonics& harmonics_of(const RaceShape& race, int i) {
@@ -27,13 +27,9 @@ const RaceHarmonics& harmonics_of(const RaceShape& race, int i) {
 }
 
 // g(beta), q(beta) and dg/dbeta (§11.4; g_i scaled by 1/l_i^2).
-struct Reduced {
-  std::complex<L> q;
-  Angles g;
-  AngleMatrix dg;
-};
+}  // namespace
 
-Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+UnroundReduced unround_reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
   const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const std::complex<L> dyn(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
@@ -44,7 +40,7 @@ Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta)
     pts[k] = path_point<L>(harmonics_of(race, i), p.balls[k].race_radius, beta(i));
     W += p.balls[k].mass * pts[k].ell * std::polar(L(1), beta(i));
   }
-  Reduced r;
+  UnroundReduced r;
   r.q = w2 * W / dyn;
   r.g.resize(n);
   r.dg.resize(n, n);
@@ -64,6 +60,11 @@ Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta)
   return r;
 }
 
+namespace {
+UnroundReduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+  return unround_reduced(p, race, beta);
+}
+
 L wrap(L a) {
   a = std::fmod(a, kTwoPi);
   return a < 0 ? a + kTwoPi : a;
@@ -79,7 +80,7 @@ L torus_distance(const Angles& a, const Angles& b) {
 
 // Newton with step halving on |g|; nullopt if it does not converge in 200 iterations.
 std::optional<Angles> newton(const LongParamsN& p, const RaceShape& race, Angles beta) {
-  Reduced r = reduced(p, race, beta);
+  UnroundReduced r = reduced(p, race, beta);
   for (int it = 0; it < 200; ++it) {
     const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
     if (lu.rank() < r.dg.rows()) return std::nullopt;
@@ -89,7 +90,7 @@ std::optional<Angles> newton(const LongParamsN& p, const RaceShape& race, Angles
     const L norm0 = r.g.norm();
     for (int h = 0; h < 30; ++h, t /= 2) {
       Angles trial = beta - t * step;
-      Reduced rt = reduced(p, race, trial);
+      UnroundReduced rt = reduced(p, race, trial);
       if (rt.g.norm() < norm0 || h == 29 || norm0 < 1e-17L) {
         beta = trial;
         r = std::move(rt);
@@ -137,13 +138,44 @@ struct Box {
 
 Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN& p, const RaceShape& race,
                                                                const Angles& beta, Angles& g) {
-  const Reduced r = reduced(p, race, beta);
+  const UnroundReduced r = reduced(p, race, beta);
   g = r.g;
   Coordinates<L, any_balls> s(beta.size() + 2);
   s(0) = r.q.real();
   s(1) = r.q.imag();
   s.tail(beta.size()) = beta;
   return s;
+}
+
+UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+  const int n = p.n_balls();
+  const L w2 = p.omega * p.omega;
+  const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
+  // The rotor row's natural size: the largest centrifugal load the balls and U can make.
+  L load = p.rotor.unbalance;
+  for (int i = 0; i < n; ++i)
+    load += p.balls[std::size_t(i)].mass * path_bounds(harmonics_of(race, i), p.balls[std::size_t(i)].race_radius).p0;
+  UnroundEquilibrium e;
+  const UnroundReduced r = reduced(p, race, beta);
+  Angles g;
+  e.position = unround_rotor_and_residual(p, race, beta, g);
+  e.converged = true;
+  e.amplitude = double(std::abs(r.q));
+  const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
+  const L det = lu.determinant();
+  const L scale = std::pow(r.dg.cwiseAbs().maxCoeff(), L(n));
+  e.index = std::abs(det) <= 1e-13L * scale ? 0 : (det > 0 ? 1 : -1);
+  // Residual of the full static equations b(s, 0) = 0 (§11.3), each row over its size.
+  const Coordinates<L, any_balls> b = unround_generalized_forces(p, race, at_rest<L, any_balls>(e.position));
+  L res = std::abs(b(0)) + std::abs(b(1));
+  res /= w2 * (p.rotor.unbalance + load) + dyn * std::abs(r.q) + 1e-300L;
+  for (int i = 0; i < n; ++i) {
+    const auto& ball = p.balls[std::size_t(i)];
+    res = std::max(res, std::abs(b(2 + i)) / (ball.mass * w2 * ball.race_radius * ball.race_radius));
+  }
+  e.residual = double(res);
+  e.spectrum = compute_spectrum<any_balls>(unround_linearization(p, race, e.position));
+  return e;
 }
 
 UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
@@ -265,26 +297,7 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
 
   result.search.leaves = std::ssize(leaves);
   for (const Angles& beta : zeros) {
-    UnroundEquilibrium e;
-    const Reduced r = reduced(p, race, beta);
-    Angles g;
-    e.position = unround_rotor_and_residual(p, race, beta, g);
-    e.converged = true;
-    e.amplitude = double(std::abs(r.q));
-    const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
-    const L det = lu.determinant();
-    const L scale = std::pow(r.dg.cwiseAbs().maxCoeff(), L(n));
-    e.index = std::abs(det) <= 1e-13L * scale ? 0 : (det > 0 ? 1 : -1);
-    // Residual of the full static equations b(s, 0) = 0 (§11.3), each row over its size.
-    const Coordinates<L, any_balls> b = unround_generalized_forces(p, race, at_rest<L, any_balls>(e.position));
-    L res = std::abs(b(0)) + std::abs(b(1));
-    res /= w2 * (p.rotor.unbalance + qmax * dyn / w2) + dyn * std::abs(r.q) + 1e-300L;
-    for (int i = 0; i < n; ++i) {
-      const auto& ball = p.balls[std::size_t(i)];
-      res = std::max(res, std::abs(b(2 + i)) / (ball.mass * w2 * ball.race_radius * ball.race_radius));
-    }
-    e.residual = double(res);
-    e.spectrum = compute_spectrum<any_balls>(unround_linearization(p, race, e.position));
+    UnroundEquilibrium e = unround_equilibrium_at(p, race, beta);
     result.search.index_sum += e.index;
     result.list.push_back(std::move(e));
   }

@@ -27,6 +27,13 @@ int RaceShape::max_order() const {
   return k;
 }
 
+RaceShape scaled_race(const RaceShape& race, double factor) {
+  RaceShape out = race;
+  for (auto& list : out.balls)
+    for (auto& h : list) h.amplitude *= factor;
+  return out;
+}
+
 template <class T>
 PathPoint<T> path_point(const RaceHarmonics& h, T l, T beta) {
   using std::cos;

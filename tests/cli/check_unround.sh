@@ -6,8 +6,11 @@
 #  2. an eccentric race (order 1, offset d = l eps) leaves the best stable state's
 #     residual whirl |q| = d (JSON best_stable.q_abs) to 1e-12 relative;
 #  3. the same run twice gives the same bytes; -o writes the file atomically;
-#  4. `sweep`, `continue`, `map`, `simulate` refuse an unround scene (exit 2 with the
+#  4. `continue --param omega`, `map`, `simulate` refuse an unround scene (exit 2 with the
 #     reason), never computing the round race silently;
+#  6. `sweep` on a zero-amplitude race is the round scene's sweep byte for byte; an
+#     unroundness sweep of the eccentric race leaves |q| = e d at every factor e (1e-12);
+#     `continue --param unroundness` keeps |q| = e d along the branch of the balanced state;
 set -u
 bin=$1
 src=$2
@@ -37,7 +40,7 @@ mkdir -p "$work/d1" "$work/d2"
 (cd "$work/d1" && "$bin" equilibria ../ecc.toml --format csv -o e.csv) && (cd "$work/d2" && "$bin" equilibria ../ecc.toml --format csv -o e.csv)
 if cmp -s "$work/d1/e.csv" "$work/d2/e.csv"; then check ok "deterministic CSV"; else check no "deterministic CSV"; fi
 
-for cmd in "sweep --param omega --from 100 --to 200 --steps 3 -o $work/sw" "continue --param omega --to 1000 -o $work/co" \
+for cmd in "continue --param omega --to 1000 -o $work/co" \
            "map --x omega:100:200:3 --y mu:1e-3:2e-3:3 -o $work/mp" "simulate --t-end 0.01 -o $work/si"; do
   "$bin" ${cmd%% *} "$work/ecc.toml" ${cmd#* } > /dev/null 2> "$work/err"
   rc=$?
@@ -52,4 +55,35 @@ for scene in "$src"/tests/scenes/unround/*.toml; do
     check no "complete search: $(basename "$scene")"
   fi
 done
+
+# 6. sweeps and continuation (model.md §11.10)
+(cd "$work/a" && "$bin" sweep s.toml --param omega --from 300 --to 1200 --steps 6 --no-chart -o sw > /dev/null 2>&1)
+(cd "$work/b" && "$bin" sweep s.toml --param omega --from 300 --to 1200 --steps 6 --no-chart -o sw > /dev/null 2>&1)
+if [ -s "$work/a/sw/sweep_omega.csv" ] && diff -r "$work/a/sw" "$work/b/sw" > /dev/null; then
+  check ok "sweep: zero amplitude = round race (bytes)"
+else
+  check no "sweep: zero amplitude = round race (bytes)"
+fi
+"$bin" sweep "$work/ecc.toml" --param unroundness --from 0.25 --to 2 --steps 7 --no-chart -o "$work/esw" > /dev/null 2>&1
+if /usr/bin/python3 - "$work/esw/summary_unroundness.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith('#')))
+d = 0.018 * 2e-4
+bad = [r for r in rows if abs(float(r["best_q_abs"]) - float(r["unroundness"]) * d) > 1e-12 * float(r["unroundness"]) * d]
+sys.exit(0 if len(rows) == 8 and not bad else 1)
+PY
+then check ok "unroundness sweep: eccentric race |q| = e d at 8 factors"; else check no "unroundness sweep: eccentric race |q| = e d at 8 factors"; fi
+"$bin" continue "$work/ecc.toml" --param unroundness --to 2 --no-chart -o "$work/eco" > /dev/null 2>&1
+if /usr/bin/python3 - "$work/eco/branch_unroundness.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith('#')))
+d = 0.018 * 2e-4
+# the branches on which |q| = e d holds at the first point off e = 0: the balanced states'
+on = {r["branch"] for r in rows if float(r["unroundness"]) > 0 and abs(float(r["q_abs"]) - float(r["unroundness"]) * d) <= 1e-12 * float(r["unroundness"]) * d}
+pts = [r for r in rows if r["branch"] in on]
+ok = len(on) >= 1 and all(abs(float(r["q_abs"]) - float(r["unroundness"]) * d) <= 1e-12 * float(r["unroundness"]) * d + 1e-18 for r in pts)
+ok = ok and max(float(r["unroundness"]) for r in pts) == 2.0
+sys.exit(0 if ok else 1)
+PY
+then check ok "continuation: eccentric race |q| = e d along the balanced branch up to e = 2"; else check no "continuation: eccentric race |q| = e d along the balanced branch up to e = 2"; fi
 exit $fail

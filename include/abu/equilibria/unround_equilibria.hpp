@@ -18,6 +18,7 @@
 //   for (const auto& e : r.list) ... e.amplitude ... e.spectrum.stability ...
 #pragma once
 
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,23 @@ struct UnroundResult {
   std::optional<std::size_t> best_stable;  ///< the stable equilibrium of least |q|
   std::string doubt;  ///< empty when the search is complete, else what makes the list doubtful
 };
+
+using UnroundAngles = Eigen::Matrix<long double, Eigen::Dynamic, 1, 0, max_balls, 1>;
+using UnroundAngleMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic, 0, max_balls, max_balls>;
+
+/// The reduced ball conditions of §11.4 at angles beta: q(beta) (rotating frame [m]),
+/// g(beta) (g_i scaled by 1/l_i^2) and dg/dbeta (whose determinant's sign is the index).
+struct UnroundReduced {
+  std::complex<long double> q;
+  UnroundAngles g;
+  UnroundAngleMatrix dg;
+};
+UnroundReduced unround_reduced(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
+
+/// The equilibrium at angles beta that solve g = 0: position, |q|, index, residual of the
+/// full static equations (§11.3) and spectrum (§11.5). Shared by the search and the
+/// continuation in the unroundness (§11.10).
+UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
 
 /// The reduced residual g(beta) of §11.4 and q(beta). Exposed for tests.
 Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN& p, const RaceShape& race,

@@ -39,6 +39,10 @@ struct RaceShape {
   int max_order() const;
 };
 
+/// The race with every amplitude (order 1's offset included) times `factor` >= 0: the
+/// unroundness parameter of model.md §11.10 (factor 1 is the scene's race, 0 the round one).
+RaceShape scaled_race(const RaceShape& race, double factor);
+
 /// The path radius and what §11.1 derives from it at one angle (' = d/d beta).
 template <class T>
 struct PathPoint {

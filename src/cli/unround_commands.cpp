@@ -1,0 +1,151 @@
+// `sweep` and `continue` on an unround race (unround_commands.hpp, model.md §11.10).
+#include "unround_commands.hpp"
+
+#include <fmt/format.h>
+
+#include "abu/continuation/unround_branches.hpp"
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/race_scene.hpp"
+#include "abu/io/ranges.hpp"
+#include "abu/io/report_unround.hpp"
+#include "abu/scan/scan.hpp"
+
+namespace abu::cli {
+
+namespace {
+constexpr int kMaxUnroundSteps = 100000;
+
+// The scene's race times `factor`: every ball's path must still keep the rules of §11.1.
+RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option) {
+  const RaceShape out = scaled_race(race, factor);
+  for (std::size_t i = 0; i < out.balls.size() && i < scene.balls.size(); ++i)
+    if (const auto why = path_violation(out.balls[i], scene.balls[i].race_radius, scene.balls[i].radius))
+      throw InputError(option, 0, kUnroundnessParam,
+                       fmt::format("at unroundness factor {} ball {}'s race breaks a rule of model.md §11.1: {}", factor,
+                                   i + 1, *why));
+  return out;
+}
+
+void require_unround(const Scene& scene, const std::string& option) {
+  if (scene.race.round())
+    throw InputError(option, 0, kUnroundnessParam,
+                     fmt::format("{} has no unround race to scale ([race] unroundness, model.md §11.1)", scene.file));
+}
+}  // namespace
+
+int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
+  if (g.steps < 1 || g.steps > kMaxUnroundSteps)
+    throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxUnroundSteps, g.steps));
+  if (g.logarithmic && !(g.from > 0 && g.to > 0))
+    throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
+  UnroundSweep sweep;
+  std::vector<Scene> scenes;
+  std::vector<RaceShape> races;
+  const auto values = grid_values(g.from, g.to, g.steps, g.logarithmic);
+  if (g.param == kUnroundnessParam) {
+    require_unround(scene, "--param");
+    if (!(g.from >= 0 && g.to >= 0))
+      throw InputError("--from/--to", 0, kUnroundnessParam,
+                       fmt::format("the unroundness factor is >= 0 (got {} .. {})", g.from, g.to));
+    sweep.name = kUnroundnessParam;
+    sweep.unit = std::string(1, '-');  // a factor (move-assigned: GCC 12's -Wrestrict misfires on "-")
+    const RaceShape race = race_shape(scene);
+    for (double v : values) {
+      scenes.push_back(scene);
+      races.push_back(checked_scaled_race(scene, race, v, "--from/--to"));
+    }
+  } else {
+    const auto ref = parse_param(g.param, int(scene.balls.size()));
+    if (!ref)
+      throw InputError("--param", 0, g.param,
+                       unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
+                                         fmt::format("{}, or {} (the race's amplitudes times a factor)",
+                                                     param_symbols_help(), kUnroundnessParam)));
+    sweep.name = to_string(*ref);
+    sweep.unit = std::string(unit(ref->quantity));
+    for (double v : values) {
+      Scene s = scene;
+      set_checked(s, *ref, v, "--from/--to");
+      check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
+      races.push_back(race_shape(s));  // surface harmonics follow l and r; the rules are re-checked
+      scenes.push_back(std::move(s));
+    }
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    throw_if_stopped("sweep: unround race");
+    const ParamsN p = params_of<any_balls>(scenes[i]);
+    UnroundResult r = find_unround_equilibria(p, races[i]);
+    for (const auto& e : r.list)
+      if (!(e.residual < 1e-8))
+        throw NumericalError(fmt::format("{}={}: an equilibrium of the unround race has residual {:.3g}", sweep.name,
+                                         values[i], e.residual));
+    if (!r.doubt.empty()) fmt::print(stderr, "warning: {}={}: unround race: {}\n", sweep.name, values[i], r.doubt);
+    sweep.values.push_back(values[i]);
+    sweep.lambdas.push_back(unround_lambda(p, races[i]));
+    const double dyn = std::hypot(p.rotor.stiffness - p.omega * p.omega * p.total_mass(), p.rotor.damping * p.omega);
+    sweep.bare_whirls.push_back(p.omega * p.omega * p.rotor.unbalance / dyn);
+    sweep.points.push_back(std::move(r));
+  }
+  const ParamsN first = params_of<any_balls>(scenes.front());
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const std::filesystem::path dir(g.output_dir);
+  const auto csv_path = dir / fmt::format("sweep_{}.csv", sweep.name);
+  const auto summary_path = dir / fmt::format("summary_{}.csv", sweep.name);
+  const auto png_path = dir / fmt::format("summary_{}.png", sweep.name);
+  OutputTransaction out;
+  const auto staged_all = out.stage(csv_path, unround_sweep_csv(sweep, header));
+  const auto staged_summary = out.stage(summary_path, unround_sweep_summary_csv(sweep, header));
+  if (g.chart)
+    run_gnuplot(plots_dir() / "unround_sweep.gp",
+                {{"csv", staged_all.string()},
+                 {"summary", staged_summary.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", sweep.name},
+                 {"unit", sweep.unit},
+                 {"logx", g.logarithmic ? "1" : "0"},
+                 {"title", fmt::format("{}: unround race, sweep of {}", scene.file, sweep.name)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
+             g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+int continue_unroundness(const Scene& scene, const SceneOptions& options, double to, const ContinuationOptions& numerics,
+                         bool chart, const std::string& output_dir) {
+  require_unround(scene, "--param");
+  if (!(to > 0)) throw InputError("--to", 0, kUnroundnessParam, fmt::format("the factor's end must be > 0 (got {})", to));
+  const RaceShape race = race_shape(scene);
+  checked_scaled_race(scene, race, to, "--to");
+  const ParamsN p = params_of<any_balls>(scene);
+  const UnroundBranches b = continue_unround(p, race, to, numerics);
+  if (!b.doubt.empty()) fmt::print(stderr, "warning: unround race continuation: {}\n", b.doubt);
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  const std::filesystem::path dir(output_dir);
+  const auto branch_path = dir / "branch_unroundness.csv";
+  const auto special_path = dir / "special_unroundness.csv";
+  const auto png_path = dir / "branch_unroundness.png";
+  OutputTransaction out;
+  const auto staged_branches = out.stage(branch_path, unround_branch_csv(b, header));
+  const auto staged_specials = out.stage(special_path, unround_special_csv(b, header));
+  if (chart)
+    run_gnuplot(plots_dir() / "unround_branches.gp",
+                {{"branches", staged_branches.string()},
+                 {"specials", staged_specials.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"title", fmt::format("{}: unround race, continuation in the unroundness factor", scene.file)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  std::size_t points = 0, specials = 0;
+  for (const auto& br : b.branches) points += br.points.size(), specials += br.specials.size();
+  fmt::print(stderr, "wrote {} ({} branches, {} points) and {} ({} special points){}\n", branch_path.string(),
+             b.branches.size(), points, special_path.string(), specials,
+             chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+}  // namespace abu::cli
