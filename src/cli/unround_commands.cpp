@@ -2,6 +2,9 @@
 #include "unround_commands.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
+
+#include <sstream>
 
 #include "abu/continuation/unround_branches.hpp"
 #include "abu/core/cancel.hpp"
@@ -12,7 +15,9 @@
 #include "abu/io/race_scene.hpp"
 #include "abu/io/ranges.hpp"
 #include "abu/io/report_unround.hpp"
+#include "abu/io/map_setup.hpp"
 #include "abu/scan/scan.hpp"
+#include "abu/scan/unround_map.hpp"
 
 namespace abu::cli {
 
@@ -145,6 +150,131 @@ int continue_unroundness(const Scene& scene, const SceneOptions& options, double
   fmt::print(stderr, "wrote {} ({} branches, {} points) and {} ({} special points){}\n", branch_path.string(),
              b.branches.size(), points, special_path.string(), specials,
              chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+namespace {
+// One axis of an unround map: the unroundness factor, or a parameter of the scene.
+struct UnroundAxis {
+  Axis axis;
+  bool factor = false;  // the unroundness factor
+  std::string name, unit;
+};
+
+UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const RaceShape& race, const std::string& origin) {
+  UnroundAxis a;
+  if (spec.rfind(kUnroundnessParam + ":", 0) != 0) {
+    a.axis = parse_axis(spec, scene, origin);
+    if (a.axis.ball_count) throw InputError(origin, 0, spec, "the ball count is not an axis of an unround race map");
+    a.name = a.axis.name();
+    a.unit = std::string(unit(a.axis.param.quantity));
+    return a;
+  }
+  // unroundness:FROM:TO:N[:log], checked like the other axes (N in [1, 100000]).
+  std::vector<std::string> f;
+  std::stringstream in(spec);
+  for (std::string x; std::getline(in, x, ':');) f.push_back(x);
+  const auto bad = [&](const std::string& rule) { return InputError(origin, 0, spec, rule); };
+  if (f.size() != 4 && !(f.size() == 5 && f[4] == "log")) throw bad("expected unroundness:FROM:TO:N[:log]");
+  const std::vector<double> ends = parse_real_list(f[1] + "," + f[2], origin);
+  int count = 0;
+  try {
+    std::size_t used = 0;
+    count = std::stoi(f[3], &used);
+    if (used != f[3].size()) count = 0;
+  } catch (const std::exception&) {
+    count = 0;
+  }
+  if (count < 1 || count > kMaxUnroundSteps) throw bad(fmt::format("N must be an integer in [1, {}]", kMaxUnroundSteps));
+  a.axis.from = ends[0];
+  a.axis.to = ends[1];
+  a.axis.count = count;
+  a.axis.logarithmic = f.size() == 5;
+  if (!(a.axis.from >= 0 && a.axis.to >= 0)) throw bad("the unroundness factor is >= 0");
+  if (a.axis.logarithmic && !(a.axis.from > 0 && a.axis.to > 0)) throw bad("a log axis needs both ends > 0");
+  for (double v : {a.axis.from, a.axis.to}) checked_scaled_race(scene, race, v, origin);
+  a.factor = true;
+  a.name = kUnroundnessParam;
+  a.unit = std::string(1, '-');
+  return a;
+}
+}  // namespace
+
+int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {
+  require_unround(scene, request.x.rfind(kUnroundnessParam, 0) == 0 ? "--x" : "--y");
+  const RaceShape race = race_shape(scene);
+  const UnroundAxis x = unround_axis(request.x, scene, race, "--x"), y = unround_axis(request.y, scene, race, "--y");
+  if (x.name == y.name) throw InputError("--y", 0, request.y, "the two axes are one parameter");
+  UnroundMapJob job;
+  job.x_name = x.name, job.y_name = y.name, job.x_unit = x.unit, job.y_unit = y.unit;
+  for (int i = 0; i < x.axis.count; ++i) job.xs.push_back(x.axis.value(i));
+  for (int i = 0; i < y.axis.count; ++i) job.ys.push_back(y.axis.value(i));
+  // Every cell from a copy of the scene: its parameters set, the race re-read (surface
+  // harmonics follow l and r) and scaled by the factor axis.
+  job.cell_input = [&scene, &x, &y, &job](int ix, int iy) {
+    Scene s = scene;
+    double factor = 1;
+    for (const auto& [a, v] : {std::pair{&x, job.xs[std::size_t(ix)]}, std::pair{&y, job.ys[std::size_t(iy)]}}) {
+      if (a->factor)
+        factor = v;
+      else
+        set_checked(s, a->axis.param, v, "--x/--y");
+    }
+    return std::pair{params_of<any_balls>(s), scaled_race(race_shape(s), factor)};
+  };
+  job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene));
+  namespace fs = std::filesystem;
+  const fs::path dir(request.output_dir);
+  const auto summary_path = dir / fmt::format("summary_{}_{}.csv", x.name, y.name);
+  const auto png_path = dir / fmt::format("summary_{}_{}.png", x.name, y.name);
+  const fs::path tiles_dir = dir / fmt::format(".unround_map_{}_{}.tiles", x.name, y.name);
+  fs::create_directories(dir);
+  const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()),
+                        request.resume ? TileStore::Mode::resume
+                        : request.fresh ? TileStore::Mode::discard
+                                        : TileStore::Mode::fresh);
+  const std::vector<int> missing = store.missing();
+  ProgressMeter meter(int(job.xs.size()), int(job.xs.size() - missing.size()),
+                      !request.quiet && (request.progress || isatty(STDERR_FILENO)));
+  MapRunOptions run;
+  run.threads = request.threads;
+  run.stop = &stop_flag();
+  run.progress = &meter;
+  set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
+                                 tiles_dir.string()));
+  const MapRunStats stats =
+      compute_unround_map_tiles(job, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
+  meter.finish();
+  set_interrupt_note({});
+  if (stats.interrupted || stop_requested()) {
+    fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
+               job.xs.size() - store.missing().size(), job.xs.size(), tiles_dir.string());
+    return interrupted_exit_code();
+  }
+  std::ostringstream none, summary;
+  for (int t = 0; t < int(job.xs.size()); ++t) store.append(t, none, summary);
+  {
+    OutputTransaction out;
+    const auto staged = out.stage(summary_path, unround_map_header(job) + summary.str());
+    if (request.chart)
+      run_gnuplot(plots_dir() / "unround_map.gp",
+                  {{"csv", staged.string()},
+                   {"png", out.reserve(png_path).string()},
+                   {"xname", x.name},
+                   {"yname", y.name},
+                   {"xunit", x.unit},
+                   {"yunit", y.unit},
+                   {"logx", x.axis.logarithmic ? "1" : "0"},
+                   {"logy", y.axis.logarithmic ? "1" : "0"},
+                   {"title", fmt::format("{}: unround race map", scene.file)},
+                   {"subtitle", chart_subtitle(scene, options.overrides)}});
+    out.commit();
+  }
+  store.remove();
+  if (!request.quiet)
+    fmt::print(stderr, "{} cells, {} equilibria, {} tiles computed in {:.2f} s -> {}{}\n", stats.cells,
+               stats.equilibria, stats.tiles, stats.seconds, summary_path.string(),
+               request.chart ? fmt::format(" and {}", png_path.string()) : std::string());
   return exit_ok;
 }
 

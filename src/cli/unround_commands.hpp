@@ -28,4 +28,15 @@ int sweep_unround(const Scene& scene, const SceneOptions& options, const Unround
 int continue_unroundness(const Scene& scene, const SceneOptions& options, double to, const ContinuationOptions& numerics,
                          bool chart, const std::string& output_dir);
 
+struct UnroundMapRequest {
+  std::string x, y;  ///< NAME:FROM:TO:N[:log] (omega already in rad/s), NAME a parameter or "unroundness"
+  std::string command_line;  ///< what determines the bytes (no threads, resume, output directory)
+  int threads = 1;
+  bool resume = false, fresh = false, progress = false, quiet = false, chart = true;
+  std::string output_dir;
+};
+/// summary_X_Y.csv and summary_X_Y.png: per cell the count of equilibria and stable ones,
+/// the best stable |q|, Lambda and the first-order flag (scan/unround_map.hpp).
+int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request);
+
 }  // namespace abu::cli

@@ -51,15 +51,6 @@ std::string design_line(const UnroundResult& r, const ParamsN& p) {
 }
 }  // namespace
 
-double unround_lambda(const ParamsN& p, const RaceShape& race) {
-  double lambda = 0;
-  const double dyn = dynamic_stiffness(p), w2 = p.omega * p.omega;
-  for (std::size_t i = 0; i < race.balls.size() && i < p.balls.size(); ++i)
-    for (const auto& h : race.balls[i])
-      lambda = std::max(lambda, h.order * h.order * h.amplitude * dyn / (p.balls[i].mass * w2));
-  return lambda;
-}
-
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene) {
   const int n = p.n_balls();
   std::string out = fmt::format("{}: unround race (model.md §11), omega = {} rad/s, {} balls, law {}\n", scene,

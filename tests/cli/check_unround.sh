@@ -6,7 +6,7 @@
 #  2. an eccentric race (order 1, offset d = l eps) leaves the best stable state's
 #     residual whirl |q| = d (JSON best_stable.q_abs) to 1e-12 relative;
 #  3. the same run twice gives the same bytes; -o writes the file atomically;
-#  4. `continue --param omega`, `map`, `simulate` refuse an unround scene (exit 2 with the
+#  4. `continue --param omega`, `simulate` refuse an unround scene (exit 2 with the
 #     reason), never computing the round race silently;
 #  6. `sweep` on a zero-amplitude race is the round scene's sweep byte for byte; an
 #     unroundness sweep of the eccentric race leaves |q| = e d at every factor e (1e-12);
@@ -41,7 +41,7 @@ mkdir -p "$work/d1" "$work/d2"
 if cmp -s "$work/d1/e.csv" "$work/d2/e.csv"; then check ok "deterministic CSV"; else check no "deterministic CSV"; fi
 
 for cmd in "continue --param omega --to 1000 -o $work/co" \
-           "map --x omega:100:200:3 --y mu:1e-3:2e-3:3 -o $work/mp" "simulate --t-end 0.01 -o $work/si"; do
+           "simulate --t-end 0.01 -o $work/si"; do
   "$bin" ${cmd%% *} "$work/ecc.toml" ${cmd#* } > /dev/null 2> "$work/err"
   rc=$?
   if [ $rc -eq 2 ] && grep -q "unround" "$work/err"; then check ok "${cmd%% *} refuses an unround scene"; else check no "${cmd%% *} refuses an unround scene (exit $rc: $(head -c 300 "$work/err"))"; fi
@@ -86,4 +86,22 @@ ok = ok and max(float(r["unroundness"]) for r in pts) == 2.0
 sys.exit(0 if ok else 1)
 PY
 then check ok "continuation: eccentric race |q| = e d along the balanced branch up to e = 2"; else check no "continuation: eccentric race |q| = e d along the balanced branch up to e = 2"; fi
+# 7. a map over (omega, unroundness): the same bytes on 1 and 2 threads; the eccentric
+#    race's design figure |q| = e d in every cell (model.md §11.10)
+for t in 1 2; do
+  "$bin" map "$work/ecc.toml" --x omega:400:1200:3 --y unroundness:0.5:1.5:3 --threads $t --quiet --no-chart -o "$work/map$t" > /dev/null 2>&1
+done
+if [ -s "$work/map1/summary_omega_unroundness.csv" ] && cmp -s "$work/map1/summary_omega_unroundness.csv" "$work/map2/summary_omega_unroundness.csv"; then
+  check ok "unround map: 1 and 2 threads give the same bytes"
+else
+  check no "unround map: 1 and 2 threads give the same bytes"
+fi
+if /usr/bin/python3 - "$work/map1/summary_omega_unroundness.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith('#')))
+d = 0.018 * 2e-4
+ok = len(rows) == 9 and all(abs(float(r["best_q_abs"]) - float(r["unroundness"]) * d) <= 1e-12 * float(r["unroundness"]) * d for r in rows)
+sys.exit(0 if ok else 1)
+PY
+then check ok "unround map: eccentric race |q| = e d in 9 cells"; else check no "unround map: eccentric race |q| = e d in 9 cells"; fi
 exit $fail

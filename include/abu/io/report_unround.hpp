@@ -12,11 +12,7 @@
 
 namespace abu {
 
-/// Lambda = max over balls and harmonics of k^2 eps_k |K + iC| / (m_i omega^2) (§11.6):
-/// the race-lock stiffness over the balancing stiffness; first order holds for Lambda << 1.
-double unround_lambda(const ParamsN& p, const RaceShape& race);
-/// Lambda <= this is reported as the first-order regime (marked in tables and maps).
-inline constexpr double kFirstOrderLambda = 0.1;
+// unround_lambda and kFirstOrderLambda (§11.6): model/unround_race.hpp.
 
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene);
 /// `header`: the provenance comment lines (io.hpp).

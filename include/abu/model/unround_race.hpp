@@ -69,6 +69,12 @@ RaceHarmonics surface_to_path(const RaceHarmonics& surface, double l, double r);
 /// on 4096 k_max angles (and an offset below l for order 1).
 std::optional<std::string> path_violation(const RaceHarmonics& h, double l, double r);
 
+/// Lambda = max over balls and harmonics of k^2 eps_k |K + iC| / (m_i omega^2) (§11.6):
+/// the race-lock stiffness over the balancing stiffness; first order holds for Lambda << 1.
+double unround_lambda(const ParamsN& p, const RaceShape& race);
+/// Lambda <= this is reported as the first-order regime (marked in tables, sweeps and maps).
+inline constexpr double kFirstOrderLambda = 0.1;
+
 using LongParamsN = ParamsT<long double, any_balls>;
 
 /// A(beta) of §11.3 (ball rows multiplied by s_i'); symmetric positive definite.
