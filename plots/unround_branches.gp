@@ -1,6 +1,6 @@
 # Branches of an unround race's equilibria in the unroundness factor (model.md §11.10):
 # the residual whirl |q| against the factor e (every race amplitude times e), stable solid
-# and thick, unstable dashed; folds LP, Hopf HB and real crossings BP marked. Re-run with
+# and thick, unstable dashed; folds LP, branch points BP and Hopf points HB marked. Re-run with
 #   gnuplot -e "branches='out/branch_unroundness.csv'; specials='out/special_unroundness.csv'; png='b.png'; title='x'" plots/unround_branches.gp
 if (!exists("branches")) branches = 'out/branch_unroundness.csv'
 if (!exists("specials")) specials = 'out/special_unroundness.csv'
@@ -51,4 +51,4 @@ plot for [k = 1:nb] branches using (column("unroundness")):(pick(k, 1)) with lin
      for [k = 1:nb] branches using (column("unroundness")):(pick(k, 0)) with lines lw 1 dt (6,4) lc k title (k == 1 ? 'unstable' : ''), \
      (has_specials ? specials : 1/0) using (column("unroundness")):(special('LP')) with points pt 5 ps 1.2 lc rgb 'black' title (has_lp ? 'LP (fold)' : ''), \
      (has_specials ? specials : 1/0) using (column("unroundness")):(special('HB')) with points pt 9 ps 1.4 lc rgb 'red' title (has_hb ? 'HB (stability lost/gained, complex pair)' : ''), \
-     (has_specials ? specials : 1/0) using (column("unroundness")):(special('BP')) with points pt 13 ps 1.2 lc rgb 'blue' title (has_bp ? 'stability change (real eigenvalue)' : '')
+     (has_specials ? specials : 1/0) using (column("unroundness")):(special('BP')) with points pt 13 ps 1.2 lc rgb 'blue' title (has_bp ? 'BP (branch point)' : '')

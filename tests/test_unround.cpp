@@ -290,3 +290,39 @@ TEST_CASE("unround race: the eccentric race's balanced branch keeps |q| = e d (�
   }
   CHECK(on == 2);
 }
+
+TEST_CASE("unround race: four balls by multistart, said to be not proven complete (§11.11)", "[unround]") {
+  // n = 4, a small oval (eps_2 = 1e-6, Lambda ~ 0.01): every equilibrium found solves the
+  // static equations to rounding (residual < 1e-13); each aligned equilibrium of the round
+  // race (isolated, nondegenerate) moves by about k eps l / |q| rad (the race's slope l l'
+  // against the rotor's pull l |q| in g_i, §11.4: 7e-3 rad at |q| = 5.3 um) and is found
+  // within 10 times that, its |q| within 1 %; the
+  // balanced set (dimension 2) leaves isolated near-balanced equilibria (|q| = O(eps l) <
+  // 1e-7 m), at least one stable; and the list says it is not proven complete.
+  const ParamsN p = base(4);
+  const RaceShape race = same_for_all(4, {{2, 1e-6, 0.3}});
+  const UnroundResult r = find_unround_equilibria(p, race);
+  CHECK(r.doubt.find("not proven complete") != std::string::npos);
+  for (const auto& e : r.list) CHECK(e.residual < 1e-13);
+  int aligned = 0;
+  for (const auto& round : find_equilibria(p).list) {
+    if (round.family == Family::balanced) continue;
+    ++aligned;
+    const double q_round = std::hypot(round.position(0), round.position(1));
+    const double shift = 10 * 2 * 1e-6 * 0.018 / q_round;
+    const auto near = std::any_of(r.list.begin(), r.list.end(), [&](const UnroundEquilibrium& u) {
+      L d = 0;
+      for (int i = 2; i < 6; ++i)
+        d = std::max(d, std::abs(std::remainder(u.position(i) - L(round.position(i)), 2 * std::numbers::pi_v<L>)));
+      return d < shift && std::abs(u.amplitude / q_round - 1) < 0.01;
+    });
+    INFO("round aligned |q| " << q_round << " beta " << round.position(2) << " " << round.position(3) << " "
+                              << round.position(4) << " " << round.position(5));
+    CHECK(near);
+  }
+  CHECK(aligned > 0);
+  const auto balanced = std::count_if(r.list.begin(), r.list.end(), [](const auto& e) { return e.amplitude < 1e-7; });
+  CHECK(balanced >= 2);
+  REQUIRE(r.best_stable);
+  CHECK(r.list[*r.best_stable].amplitude < 1e-7);
+}

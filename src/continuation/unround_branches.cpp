@@ -119,16 +119,20 @@ struct FactorProblem : FactorSystem {
       UnroundSpecialPoint s;
       s.point = point_at(*this, (a + b) / 2);
       if (test == 0) {
-        s.kind = "LP";
+        // The index changes sign: where the branch turns back in e (the tangent's e
+        // component changes sign) a fold; where it goes on through, a branch point (the
+        // mirror-symmetric pitchforks of two equal balls, where a pair of mirror states
+        // meets the symmetric branch).
+        s.kind = (seg.from_tangent(n()) > 0) != (seg.to_tangent(n()) > 0) ? "LP" : "BP";
       } else {
         // The eigenvalue on the imaginary axis: a complex pair (Hopf) or a real one.
         const auto& sp = s.point.state.spectrum;
         std::complex<double> top = sp.eigenvalues[0];
         for (int j = 0; j < sp.count; ++j)
           if (sp.eigenvalues[std::size_t(j)].real() > top.real()) top = sp.eigenvalues[std::size_t(j)];
-        s.kind = std::abs(top.imag()) > 1e-6 * std::max(1.0, std::abs(top)) ? "HB" : "BP";
-        // A stability change at a fold is the fold itself (already located): not repeated.
-        if (changed & 1u && s.kind == "BP") continue;
+        s.kind = std::abs(top.imag()) > 1e-6 * std::max(1.0, std::abs(top)) ? "HB" : "ST";
+        // A real eigenvalue through zero at an index change is that point (already located).
+        if (changed & 1u && s.kind == "ST") continue;
       }
       specials.push_back(std::move(s));
     }
@@ -173,10 +177,6 @@ bool on_branch(const FactorSystem& sys, const UnroundBranch& br, const UnroundAn
 UnroundBranches continue_unround(const ParamsN& pd, const RaceShape& race, double factor_max,
                                  const ContinuationOptions& options) {
   const int n = pd.n_balls();
-  if (n > 3)
-    throw NotSupportedError(fmt::format("continuation in the unroundness with {} balls (its starts come from the "
-                                        "complete search of model.md §11.4, n = 2 and 3)",
-                                        n));
   if (!(factor_max > 0)) throw InputError("--to", 0, "unroundness", "the unroundness factor's end must be > 0");
   const LongParamsN p = pd.cast<L>();
   UnroundBranches out;

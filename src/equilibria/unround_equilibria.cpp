@@ -12,6 +12,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
 
 namespace abu {
 
@@ -178,20 +179,13 @@ UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape&
   return e;
 }
 
-UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
-  const int n = pd.n_balls();
-  if (n > 3)
-    throw NotSupportedError(fmt::format("an unround race with {} balls (the search of model.md §11.4 covers n = 2 "
-                                        "and 3)",
-                                        n));
-  const LongParamsN p = pd.cast<L>();
+namespace {
+// §11.4's exclusion box search on T^n (n = 2, 3): the zeros of g, every one (see the header).
+std::vector<Angles> box_search(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
+                               UnroundResult& result) {
+  const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
-  if (!(dyn > 0))
-    throw NumericalError(fmt::format("omega={}: K = C = 0 (c = 0 at omega = omega_n): q is not determined by the "
-                                     "balls (model.md §11.4)",
-                                     pd.omega));
-
   // Lipschitz bounds G_ij of g_i in beta_j (scaled by 1/l_i^2), valid on the whole torus.
   std::vector<PathBounds> pb(static_cast<std::size_t>(n));
   L qmax = p.rotor.unbalance;
@@ -220,7 +214,6 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
   const int leaf = search.leaf_boxes > 0 ? search.leaf_boxes : (n == 2 ? 512 : 128);
   const L leaf_half = kTwoPi / L(std::max(leaf, start)) / 2;
 
-  UnroundResult result;
   std::vector<Box> level;
   {
     long long total = 1;
@@ -296,6 +289,60 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
   }
 
   result.search.leaves = std::ssize(leaves);
+  return zeros;
+}
+
+// n >= 4 (model.md §11.11): Newton from the round race's equilibria (its aligned patterns
+// and the samples of its balanced set, whose isolated survivors lie near them for small
+// unroundness) and from search.multistart quasi-random points of T^n (Halton). Not
+// proven complete: the result says so.
+std::vector<Angles> multistart(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
+                               UnroundResult& result) {
+  const int n = p.n_balls();
+  std::vector<Angles> starts;
+  for (const auto& e : find_equilibria(p.cast<double>()).list) starts.push_back(e.position.tail(n).cast<L>());
+  static constexpr std::array<int, max_balls> primes{2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  for (int k = 1; k <= search.multistart; ++k) {
+    Angles a(n);
+    for (int i = 0; i < n; ++i) {
+      // The radical inverse of k in base primes[i], in [0, 1).
+      L f = 1, x = 0;
+      for (int m = k; m > 0; m /= primes[std::size_t(i)]) {
+        f /= primes[std::size_t(i)];
+        x += f * (m % primes[std::size_t(i)]);
+      }
+      a(i) = x * kTwoPi;
+    }
+    starts.push_back(a);
+  }
+  std::vector<Angles> zeros;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    if (k % 1024 == 0) throw_if_stopped("unround equilibria: multistart");
+    const auto z = newton(p, race, starts[k]);
+    if (!z) {
+      ++result.search.unresolved;
+      continue;
+    }
+    if (std::none_of(zeros.begin(), zeros.end(), [&](const Angles& a) { return torus_distance(a, *z) < 1e-9L; }))
+      zeros.push_back(*z);
+  }
+  result.search.leaves = std::ssize(starts);
+  return zeros;
+}
+}  // namespace
+
+UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
+  const int n = pd.n_balls();
+  const LongParamsN p = pd.cast<L>();
+  const L w2 = p.omega * p.omega;
+  const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
+  if (!(dyn > 0))
+    throw NumericalError(fmt::format("omega={}: K = C = 0 (c = 0 at omega = omega_n): q is not determined by the "
+                                     "balls (model.md §11.4)",
+                                     pd.omega));
+
+  UnroundResult result;
+  const std::vector<Angles> zeros = n <= 3 ? box_search(p, race, search, result) : multistart(p, race, search, result);
   for (const Angles& beta : zeros) {
     UnroundEquilibrium e = unround_equilibrium_at(p, race, beta);
     result.search.index_sum += e.index;
@@ -312,7 +359,12 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
       result.best_stable = k;
       break;
     }
-  if (result.search.budget_exhausted)
+  if (n > 3)
+    result.doubt = fmt::format("not proven complete: with {} balls the equilibria come from Newton at the round race's "
+                               "equilibria and {} quasi-random starts, not from the box search of model.md §11.4 "
+                               "(n = 2, 3); {} starts did not converge, index sum {}",
+                               n, search.multistart, result.search.unresolved, result.search.index_sum);
+  else if (result.search.budget_exhausted)
     result.doubt = (fmt::format("the box search stopped at {} leaves: equilibria may be missing",
                                                search.max_leaves));
   else if (result.search.unresolved > 0 || result.search.index_sum != 0)

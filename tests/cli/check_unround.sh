@@ -8,6 +8,7 @@
 #  3. the same run twice gives the same bytes; -o writes the file atomically;
 #  4. `continue --param omega`, `simulate` refuse an unround scene (exit 2 with the
 #     reason), never computing the round race silently;
+#  8. four balls: equilibria by multistart, JSON search.complete false with the reason;
 #  6. `sweep` on a zero-amplitude race is the round scene's sweep byte for byte; an
 #     unroundness sweep of the eccentric race leaves |q| = e d at every factor e (1e-12);
 #     `continue --param unroundness` keeps |q| = e d along the branch of the balanced state;
@@ -104,4 +105,13 @@ ok = len(rows) == 9 and all(abs(float(r["best_q_abs"]) - float(r["unroundness"])
 sys.exit(0 if ok else 1)
 PY
 then check ok "unround map: eccentric race |q| = e d in 9 cells"; else check no "unround map: eccentric race |q| = e d in 9 cells"; fi
+# 8. n = 4 (model.md §11.11): not proven complete, and the output says so
+sed 's/^count = 11 /count = 4 /' "$src/data/scenes/ring11.toml" > "$work/r4.toml"
+printf '\n[race]\nunroundness = [{ order = 2, amplitude = 1e-6, phase = 0.3 }]\n' >> "$work/r4.toml"
+if "$bin" equilibria "$work/r4.toml" --format json 2> /dev/null | /usr/bin/python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+s = d["search"]
+sys.exit(0 if d["balls"] == 4 and s["complete"] is False and "not proven complete" in s["doubt"] and len(d["equilibria"]) > 0 else 1)'
+then check ok "four balls: equilibria found, complete: false with the reason"; else check no "four balls: equilibria found, complete: false with the reason"; fi
 exit $fail

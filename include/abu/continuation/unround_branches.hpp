@@ -5,8 +5,8 @@
 // (scaled_race: e = 1 is the scene, e = 0 the round race). The branch is the zero set of
 // the reduced ball conditions g(beta; e) = 0 of §11.4 in the n + 1 unknowns (beta, e / e_max);
 // q follows from beta (§11.4). Along it: the index sign det(dg/dbeta), whose change is a
-// fold (LP) in e, and the spectrum of §11.5, whose abscissa's sign change is a change of
-// stability (a fold, or a Hopf point HB when a complex pair crosses). Both are located
+// fold (LP) in e or a branch point (BP), and the spectrum of §11.5, whose abscissa's sign
+// change is a change of stability (at a fold, or a Hopf point HB when a complex pair crosses). Both are located
 // by bisection on the secant between two branch points, each trial point corrected onto
 // the branch.
 //
@@ -36,10 +36,11 @@ struct UnroundBranchPoint {
   UnroundEquilibrium state;   ///< position, |q| [m], index, spectrum [1/s] (rotating frame)
 };
 
-/// A located special point: LP (det dg/dbeta = 0, a fold in e) or a change of stability
-/// (HB when the abscissa belongs to a complex pair, else a real eigenvalue crossing).
+/// A located special point: det dg/dbeta = 0 where the branch turns back in e (LP, a fold)
+/// or goes on through (BP, a branch point: a pitchfork of mirror states), or a change of
+/// stability elsewhere (HB when a complex pair crosses, ST a real eigenvalue).
 struct UnroundSpecialPoint {
-  std::string kind;  ///< "LP", "HB" or "BP"
+  std::string kind;  ///< "LP", "BP", "HB" or "ST"
   UnroundBranchPoint point;
 };
 
@@ -57,7 +58,8 @@ struct UnroundBranches {
 };
 
 /// Every branch in e over [0, factor_max] (factor_max > 0) from the starts above.
-/// Throws NotSupportedError for n > 3 (the start search), NumericalError for K = C = 0.
+/// For n >= 4 the starts come from the multistart of find_unround_equilibria (not proven
+/// complete: `doubt` says so). Throws NumericalError for K = C = 0.
 UnroundBranches continue_unround(const ParamsN& p, const RaceShape& race, double factor_max,
                                  const ContinuationOptions& options = {});
 
