@@ -84,9 +84,7 @@ int sweep_any_balls(Scene scene, const SweepOptions& o) {
   const ParamsN first = params_of<any_balls>(scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(o.output_dir);
-  const auto csv_path = dir / fmt::format("sweep_{}.csv", result.name);
-  const auto summary_path = dir / fmt::format("summary_{}.csv", result.name);
-  const auto png_path = dir / fmt::format("summary_{}.png", result.name);
+  const auto [csv_path, summary_path, png_path] = sweep_paths(dir, result.name);
   OutputTransaction out;
   std::vector<ParamsN> params;
   for (const auto& s : scenes) params.push_back(params_of<any_balls>(s));

@@ -42,6 +42,11 @@ void require_unround(const Scene& scene, const std::string& option) {
 }
 }  // namespace
 
+SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name) {
+  return {dir / fmt::format("sweep_{}.csv", name), dir / fmt::format("summary_{}.csv", name),
+          dir / fmt::format("summary_{}.png", name)};
+}
+
 int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
   if (g.steps < 1 || g.steps > kMaxUnroundSteps)
     throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxUnroundSteps, g.steps));
@@ -97,10 +102,7 @@ int sweep_unround(const Scene& scene, const SceneOptions& options, const Unround
   }
   const ParamsN first = params_of<any_balls>(scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
-  const std::filesystem::path dir(g.output_dir);
-  const auto csv_path = dir / fmt::format("sweep_{}.csv", sweep.name);
-  const auto summary_path = dir / fmt::format("summary_{}.csv", sweep.name);
-  const auto png_path = dir / fmt::format("summary_{}.png", sweep.name);
+  const auto [csv_path, summary_path, png_path] = sweep_paths(g.output_dir, sweep.name);
   OutputTransaction out;
   const auto staged_all = out.stage(csv_path, unround_sweep_csv(sweep, header));
   const auto staged_summary = out.stage(summary_path, unround_sweep_summary_csv(sweep, header));

@@ -3,6 +3,7 @@
 // Private to the CLI.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "abu/continuation/arclength.hpp"
@@ -12,6 +13,13 @@ namespace abu::cli {
 
 /// The continuation / sweep parameter that scales every race amplitude (§11.10).
 inline const std::string kUnroundnessParam = "unroundness";
+
+/// The files of a sweep over NAME: sweep_NAME.csv, summary_NAME.csv, summary_NAME.png
+/// (the n-ball sweep and the unround race's).
+struct SweepPaths {
+  std::filesystem::path csv, summary, png;
+};
+SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name);
 
 struct UnroundGrid {
   std::string param;  ///< "unroundness" or a parameter symbol (omega, U, ...)

@@ -171,9 +171,15 @@ def sweep_point(binary, scene_path, factor, n):
             return None
         with open(f"{work}/sweep_unroundness.csv") as fh:
             rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-    first = rows[0]["unroundness"] if rows else None
+    # --steps 1 gives the value twice (both ends): the first value's rows are the leading
+    # run of increasing equilibrium numbers.
+    first = []
+    for r in rows:
+        if first and int(r["equilibrium"]) <= int(first[-1]["equilibrium"]):
+            break
+        first.append(r)
     return [{"beta": [float(r[f"beta{i + 1}"]) for i in range(n)], "q1": r["q1"], "q2": r["q2"], "q_abs": r["q_abs"]}
-            for r in rows if r["unroundness"] == first]
+            for r in first]
 
 
 def main(argv):
