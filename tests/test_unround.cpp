@@ -8,6 +8,7 @@
 #include <complex>
 #include <numbers>
 
+#include "abu/continuation/unround_branches.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/model/model.hpp"
@@ -219,4 +220,109 @@ TEST_CASE("unround race: the reference values of model.md §11.9", "[unround]") 
       CHECK(it->spectrum.stability == Stability::stable);
     }
   }
+}
+
+namespace {
+// Branch crossings of the level e = f (f strictly between the branch points' factors).
+std::vector<UnroundBranchPoint> crossings(const UnroundBranches& b, double f) {
+  std::vector<UnroundBranchPoint> out;
+  for (const auto& br : b.branches)
+    for (std::size_t k = 0; k + 1 < br.points.size(); ++k)
+      if ((br.points[k].factor - f) * (br.points[k + 1].factor - f) < 0) out.push_back(br.points[k]);
+  return out;
+}
+}  // namespace
+
+TEST_CASE("unround race: continuation in the unroundness agrees with the complete search (§11.10)", "[unround][unround_branches]") {
+  // An oval (k = 2, phase 0) of 1e-4 on both balls of the default scene, e in [0, 3]: the
+  // count grows from 6 (round race) to 16 at e = 3 through folds (§11.9). Every branch
+  // point checked is an equilibrium the search finds at its own e, beta to 1e-10 rad and
+  // |q| to 1e-10 relative (both solve g = 0 to rounding: Newton in long double); the
+  // number of branches crossing e = 0.5 and e = 2 is the search's count there.
+  const ParamsN p = base(2);
+  const RaceShape race = same_for_all(2, {{2, 1e-4, 0.0}});
+  const UnroundBranches b = continue_unround(p, race, 3.0);
+  CHECK(b.doubt == "");
+  REQUIRE(!b.branches.empty());
+  int folds = 0;
+  for (const auto& br : b.branches)
+    for (const auto& s : br.specials) folds += s.kind == "LP" ? 1 : 0;
+  CHECK(folds >= 2);  // 6 -> 16 equilibria: pairs born at folds inside (0, 3)
+  for (double f : {0.5, 2.0}) {
+    const UnroundResult r = find_unround_equilibria(p, scaled_race(race, f));
+    INFO("e " << f);
+    CHECK(crossings(b, f).size() == r.list.size());
+  }
+  // Points spread over the branches against the search at their own factor.
+  int checked = 0;
+  for (const auto& br : b.branches)
+    for (std::size_t k = 0; k < br.points.size(); k += 29) {
+      const auto& pt = br.points[k];
+      const UnroundResult r = find_unround_equilibria(p, scaled_race(race, pt.factor));
+      const auto match = std::find_if(r.list.begin(), r.list.end(), [&](const UnroundEquilibrium& e) {
+        L d = 0;
+        for (int i = 2; i < 4; ++i)
+          d = std::max(d, std::abs(std::remainder(e.position(i) - pt.state.position(i), 2 * std::numbers::pi_v<L>)));
+        return d < 1e-10L;
+      });
+      INFO("branch point at e " << pt.factor);
+      REQUIRE(match != r.list.end());
+      CHECK(std::abs(match->amplitude - pt.state.amplitude) <= 1e-10 * match->amplitude + 1e-20);
+      CHECK(match->spectrum.stability == pt.state.spectrum.stability);
+      ++checked;
+    }
+  CHECK(checked >= 6);
+}
+
+TEST_CASE("unround race: the eccentric race's balanced branch keeps |q| = e d (§11.4, §11.10)", "[unround][unround_branches]") {
+  // Along e the exact solution q = -e D of (11.4.4) is followed from the round race's
+  // balanced states: every point's |q| = e l eps to 1e-12 relative.
+  const double l = 0.018, eps = 2e-4, phi = 0.7;
+  const ParamsN p = base(2, FrictionLaw::coulomb);
+  const UnroundBranches b = continue_unround(p, same_for_all(2, {{1, eps, phi}}), 3.0);
+  int on = 0;
+  for (const auto& br : b.branches) {
+    if (br.start_factor != 0 || br.points.front().state.amplitude > 1e-15) continue;  // the balanced states
+    ++on;
+    CHECK(br.points.back().factor == Approx(3.0).epsilon(1e-15));
+    for (const auto& pt : br.points)
+      CHECK(std::abs(pt.state.amplitude - pt.factor * l * eps) <= 1e-12 * pt.factor * l * eps + 1e-20);
+  }
+  CHECK(on == 2);
+}
+
+TEST_CASE("unround race: four balls by multistart, said to be not proven complete (§11.11)", "[unround]") {
+  // n = 4, a small oval (eps_2 = 1e-6, Lambda ~ 0.01): every equilibrium found solves the
+  // static equations to rounding (residual < 1e-13); each aligned equilibrium of the round
+  // race (isolated, nondegenerate) moves by about k eps l / |q| rad (the race's slope l l'
+  // against the rotor's pull l |q| in g_i, §11.4: 7e-3 rad at |q| = 5.3 um) and is found
+  // within 10 times that, its |q| within 1 %; the
+  // balanced set (dimension 2) leaves isolated near-balanced equilibria (|q| = O(eps l) <
+  // 1e-7 m), at least one stable; and the list says it is not proven complete.
+  const ParamsN p = base(4);
+  const RaceShape race = same_for_all(4, {{2, 1e-6, 0.3}});
+  const UnroundResult r = find_unround_equilibria(p, race);
+  CHECK(r.doubt.find("not proven complete") != std::string::npos);
+  for (const auto& e : r.list) CHECK(e.residual < 1e-13);
+  int aligned = 0;
+  for (const auto& round : find_equilibria(p).list) {
+    if (round.family == Family::balanced) continue;
+    ++aligned;
+    const double q_round = std::hypot(round.position(0), round.position(1));
+    const double shift = 10 * 2 * 1e-6 * 0.018 / q_round;
+    const auto near = std::any_of(r.list.begin(), r.list.end(), [&](const UnroundEquilibrium& u) {
+      L d = 0;
+      for (int i = 2; i < 6; ++i)
+        d = std::max(d, std::abs(std::remainder(u.position(i) - L(round.position(i)), 2 * std::numbers::pi_v<L>)));
+      return d < shift && std::abs(u.amplitude / q_round - 1) < 0.01;
+    });
+    INFO("round aligned |q| " << q_round << " beta " << round.position(2) << " " << round.position(3) << " "
+                              << round.position(4) << " " << round.position(5));
+    CHECK(near);
+  }
+  CHECK(aligned > 0);
+  const auto balanced = std::count_if(r.list.begin(), r.list.end(), [](const auto& e) { return e.amplitude < 1e-7; });
+  CHECK(balanced >= 2);
+  REQUIRE(r.best_stable);
+  CHECK(r.list[*r.best_stable].amplitude < 1e-7);
 }

@@ -180,8 +180,8 @@ Scene load(const SceneOptions& options) {
 namespace {
 void refuse_unround(const Scene& scene, std::string_view command) {
   if (!scene.race.round())
-    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria` "
-                                        "analyses it so far",
+    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria`, "
+                                        "`sweep` and `continue --param unroundness` analyse it so far",
                                         command, scene.file));
 }
 
@@ -214,7 +214,7 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
 
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles) {
   if (!handles.lugre) refuse_lugre(scene, command);
-  refuse_unround(scene, command);
+  if (!handles.unround) refuse_unround(scene, command);
   refuse_anisotropic(scene, command);
   if (!handles.set_valued) refuse_set_valued(scene, command);
 }

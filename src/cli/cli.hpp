@@ -48,10 +48,11 @@ std::vector<double> parse_real_list(const std::string& text, const std::string& 
 /// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
 /// field; InputError at the `law` key) — except what `handles` says the command carries
 /// itself: LuGre's bristle states (model.md §12.7), the event-driven stick-slip of
-/// `coulomb-set` (§14.5).
+/// `coulomb-set` (§14.5), an unround race (its own path, unround_commands.hpp, §11.10).
 struct Handles {
   bool lugre = false;       ///< the 3n + 4 LuGre state (§12.7, §12.8)
-  bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8)
+  bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8) or the stick set (§14.10)
+  bool unround = false;     ///< an unround race (§11.10)
 };
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
 

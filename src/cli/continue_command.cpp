@@ -19,6 +19,7 @@
 #include "abu/io/ranges.hpp"
 #include "abu/io/report.hpp"
 #include "commands.hpp"
+#include "unround_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -285,7 +286,7 @@ Action add_continue_command(CLI::App& app) {
       "branch points (BP) and Hopf points (HB, with the first Lyapunov coefficient) located; with --param2 the "
       "fold and Hopf points are continued in two parameters.");
   add_scene_options(*sub, o->scene);
-  sub->add_option("--param", o->param, fmt::format("Continuation parameter: {}", param_symbols_help()))->required();
+  sub->add_option("--param", o->param, fmt::format("Continuation parameter: {}, or unroundness (an unround race's amplitudes times a factor, from 0 to --to; model.md §11.10)", param_symbols_help()))->required();
   sub->add_option("--to", o->to, "End value of the parameter (it starts at the scene's value; omega in --units)")
       ->required();
   auto* fam = sub->add_option("--from-equilibrium", o->family, "Start only from this family's equilibria")
@@ -328,6 +329,16 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (o->param == kUnroundnessParam) {  // model.md §11.10
+      refuse_unmodelled(scene, "continue", {.unround = true});
+      if (!o->param2.empty() || o->cycles || !o->family.empty() || !o->state.empty())
+        throw InputError("--param unroundness", 0, kUnroundnessParam,
+                         "traces every branch in one parameter: --param2, --cycles, --from-equilibrium and "
+                         "--from-state do not apply");
+      if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
+      check_output_directory(o->output_dir);
+      return continue_unroundness(scene, o->scene, o->to, o->numerics, o->chart, o->output_dir);
+    }
     refuse_unmodelled(scene, "continue", {.lugre = true});
     if (scene.law == FrictionLaw::lugre) {  // model.md §12.8: n >= 3 balls, one parameter
       const char* rule = scene.balls.size() == 2 ? "two balls are not continued yet (the n-ball engine needs n >= 3)"

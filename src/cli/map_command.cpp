@@ -18,6 +18,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "stick_options.hpp"
+#include "unround_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -87,6 +88,14 @@ Action add_map_command(CLI::App& app) {
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
+    if (!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
+        o->y.rfind(kUnroundnessParam + ":", 0) == 0) {  // model.md §11.10
+      refuse_unmodelled(scene, "map", {.unround = true});
+      check_output_directory(o->output_dir);
+      return map_unround(scene, o->scene,
+                         {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y), canonical_command_line(*o),
+                          o->threads, o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
+    }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
     if (stick) refuse_stick_set_combinations(scene, "map");
     refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true});

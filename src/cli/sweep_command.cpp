@@ -18,6 +18,7 @@
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
 #include "stick_options.hpp"
+#include "unround_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -138,9 +139,7 @@ int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
   const ParamsN first = params_of<any_balls>(scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(o.output_dir);
-  const auto csv_path = dir / fmt::format("sweep_{}.csv", result.name);
-  const auto summary_path = dir / fmt::format("summary_{}.csv", result.name);
-  const auto png_path = dir / fmt::format("summary_{}.png", result.name);
+  const auto [csv_path, summary_path, png_path] = sweep_paths(dir, result.name);
   OutputTransaction out;
   std::vector<ParamsN> params;
   for (const auto& s : scenes) params.push_back(params_of<any_balls>(s));
@@ -176,7 +175,7 @@ Action add_sweep_command(CLI::App& app) {
       "chart of |q| and the spectral abscissa (stable solid, unstable dashed).");
   add_scene_options(*sub, o->scene);
   sub->add_option("--param", o->param,
-                  fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene)", param_symbols_help()))
+                  fmt::format("Parameter to sweep: {}, or n (the ball count of a [balls] ring scene), or unroundness (every race amplitude times a factor, model.md §11.10)", param_symbols_help()))
       ->required();
   sub->add_option("--from", o->from, "First value (SI; omega in --units)")->required();
   sub->add_option("--to", o->to, "Last value (SI; omega in --units)")->required();
@@ -194,9 +193,13 @@ Action add_sweep_command(CLI::App& app) {
     Scene scene = load(o->scene);
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
     if (stick) refuse_stick_set_combinations(scene, "sweep");
-    refuse_unmodelled(scene, "sweep", {.lugre = true, .set_valued = true});
+    const bool unround = !scene.race.round() || o->param == kUnroundnessParam;  // model.md §11.10
+    refuse_unmodelled(scene, "sweep", unround ? Handles{.unround = true} : Handles{.lugre = true, .set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
+    if (unround)
+      return sweep_unround(scene, o->scene,
+                           {o->param, o->from, o->to, o->steps, o->logarithmic, o->chart, o->output_dir});
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);

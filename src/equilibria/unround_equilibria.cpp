@@ -12,13 +12,14 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
 
 namespace abu {
 
 namespace {
 using L = long double;
-using Angles = Eigen::Matrix<L, Eigen::Dynamic, 1, 0, max_balls, 1>;
-using AngleMatrix = Eigen::Matrix<L, Eigen::Dynamic, Eigen::Dynamic, 0, max_balls, max_balls>;
+using Angles = UnroundAngles;
+using AngleMatrix = UnroundAngleMatrix;
 constexpr L kTwoPi = 2 * std::numbers::pi_v<L>;
 
 const RaceHarmonics& harmonics_of(const RaceShape& race, int i) {
@@ -27,13 +28,9 @@ const RaceHarmonics& harmonics_of(const RaceShape& race, int i) {
 }
 
 // g(beta), q(beta) and dg/dbeta (§11.4; g_i scaled by 1/l_i^2).
-struct Reduced {
-  std::complex<L> q;
-  Angles g;
-  AngleMatrix dg;
-};
+}  // namespace
 
-Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+UnroundReduced unround_reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
   const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const std::complex<L> dyn(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
@@ -44,7 +41,7 @@ Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta)
     pts[k] = path_point<L>(harmonics_of(race, i), p.balls[k].race_radius, beta(i));
     W += p.balls[k].mass * pts[k].ell * std::polar(L(1), beta(i));
   }
-  Reduced r;
+  UnroundReduced r;
   r.q = w2 * W / dyn;
   r.g.resize(n);
   r.dg.resize(n, n);
@@ -64,6 +61,11 @@ Reduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta)
   return r;
 }
 
+namespace {
+UnroundReduced reduced(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+  return unround_reduced(p, race, beta);
+}
+
 L wrap(L a) {
   a = std::fmod(a, kTwoPi);
   return a < 0 ? a + kTwoPi : a;
@@ -79,7 +81,7 @@ L torus_distance(const Angles& a, const Angles& b) {
 
 // Newton with step halving on |g|; nullopt if it does not converge in 200 iterations.
 std::optional<Angles> newton(const LongParamsN& p, const RaceShape& race, Angles beta) {
-  Reduced r = reduced(p, race, beta);
+  UnroundReduced r = reduced(p, race, beta);
   for (int it = 0; it < 200; ++it) {
     const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
     if (lu.rank() < r.dg.rows()) return std::nullopt;
@@ -89,7 +91,7 @@ std::optional<Angles> newton(const LongParamsN& p, const RaceShape& race, Angles
     const L norm0 = r.g.norm();
     for (int h = 0; h < 30; ++h, t /= 2) {
       Angles trial = beta - t * step;
-      Reduced rt = reduced(p, race, trial);
+      UnroundReduced rt = reduced(p, race, trial);
       if (rt.g.norm() < norm0 || h == 29 || norm0 < 1e-17L) {
         beta = trial;
         r = std::move(rt);
@@ -137,7 +139,7 @@ struct Box {
 
 Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN& p, const RaceShape& race,
                                                                const Angles& beta, Angles& g) {
-  const Reduced r = reduced(p, race, beta);
+  const UnroundReduced r = reduced(p, race, beta);
   g = r.g;
   Coordinates<L, any_balls> s(beta.size() + 2);
   s(0) = r.q.real();
@@ -146,20 +148,44 @@ Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN
   return s;
 }
 
-UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
-  const int n = pd.n_balls();
-  if (n > 3)
-    throw NotSupportedError(fmt::format("an unround race with {} balls (the search of model.md §11.4 covers n = 2 "
-                                        "and 3)",
-                                        n));
-  const LongParamsN p = pd.cast<L>();
+UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+  const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
-  if (!(dyn > 0))
-    throw NumericalError(fmt::format("omega={}: K = C = 0 (c = 0 at omega = omega_n): q is not determined by the "
-                                     "balls (model.md §11.4)",
-                                     pd.omega));
+  // The rotor row's natural size: the largest centrifugal load the balls and U can make.
+  L load = p.rotor.unbalance;
+  for (int i = 0; i < n; ++i)
+    load += p.balls[std::size_t(i)].mass * path_bounds(harmonics_of(race, i), p.balls[std::size_t(i)].race_radius).p0;
+  UnroundEquilibrium e;
+  const UnroundReduced r = reduced(p, race, beta);
+  Angles g;
+  e.position = unround_rotor_and_residual(p, race, beta, g);
+  e.converged = true;
+  e.amplitude = double(std::abs(r.q));
+  const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
+  const L det = lu.determinant();
+  const L scale = std::pow(r.dg.cwiseAbs().maxCoeff(), L(n));
+  e.index = std::abs(det) <= 1e-13L * scale ? 0 : (det > 0 ? 1 : -1);
+  // Residual of the full static equations b(s, 0) = 0 (§11.3), each row over its size.
+  const Coordinates<L, any_balls> b = unround_generalized_forces(p, race, at_rest<L, any_balls>(e.position));
+  L res = std::abs(b(0)) + std::abs(b(1));
+  res /= w2 * (p.rotor.unbalance + load) + dyn * std::abs(r.q) + 1e-300L;
+  for (int i = 0; i < n; ++i) {
+    const auto& ball = p.balls[std::size_t(i)];
+    res = std::max(res, std::abs(b(2 + i)) / (ball.mass * w2 * ball.race_radius * ball.race_radius));
+  }
+  e.residual = double(res);
+  e.spectrum = compute_spectrum<any_balls>(unround_linearization(p, race, e.position));
+  return e;
+}
 
+namespace {
+// §11.4's exclusion box search on T^n (n = 2, 3): the zeros of g, every one (see the header).
+std::vector<Angles> box_search(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
+                               UnroundResult& result) {
+  const int n = p.n_balls();
+  const L w2 = p.omega * p.omega;
+  const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
   // Lipschitz bounds G_ij of g_i in beta_j (scaled by 1/l_i^2), valid on the whole torus.
   std::vector<PathBounds> pb(static_cast<std::size_t>(n));
   L qmax = p.rotor.unbalance;
@@ -188,7 +214,6 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
   const int leaf = search.leaf_boxes > 0 ? search.leaf_boxes : (n == 2 ? 512 : 128);
   const L leaf_half = kTwoPi / L(std::max(leaf, start)) / 2;
 
-  UnroundResult result;
   std::vector<Box> level;
   {
     long long total = 1;
@@ -264,27 +289,62 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
   }
 
   result.search.leaves = std::ssize(leaves);
-  for (const Angles& beta : zeros) {
-    UnroundEquilibrium e;
-    const Reduced r = reduced(p, race, beta);
-    Angles g;
-    e.position = unround_rotor_and_residual(p, race, beta, g);
-    e.converged = true;
-    e.amplitude = double(std::abs(r.q));
-    const Eigen::FullPivLU<AngleMatrix> lu(r.dg);
-    const L det = lu.determinant();
-    const L scale = std::pow(r.dg.cwiseAbs().maxCoeff(), L(n));
-    e.index = std::abs(det) <= 1e-13L * scale ? 0 : (det > 0 ? 1 : -1);
-    // Residual of the full static equations b(s, 0) = 0 (§11.3), each row over its size.
-    const Coordinates<L, any_balls> b = unround_generalized_forces(p, race, at_rest<L, any_balls>(e.position));
-    L res = std::abs(b(0)) + std::abs(b(1));
-    res /= w2 * (p.rotor.unbalance + qmax * dyn / w2) + dyn * std::abs(r.q) + 1e-300L;
+  return zeros;
+}
+
+// n >= 4 (model.md §11.11): Newton from the round race's equilibria (its aligned patterns
+// and the samples of its balanced set, whose isolated survivors lie near them for small
+// unroundness) and from search.multistart quasi-random points of T^n (Halton). Not
+// proven complete: the result says so.
+std::vector<Angles> multistart(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
+                               UnroundResult& result) {
+  const int n = p.n_balls();
+  std::vector<Angles> starts;
+  for (const auto& e : find_equilibria(p.cast<double>()).list) starts.push_back(e.position.tail(n).cast<L>());
+  static constexpr std::array<int, max_balls> primes{2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  for (int k = 1; k <= search.multistart; ++k) {
+    Angles a(n);
     for (int i = 0; i < n; ++i) {
-      const auto& ball = p.balls[std::size_t(i)];
-      res = std::max(res, std::abs(b(2 + i)) / (ball.mass * w2 * ball.race_radius * ball.race_radius));
+      // The radical inverse of k in base primes[i], in [0, 1).
+      L f = 1, x = 0;
+      for (int m = k; m > 0; m /= primes[std::size_t(i)]) {
+        f /= primes[std::size_t(i)];
+        x += f * (m % primes[std::size_t(i)]);
+      }
+      a(i) = x * kTwoPi;
     }
-    e.residual = double(res);
-    e.spectrum = compute_spectrum<any_balls>(unround_linearization(p, race, e.position));
+    starts.push_back(a);
+  }
+  std::vector<Angles> zeros;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    if (k % 1024 == 0) throw_if_stopped("unround equilibria: multistart");
+    const auto z = newton(p, race, starts[k]);
+    if (!z) {
+      ++result.search.unresolved;
+      continue;
+    }
+    if (std::none_of(zeros.begin(), zeros.end(), [&](const Angles& a) { return torus_distance(a, *z) < 1e-9L; }))
+      zeros.push_back(*z);
+  }
+  result.search.leaves = std::ssize(starts);
+  return zeros;
+}
+}  // namespace
+
+UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
+  const int n = pd.n_balls();
+  const LongParamsN p = pd.cast<L>();
+  const L w2 = p.omega * p.omega;
+  const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
+  if (!(dyn > 0))
+    throw NumericalError(fmt::format("omega={}: K = C = 0 (c = 0 at omega = omega_n): q is not determined by the "
+                                     "balls (model.md §11.4)",
+                                     pd.omega));
+
+  UnroundResult result;
+  const std::vector<Angles> zeros = n <= 3 ? box_search(p, race, search, result) : multistart(p, race, search, result);
+  for (const Angles& beta : zeros) {
+    UnroundEquilibrium e = unround_equilibrium_at(p, race, beta);
     result.search.index_sum += e.index;
     result.list.push_back(std::move(e));
   }
@@ -299,7 +359,12 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
       result.best_stable = k;
       break;
     }
-  if (result.search.budget_exhausted)
+  if (n > 3)
+    result.doubt = fmt::format("not proven complete: with {} balls the equilibria come from Newton at the round race's "
+                               "equilibria and {} quasi-random starts, not from the box search of model.md §11.4 "
+                               "(n = 2, 3); {} starts did not converge, index sum {}",
+                               n, search.multistart, result.search.unresolved, result.search.index_sum);
+  else if (result.search.budget_exhausted)
     result.doubt = (fmt::format("the box search stopped at {} leaves: equilibria may be missing",
                                                search.max_leaves));
   else if (result.search.unresolved > 0 || result.search.index_sum != 0)

@@ -51,15 +51,6 @@ std::string design_line(const UnroundResult& r, const ParamsN& p) {
 }
 }  // namespace
 
-double unround_lambda(const ParamsN& p, const RaceShape& race) {
-  double lambda = 0;
-  const double dyn = dynamic_stiffness(p), w2 = p.omega * p.omega;
-  for (std::size_t i = 0; i < race.balls.size() && i < p.balls.size(); ++i)
-    for (const auto& h : race.balls[i])
-      lambda = std::max(lambda, h.order * h.order * h.amplitude * dyn / (p.balls[i].mass * w2));
-  return lambda;
-}
-
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene) {
   const int n = p.n_balls();
   std::string out = fmt::format("{}: unround race (model.md §11), omega = {} rad/s, {} balls, law {}\n", scene,
@@ -168,6 +159,101 @@ std::string unround_json(const UnroundResult& r, const ParamsN& p, const RaceSha
     out += "]}";
   }
   out += "\n  ]\n}\n";
+  return out;
+}
+
+namespace {
+std::string angle_columns(int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) out += fmt::format(",beta{}", i + 1);
+  return out;
+}
+std::string angle_values(const UnroundEquilibrium& e) {
+  std::string out;
+  for (Eigen::Index i = 2; i < e.position.size(); ++i) out += fmt::format(",{}", num(double(e.position(i)), "beta"));
+  return out;
+}
+int balls_of(const UnroundEquilibrium& e) { return int(e.position.size()) - 2; }
+}  // namespace
+
+std::string unround_sweep_csv(const UnroundSweep& s, const std::string& header) {
+  int n = 0;
+  for (const auto& r : s.points)
+    if (!r.list.empty()) n = balls_of(r.list.front());
+  std::string out = header;
+  out += fmt::format("# unround race (model.md §11.10): every equilibrium of the complete search (§11.4) per value of "
+                     "{} [{}]; q [m] rotating frame (|q| = fixed-frame whirl radius), beta [rad], abscissa [1/s] "
+                     "(rotating frame); first_order = Lambda <= {} (§11.6)\n",
+                     s.name, s.unit, kFirstOrderLambda);
+  out += fmt::format("{},equilibrium,q1,q2,q_abs{},index,spectral_abscissa,stable,best,lambda,first_order\n", s.name,
+                     angle_columns(n));
+  for (std::size_t v = 0; v < s.values.size(); ++v) {
+    const auto& r = s.points[v];
+    for (std::size_t k = 0; k < r.list.size(); ++k) {
+      const auto& e = r.list[k];
+      out += fmt::format("{},{},{},{},{}{},{},{},{},{},{},{}\n", num(s.values[v], s.name), k + 1,
+                         num(double(e.position(0)), "q1"), num(double(e.position(1)), "q2"), num(e.amplitude, "|q|"),
+                         angle_values(e), e.index, num(e.spectrum.abscissa, "abscissa"),
+                         e.spectrum.stability == Stability::stable ? 1 : 0, r.best_stable == k ? 1 : 0,
+                         num(s.lambdas[v], "Lambda"), s.lambdas[v] <= kFirstOrderLambda ? 1 : 0);
+    }
+  }
+  return out;
+}
+
+std::string unround_sweep_summary_csv(const UnroundSweep& s, const std::string& header) {
+  std::string out = header;
+  out += fmt::format("# unround race (model.md §11.10), per value of {} [{}]: best_q_abs = |q| of the best stable "
+                     "state [m] (empty: none stable), q_bare = the bare rotor's whirl [m], complete = the search of "
+                     "§11.4 found every equilibrium (no unresolved leaf, index sum 0)\n",
+                     s.name, s.unit);
+  out += fmt::format("{},equilibria,stable,best_q_abs,q_bare,lambda,first_order,complete\n", s.name);
+  for (std::size_t v = 0; v < s.values.size(); ++v) {
+    const auto& r = s.points[v];
+    long stable = 0;
+    for (const auto& e : r.list) stable += e.spectrum.stability == Stability::stable ? 1 : 0;
+    out += fmt::format("{},{},{},{},{},{},{},{}\n", num(s.values[v], s.name), r.list.size(), stable,
+                       r.best_stable ? num(r.list[*r.best_stable].amplitude, "|q|") : std::string(),
+                       num(s.bare_whirls[v], "q0"), num(s.lambdas[v], "Lambda"),
+                       s.lambdas[v] <= kFirstOrderLambda ? 1 : 0, r.doubt.empty() ? 1 : 0);
+  }
+  return out;
+}
+
+namespace {
+std::string branch_row(std::size_t branch, const UnroundBranchPoint& pt) {
+  const auto& e = pt.state;
+  return fmt::format("{},{},{},{},{}{},{},{},{}", branch + 1, num(pt.factor, "unroundness"),
+                     num(double(e.position(0)), "q1"), num(double(e.position(1)), "q2"), num(e.amplitude, "|q|"),
+                     angle_values(e), e.index, num(e.spectrum.abscissa, "abscissa"),
+                     e.spectrum.stability == Stability::stable ? 1 : 0);
+}
+int balls_of(const UnroundBranches& b) {
+  for (const auto& br : b.branches)
+    if (!br.points.empty()) return balls_of(br.points.front().state);
+  return 0;
+}
+const char* kBranchNote =
+    "# unround race: equilibrium branches in the unroundness factor e (every race amplitude times e; model.md "
+    "§11.10), pseudo-arclength; q [m] rotating frame (|q| = fixed-frame whirl radius), beta [rad] wrapped to "
+    "[0, 2 pi), index = sign det(dg/dbeta) (changes at a fold LP), abscissa [1/s] rotating frame\n";
+}  // namespace
+
+std::string unround_branch_csv(const UnroundBranches& b, const std::string& header) {
+  std::string out = fmt::format("{}{}", header, kBranchNote);
+  if (!b.doubt.empty()) out += fmt::format("# doubt: {}\n", b.doubt);
+  out += fmt::format("branch,unroundness,q1,q2,q_abs{},index,spectral_abscissa,stable\n", angle_columns(balls_of(b)));
+  for (std::size_t k = 0; k < b.branches.size(); ++k)
+    for (const auto& pt : b.branches[k].points) out += fmt::format("{}\n", branch_row(k, pt));
+  return out;
+}
+
+std::string unround_special_csv(const UnroundBranches& b, const std::string& header) {
+  std::string out = fmt::format("{}{}", header, kBranchNote);
+  out += fmt::format("label,branch,unroundness,q1,q2,q_abs{},index,spectral_abscissa,stable\n",
+                     angle_columns(balls_of(b)));
+  for (std::size_t k = 0; k < b.branches.size(); ++k)
+    for (const auto& s : b.branches[k].specials) out += fmt::format("{},{}\n", s.kind, branch_row(k, s.point));
   return out;
 }
 

@@ -27,6 +27,23 @@ int RaceShape::max_order() const {
   return k;
 }
 
+double unround_lambda(const ParamsN& p, const RaceShape& race) {
+  double lambda = 0;
+  const double w2 = p.omega * p.omega;
+  const double dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
+  for (std::size_t i = 0; i < race.balls.size() && i < p.balls.size(); ++i)
+    for (const auto& h : race.balls[i])
+      lambda = std::max(lambda, h.order * h.order * h.amplitude * dyn / (p.balls[i].mass * w2));
+  return lambda;
+}
+
+RaceShape scaled_race(const RaceShape& race, double factor) {
+  RaceShape out = race;
+  for (auto& list : out.balls)
+    for (auto& h : list) h.amplitude *= factor;
+  return out;
+}
+
 template <class T>
 PathPoint<T> path_point(const RaceHarmonics& h, T l, T beta) {
   using std::cos;

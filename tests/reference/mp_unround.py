@@ -12,7 +12,12 @@ p_i' taken by mpmath's numerical differentiation of p_i(beta) = l_i(beta) e^{i b
 40-digit polish. It finds the equilibria; then each C++ equilibrium must match one, and
 each reference one a C++ one: beta to 1e-9 rad and |q| to rtol relative.
 
-  mp_unround.py BINARY SCENE [--rtol 1e-8]      exit 0 pass, 1 mismatch, 2 misuse
+  mp_unround.py BINARY SCENE [--rtol 1e-8] [--sweep-factor F]      exit 0 pass, 1 mismatch, 2 misuse
+
+With --sweep-factor F every amplitude of the scene's race is multiplied by F (the
+unroundness factor of model.md §11.10) and the program's equilibria are those of
+`stability-scan sweep SCENE --param unroundness --from F --to F --steps 1` (sweep_unroundness.csv)
+instead of `equilibria`: one point of an unroundness sweep checked independently.
 """
 import cmath
 import json
@@ -24,6 +29,7 @@ import tomllib
 import mpmath as mp
 
 mp.mp.dps = 40
+FACTOR = mp.mpf(1)  # --sweep-factor
 
 
 def harmonics_of(scene, n):
@@ -44,7 +50,7 @@ def harmonics_of(scene, n):
         spec = spec or []
         l, r = balls[i]["race_radius"], balls[i]["radius"]
         conv = (l + r) / l if surface else 1.0
-        out.append([(h["order"], mp.mpf(h["amplitude"]) * conv, mp.mpf(h.get("phase", 0))) for h in spec])
+        out.append([(h["order"], mp.mpf(h["amplitude"]) * conv * FACTOR, mp.mpf(h.get("phase", 0))) for h in spec])
     return out
 
 
@@ -153,12 +159,39 @@ def torus_distance(a, b):
     return max(min(abs(x - y) % (2 * math.pi), 2 * math.pi - abs(x - y) % (2 * math.pi)) for x, y in zip(a, b))
 
 
+def sweep_point(binary, scene_path, factor, n):
+    """The equilibria at the first value of a one-value unroundness sweep, as dicts."""
+    import csv
+    import tempfile
+    with tempfile.TemporaryDirectory() as work:
+        out = subprocess.run([binary, "sweep", scene_path, "--param", "unroundness", "--from", factor, "--to", factor,
+                              "--steps", "1", "--no-chart", "-o", work], capture_output=True, text=True)
+        if out.returncode != 0:
+            print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
+            return None
+        with open(f"{work}/sweep_unroundness.csv") as fh:
+            rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    # --steps 1 gives the value twice (both ends): the first value's rows are the leading
+    # run of increasing equilibrium numbers.
+    first = []
+    for r in rows:
+        if first and int(r["equilibrium"]) <= int(first[-1]["equilibrium"]):
+            break
+        first.append(r)
+    return [{"beta": [float(r[f"beta{i + 1}"]) for i in range(n)], "q1": r["q1"], "q2": r["q2"], "q_abs": r["q_abs"]}
+            for r in first]
+
+
 def main(argv):
     if len(argv) < 3:
         print(__doc__, file=sys.stderr)
         return 2
     binary, scene_path = argv[1], argv[2]
     rtol = float(argv[argv.index("--rtol") + 1]) if "--rtol" in argv else 1e-8
+    factor = argv[argv.index("--sweep-factor") + 1] if "--sweep-factor" in argv else None
+    if factor is not None:
+        global FACTOR
+        FACTOR = mp.mpf(factor)
     with open(scene_path, "rb") as fh:
         scene = tomllib.load(fh)
     n, residual, kmax = build(scene)
@@ -172,11 +205,16 @@ def main(argv):
             found.append(z)
     ref = [polish(residual, z) for z in found]
 
-    out = subprocess.run([binary, "equilibria", scene_path, "--format", "json"], capture_output=True, text=True)
-    if out.returncode != 0:
-        print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
-        return 1
-    got = json.loads(out.stdout)["equilibria"]
+    if factor is None:
+        out = subprocess.run([binary, "equilibria", scene_path, "--format", "json"], capture_output=True, text=True)
+        if out.returncode != 0:
+            print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
+            return 1
+        got = json.loads(out.stdout)["equilibria"]
+    else:
+        got = sweep_point(binary, scene_path, factor, n)
+        if got is None:
+            return 1
     bad = 0
     print(f"{scene_path}: reference {len(ref)} equilibria, stability-scan {len(got)}")
     if len(ref) != len(got):

@@ -1,5 +1,6 @@
 // Every equilibrium of the balancer on an unround race (model.md §11.4), with its
-// spectrum (§11.5) and stability, for n = 2 or 3 balls.
+// spectrum (§11.5) and stability: for n = 2 or 3 balls all of them; for n >= 4 those a
+// multistart Newton finds (not proven complete, and said so: model.md §11.11).
 //
 // With s' = 0 the rotor equation gives q(beta) = omega^2 (U + sum m_i p_i(beta_i)) / (K + iC)
 // and the ball conditions become n equations on the torus T^n,
@@ -18,6 +19,7 @@
 //   for (const auto& e : r.list) ... e.amplitude ... e.spectrum.stability ...
 #pragma once
 
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +35,8 @@ struct UnroundSearch {
   int start_boxes = 0;             ///< per angle; 0: 8 (k_max + 1)
   int leaf_boxes = 0;              ///< per angle at the finest level; 0: 512 (n = 2), 128 (n = 3)
   long long max_leaves = 4000000;  ///< beyond this the search stops and says so
+  /// n >= 4: quasi-random Newton starts (Halton) besides the round race's equilibria.
+  int multistart = 4096;
 };
 
 struct UnroundEquilibrium {
@@ -59,13 +63,32 @@ struct UnroundResult {
   std::string doubt;  ///< empty when the search is complete, else what makes the list doubtful
 };
 
+using UnroundAngles = Eigen::Matrix<long double, Eigen::Dynamic, 1, 0, max_balls, 1>;
+using UnroundAngleMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic, 0, max_balls, max_balls>;
+
+/// The reduced ball conditions of §11.4 at angles beta: q(beta) (rotating frame [m]),
+/// g(beta) (g_i scaled by 1/l_i^2) and dg/dbeta (whose determinant's sign is the index).
+struct UnroundReduced {
+  std::complex<long double> q;
+  UnroundAngles g;
+  UnroundAngleMatrix dg;
+};
+UnroundReduced unround_reduced(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
+
+/// The equilibrium at angles beta that solve g = 0: position, |q|, index, residual of the
+/// full static equations (§11.3) and spectrum (§11.5). Shared by the search and the
+/// continuation in the unroundness (§11.10).
+UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
+
 /// The reduced residual g(beta) of §11.4 and q(beta). Exposed for tests.
 Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN& p, const RaceShape& race,
                                                                const Eigen::Matrix<long double, Eigen::Dynamic, 1, 0, max_balls, 1>& beta,
                                                                Eigen::Matrix<long double, Eigen::Dynamic, 1, 0, max_balls, 1>& g);
 
-/// Every equilibrium of an unround race. Throws NotSupportedError for n > 3 and
-/// NumericalError for K = C = 0 (no q(beta)).
+/// Every equilibrium of an unround race (n = 2, 3: the complete box search). For n >= 4 the
+/// equilibria Newton finds from the round race's equilibria and `search.multistart`
+/// quasi-random starts, with `doubt` saying the list is not proven complete (§11.11).
+/// Throws NumericalError for K = C = 0 (no q(beta)).
 UnroundResult find_unround_equilibria(const ParamsN& p, const RaceShape& race, const UnroundSearch& search = {});
 
 }  // namespace abu

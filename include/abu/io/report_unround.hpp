@@ -7,20 +7,37 @@
 #include <string>
 #include <string_view>
 
+#include "abu/continuation/unround_branches.hpp"
 #include "abu/equilibria/unround_equilibria.hpp"
 
 namespace abu {
 
-/// Lambda = max over balls and harmonics of k^2 eps_k |K + iC| / (m_i omega^2) (§11.6):
-/// the race-lock stiffness over the balancing stiffness; first order holds for Lambda << 1.
-double unround_lambda(const ParamsN& p, const RaceShape& race);
-/// Lambda <= this is reported as the first-order regime (marked in tables and maps).
-inline constexpr double kFirstOrderLambda = 0.1;
+// unround_lambda and kFirstOrderLambda (§11.6): model/unround_race.hpp.
 
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene);
 /// `header`: the provenance comment lines (io.hpp).
 std::string unround_csv(const UnroundResult& r, const ParamsN& p, const RaceShape& race, const std::string& header);
 std::string unround_json(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view command_line,
                          std::string_view scene);
+
+/// A sweep on an unround race (model.md §11.10): per value of the parameter, every
+/// equilibrium of the complete search, the race's Lambda and the design figure.
+struct UnroundSweep {
+  std::string name, unit;  ///< the parameter ("unroundness": the factor e on every amplitude)
+  std::vector<double> values;
+  std::vector<double> lambdas;        ///< Lambda of §11.6 per value
+  std::vector<double> bare_whirls;    ///< omega^2 U / |K + iC| per value [m]
+  std::vector<UnroundResult> points;  ///< per value
+};
+/// One row per equilibrium per value (columns named in the header line).
+std::string unround_sweep_csv(const UnroundSweep& s, const std::string& header);
+/// One row per value: equilibria, stable ones, best stable |q|, Lambda, first-order flag,
+/// whether the search was complete.
+std::string unround_sweep_summary_csv(const UnroundSweep& s, const std::string& header);
+
+/// The branches of continue_unround: one row per point (branch, factor, q, beta, index,
+/// abscissa, stable) and one per special point (LP, HB, BP).
+std::string unround_branch_csv(const UnroundBranches& b, const std::string& header);
+std::string unround_special_csv(const UnroundBranches& b, const std::string& header);
 
 }  // namespace abu

@@ -39,6 +39,10 @@ struct RaceShape {
   int max_order() const;
 };
 
+/// The race with every amplitude (order 1's offset included) times `factor` >= 0: the
+/// unroundness parameter of model.md §11.10 (factor 1 is the scene's race, 0 the round one).
+RaceShape scaled_race(const RaceShape& race, double factor);
+
 /// The path radius and what §11.1 derives from it at one angle (' = d/d beta).
 template <class T>
 struct PathPoint {
@@ -64,6 +68,12 @@ RaceHarmonics surface_to_path(const RaceHarmonics& surface, double l, double r);
 /// radius of curvature must exceed r wherever it is concave towards the ball. Checked
 /// on 4096 k_max angles (and an offset below l for order 1).
 std::optional<std::string> path_violation(const RaceHarmonics& h, double l, double r);
+
+/// Lambda = max over balls and harmonics of k^2 eps_k |K + iC| / (m_i omega^2) (§11.6):
+/// the race-lock stiffness over the balancing stiffness; first order holds for Lambda << 1.
+double unround_lambda(const ParamsN& p, const RaceShape& race);
+/// Lambda <= this is reported as the first-order regime (marked in tables, sweeps and maps).
+inline constexpr double kFirstOrderLambda = 0.1;
 
 using LongParamsN = ParamsT<long double, any_balls>;
 

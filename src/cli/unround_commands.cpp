@@ -1,0 +1,283 @@
+// `sweep` and `continue` on an unround race (unround_commands.hpp, model.md §11.10).
+#include "unround_commands.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <sstream>
+
+#include "abu/continuation/unround_branches.hpp"
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/io/chart_labels.hpp"
+#include "abu/io/io.hpp"
+#include "abu/io/race_scene.hpp"
+#include "abu/io/ranges.hpp"
+#include "abu/io/report_unround.hpp"
+#include "abu/io/map_setup.hpp"
+#include "abu/scan/scan.hpp"
+#include "abu/scan/unround_map.hpp"
+
+namespace abu::cli {
+
+namespace {
+constexpr int kMaxUnroundSteps = 100000;
+
+// The scene's race times `factor`: every ball's path must still keep the rules of §11.1.
+RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option) {
+  const RaceShape out = scaled_race(race, factor);
+  for (std::size_t i = 0; i < out.balls.size() && i < scene.balls.size(); ++i)
+    if (const auto why = path_violation(out.balls[i], scene.balls[i].race_radius, scene.balls[i].radius))
+      throw InputError(option, 0, kUnroundnessParam,
+                       fmt::format("at unroundness factor {} ball {}'s race breaks a rule of model.md §11.1: {}", factor,
+                                   i + 1, *why));
+  return out;
+}
+
+void require_unround(const Scene& scene, const std::string& option) {
+  if (scene.race.round())
+    throw InputError(option, 0, kUnroundnessParam,
+                     fmt::format("{} has no unround race to scale ([race] unroundness, model.md §11.1)", scene.file));
+}
+}  // namespace
+
+SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name) {
+  return {dir / fmt::format("sweep_{}.csv", name), dir / fmt::format("summary_{}.csv", name),
+          dir / fmt::format("summary_{}.png", name)};
+}
+
+int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
+  if (g.steps < 1 || g.steps > kMaxUnroundSteps)
+    throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxUnroundSteps, g.steps));
+  if (g.logarithmic && !(g.from > 0 && g.to > 0))
+    throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
+  UnroundSweep sweep;
+  std::vector<Scene> scenes;
+  std::vector<RaceShape> races;
+  const auto values = grid_values(g.from, g.to, g.steps, g.logarithmic);
+  if (g.param == kUnroundnessParam) {
+    require_unround(scene, "--param");
+    if (!(g.from >= 0 && g.to >= 0))
+      throw InputError("--from/--to", 0, kUnroundnessParam,
+                       fmt::format("the unroundness factor is >= 0 (got {} .. {})", g.from, g.to));
+    sweep.name = kUnroundnessParam;
+    sweep.unit = std::string(1, '-');  // a factor (move-assigned: GCC 12's -Wrestrict misfires on "-")
+    const RaceShape race = race_shape(scene);
+    for (double v : values) {
+      scenes.push_back(scene);
+      races.push_back(checked_scaled_race(scene, race, v, "--from/--to"));
+    }
+  } else {
+    const auto ref = parse_param(g.param, int(scene.balls.size()));
+    if (!ref)
+      throw InputError("--param", 0, g.param,
+                       unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
+                                         fmt::format("{}, or {} (the race's amplitudes times a factor)",
+                                                     param_symbols_help(), kUnroundnessParam)));
+    sweep.name = to_string(*ref);
+    sweep.unit = std::string(unit(ref->quantity));
+    for (double v : values) {
+      Scene s = scene;
+      set_checked(s, *ref, v, "--from/--to");
+      check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
+      races.push_back(race_shape(s));  // surface harmonics follow l and r; the rules are re-checked
+      scenes.push_back(std::move(s));
+    }
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    throw_if_stopped("sweep: unround race");
+    const ParamsN p = params_of<any_balls>(scenes[i]);
+    UnroundResult r = find_unround_equilibria(p, races[i]);
+    for (const auto& e : r.list)
+      if (!(e.residual < 1e-8))
+        throw NumericalError(fmt::format("{}={}: an equilibrium of the unround race has residual {:.3g}", sweep.name,
+                                         values[i], e.residual));
+    if (!r.doubt.empty()) fmt::print(stderr, "warning: {}={}: unround race: {}\n", sweep.name, values[i], r.doubt);
+    sweep.values.push_back(values[i]);
+    sweep.lambdas.push_back(unround_lambda(p, races[i]));
+    const double dyn = std::hypot(p.rotor.stiffness - p.omega * p.omega * p.total_mass(), p.rotor.damping * p.omega);
+    sweep.bare_whirls.push_back(p.omega * p.omega * p.rotor.unbalance / dyn);
+    sweep.points.push_back(std::move(r));
+  }
+  const ParamsN first = params_of<any_balls>(scenes.front());
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const auto [csv_path, summary_path, png_path] = sweep_paths(g.output_dir, sweep.name);
+  OutputTransaction out;
+  const auto staged_all = out.stage(csv_path, unround_sweep_csv(sweep, header));
+  const auto staged_summary = out.stage(summary_path, unround_sweep_summary_csv(sweep, header));
+  if (g.chart)
+    run_gnuplot(plots_dir() / "unround_sweep.gp",
+                {{"csv", staged_all.string()},
+                 {"summary", staged_summary.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", sweep.name},
+                 {"unit", sweep.unit},
+                 {"logx", g.logarithmic ? "1" : "0"},
+                 {"title", fmt::format("{}: unround race, sweep of {}", scene.file, sweep.name)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
+             g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+int continue_unroundness(const Scene& scene, const SceneOptions& options, double to, const ContinuationOptions& numerics,
+                         bool chart, const std::string& output_dir) {
+  require_unround(scene, "--param");
+  if (!(to > 0)) throw InputError("--to", 0, kUnroundnessParam, fmt::format("the factor's end must be > 0 (got {})", to));
+  const RaceShape race = race_shape(scene);
+  checked_scaled_race(scene, race, to, "--to");
+  const ParamsN p = params_of<any_balls>(scene);
+  const UnroundBranches b = continue_unround(p, race, to, numerics);
+  if (!b.doubt.empty()) fmt::print(stderr, "warning: unround race continuation: {}\n", b.doubt);
+  const std::string header = provenance_header(command_line(), scene.file, p);
+  const std::filesystem::path dir(output_dir);
+  const auto branch_path = dir / "branch_unroundness.csv";
+  const auto special_path = dir / "special_unroundness.csv";
+  const auto png_path = dir / "branch_unroundness.png";
+  OutputTransaction out;
+  const auto staged_branches = out.stage(branch_path, unround_branch_csv(b, header));
+  const auto staged_specials = out.stage(special_path, unround_special_csv(b, header));
+  if (chart)
+    run_gnuplot(plots_dir() / "unround_branches.gp",
+                {{"branches", staged_branches.string()},
+                 {"specials", staged_specials.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"title", fmt::format("{}: unround race, continuation in the unroundness factor", scene.file)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  std::size_t points = 0, specials = 0;
+  for (const auto& br : b.branches) points += br.points.size(), specials += br.specials.size();
+  fmt::print(stderr, "wrote {} ({} branches, {} points) and {} ({} special points){}\n", branch_path.string(),
+             b.branches.size(), points, special_path.string(), specials,
+             chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+namespace {
+// One axis of an unround map: the unroundness factor, or a parameter of the scene.
+struct UnroundAxis {
+  Axis axis;
+  bool factor = false;  // the unroundness factor
+  std::string name, unit;
+};
+
+UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const RaceShape& race, const std::string& origin) {
+  UnroundAxis a;
+  if (spec.rfind(kUnroundnessParam + ":", 0) != 0) {
+    a.axis = parse_axis(spec, scene, origin);
+    if (a.axis.ball_count) throw InputError(origin, 0, spec, "the ball count is not an axis of an unround race map");
+    a.name = a.axis.name();
+    a.unit = std::string(unit(a.axis.param.quantity));
+    return a;
+  }
+  // unroundness:FROM:TO:N[:log], checked like the other axes (N in [1, 100000]).
+  std::vector<std::string> f;
+  std::stringstream in(spec);
+  for (std::string x; std::getline(in, x, ':');) f.push_back(x);
+  const auto bad = [&](const std::string& rule) { return InputError(origin, 0, spec, rule); };
+  if (f.size() != 4 && !(f.size() == 5 && f[4] == "log")) throw bad("expected unroundness:FROM:TO:N[:log]");
+  const std::vector<double> ends = parse_real_list(f[1] + "," + f[2], origin);
+  int count = 0;
+  try {
+    std::size_t used = 0;
+    count = std::stoi(f[3], &used);
+    if (used != f[3].size()) count = 0;
+  } catch (const std::exception&) {
+    count = 0;
+  }
+  if (count < 1 || count > kMaxUnroundSteps) throw bad(fmt::format("N must be an integer in [1, {}]", kMaxUnroundSteps));
+  a.axis.from = ends[0];
+  a.axis.to = ends[1];
+  a.axis.count = count;
+  a.axis.logarithmic = f.size() == 5;
+  if (!(a.axis.from >= 0 && a.axis.to >= 0)) throw bad("the unroundness factor is >= 0");
+  if (a.axis.logarithmic && !(a.axis.from > 0 && a.axis.to > 0)) throw bad("a log axis needs both ends > 0");
+  for (double v : {a.axis.from, a.axis.to}) checked_scaled_race(scene, race, v, origin);
+  a.factor = true;
+  a.name = kUnroundnessParam;
+  a.unit = std::string(1, '-');
+  return a;
+}
+}  // namespace
+
+int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {
+  require_unround(scene, request.x.rfind(kUnroundnessParam, 0) == 0 ? "--x" : "--y");
+  const RaceShape race = race_shape(scene);
+  const UnroundAxis x = unround_axis(request.x, scene, race, "--x"), y = unround_axis(request.y, scene, race, "--y");
+  if (x.name == y.name) throw InputError("--y", 0, request.y, "the two axes are one parameter");
+  UnroundMapJob job;
+  job.x_name = x.name, job.y_name = y.name, job.x_unit = x.unit, job.y_unit = y.unit;
+  for (int i = 0; i < x.axis.count; ++i) job.xs.push_back(x.axis.value(i));
+  for (int i = 0; i < y.axis.count; ++i) job.ys.push_back(y.axis.value(i));
+  // Every cell from a copy of the scene: its parameters set, the race re-read (surface
+  // harmonics follow l and r) and scaled by the factor axis.
+  job.cell_input = [&scene, &x, &y, &job](int ix, int iy) {
+    Scene s = scene;
+    double factor = 1;
+    for (const auto& [a, v] : {std::pair{&x, job.xs[std::size_t(ix)]}, std::pair{&y, job.ys[std::size_t(iy)]}}) {
+      if (a->factor)
+        factor = v;
+      else
+        set_checked(s, a->axis.param, v, "--x/--y");
+    }
+    return std::pair{params_of<any_balls>(s), scaled_race(race_shape(s), factor)};
+  };
+  job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene));
+  namespace fs = std::filesystem;
+  const fs::path dir(request.output_dir);
+  const auto summary_path = dir / fmt::format("summary_{}_{}.csv", x.name, y.name);
+  const auto png_path = dir / fmt::format("summary_{}_{}.png", x.name, y.name);
+  const fs::path tiles_dir = dir / fmt::format(".unround_map_{}_{}.tiles", x.name, y.name);
+  fs::create_directories(dir);
+  const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()),
+                        request.resume ? TileStore::Mode::resume
+                        : request.fresh ? TileStore::Mode::discard
+                                        : TileStore::Mode::fresh);
+  const std::vector<int> missing = store.missing();
+  ProgressMeter meter(int(job.xs.size()), int(job.xs.size() - missing.size()),
+                      !request.quiet && (request.progress || isatty(STDERR_FILENO)));
+  MapRunOptions run;
+  run.threads = request.threads;
+  run.stop = &stop_flag();
+  run.progress = &meter;
+  set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
+                                 tiles_dir.string()));
+  const MapRunStats stats =
+      compute_unround_map_tiles(job, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
+  meter.finish();
+  set_interrupt_note({});
+  if (stats.interrupted || stop_requested()) {
+    fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
+               job.xs.size() - store.missing().size(), job.xs.size(), tiles_dir.string());
+    return interrupted_exit_code();
+  }
+  std::ostringstream none, summary;
+  for (int t = 0; t < int(job.xs.size()); ++t) store.append(t, none, summary);
+  {
+    OutputTransaction out;
+    const auto staged = out.stage(summary_path, unround_map_header(job) + summary.str());
+    if (request.chart)
+      run_gnuplot(plots_dir() / "unround_map.gp",
+                  {{"csv", staged.string()},
+                   {"png", out.reserve(png_path).string()},
+                   {"xname", x.name},
+                   {"yname", y.name},
+                   {"xunit", x.unit},
+                   {"yunit", y.unit},
+                   {"logx", x.axis.logarithmic ? "1" : "0"},
+                   {"logy", y.axis.logarithmic ? "1" : "0"},
+                   {"title", fmt::format("{}: unround race map", scene.file)},
+                   {"subtitle", chart_subtitle(scene, options.overrides)}});
+    out.commit();
+  }
+  store.remove();
+  if (!request.quiet)
+    fmt::print(stderr, "{} cells, {} equilibria, {} tiles computed in {:.2f} s -> {}{}\n", stats.cells,
+               stats.equilibria, stats.tiles, stats.seconds, summary_path.string(),
+               request.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+}  // namespace abu::cli

@@ -1,0 +1,50 @@
+// `sweep` and `continue` on an unround race (model.md §11.10): the glue between the
+// command line and the complete search (§11.4) / the branches in the unroundness factor.
+// Private to the CLI.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "abu/continuation/arclength.hpp"
+#include "cli.hpp"
+
+namespace abu::cli {
+
+/// The continuation / sweep parameter that scales every race amplitude (§11.10).
+inline const std::string kUnroundnessParam = "unroundness";
+
+/// The files of a sweep over NAME: sweep_NAME.csv, summary_NAME.csv, summary_NAME.png
+/// (the n-ball sweep and the unround race's).
+struct SweepPaths {
+  std::filesystem::path csv, summary, png;
+};
+SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name);
+
+struct UnroundGrid {
+  std::string param;  ///< "unroundness" or a parameter symbol (omega, U, ...)
+  double from = 0, to = 0;
+  int steps = 0;
+  bool logarithmic = false;
+  bool chart = true;
+  std::string output_dir;
+};
+
+/// sweep_NAME.csv (every equilibrium per value), summary_NAME.csv and summary_NAME.png.
+int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& grid);
+/// branch_unroundness.csv, special_unroundness.csv and branch_unroundness.png.
+int continue_unroundness(const Scene& scene, const SceneOptions& options, double to, const ContinuationOptions& numerics,
+                         bool chart, const std::string& output_dir);
+
+struct UnroundMapRequest {
+  std::string x, y;  ///< NAME:FROM:TO:N[:log] (omega already in rad/s), NAME a parameter or "unroundness"
+  std::string command_line;  ///< what determines the bytes (no threads, resume, output directory)
+  int threads = 1;
+  bool resume = false, fresh = false, progress = false, quiet = false, chart = true;
+  std::string output_dir;
+};
+/// summary_X_Y.csv and summary_X_Y.png: per cell the count of equilibria and stable ones,
+/// the best stable |q|, Lambda and the first-order flag (scan/unround_map.hpp).
+int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request);
+
+}  // namespace abu::cli
