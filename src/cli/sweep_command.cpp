@@ -15,6 +15,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "floquet_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -143,7 +144,9 @@ Action add_sweep_command(CLI::App& app) {
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
     const int n_balls = int(scene.balls.size());
-    if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
+    if (scene.support && o->param == "n")
+      throw InputError("--param", 0, "n", "the ball count is not a sweep parameter with an anisotropic support");
+    if (!scene.support && (o->param == "n" || n_balls != 2)) return sweep_any_balls(scene, *o);
     const auto ref = parse_param(o->param, n_balls);
     if (!ref)
       throw InputError("--param", 0, o->param,
@@ -160,8 +163,10 @@ Action add_sweep_command(CLI::App& app) {
       set_checked(probe, *ref, o->to, "--to");
       check_numerical_range(probe, "--to");
     }
-    const Params base = params_of<2>(scene);
     const auto values = grid_values(o->from, o->to, o->steps, o->logarithmic);
+    if (scene.support)  // Floquet multipliers per value and their crossings (model.md §10.11)
+      return sweep_anisotropic(scene, o->scene, *ref, values, o->logarithmic, o->chart, o->output_dir, o->sampling);
+    const Params base = params_of<2>(scene);
     const SweepResult result = sweep(base, *ref, values);
     for (std::size_t i = 0; i < values.size(); ++i)
       fmt::print(stderr, "{}", analysis_warnings(result.points[i], fmt::format("{}={}", o->param, values[i])));

@@ -142,7 +142,8 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   job.method = request.method;
   job.sampling = request.sampling;
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;
-  job.any_balls = count_axis || scene.balls.size() != 2;
+  job.support = scene.support;  // cells by Floquet multipliers (model.md §10.12), the n-ball path
+  job.any_balls = count_axis || scene.balls.size() != 2 || scene.support;
   if (!job.any_balls) {
     job.params = params_of<2>(scene);
     job.provenance = provenance_header(request.command_line, scene.file, job.params);
@@ -309,8 +310,10 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
       curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run_n, job.provenance));
       report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     } else {
-      report.boundary_note = "no fold/Hopf boundaries: the ball count is an axis of this map (continuation needs "
-                             "one ball count)";
+      report.boundary_note = job.support ? "no fold/Hopf boundaries: the support is anisotropic (the boundaries "
+                                           "would be the mean system's; model.md §10.12)"
+                                         : "no fold/Hopf boundaries: the ball count is an axis of this map "
+                                           "(continuation needs one ball count)";
     }
   }
   if (output.chart) {
