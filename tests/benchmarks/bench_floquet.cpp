@@ -82,9 +82,20 @@ int main(int argc, char** argv) {
     MapCellN cell;
     const double t_cell_iso = seconds_per_call(reps, [&] { iso_cells.analyze(0, 0, cell); });
     const double t_cell = seconds_per_call(reps, [&] { aniso_cells.analyze(0, 0, cell); });
-    fmt::print("  map cell (n-ball path, {} balanced states): isotropic {:.3g} ms, anisotropic {:.3g} ms: ratio "
-               "{:.1f}\n",
-               cell.equilibria.size(), 1e3 * t_cell_iso, 1e3 * t_cell, t_cell / t_cell_iso);
+    // The isotropic two-ball map's own cell (CellAnalyzer: characteristic polynomial, Routh).
+    Params p2;
+    p2.rotor = p.rotor;
+    p2.omega = p.omega;
+    p2.law = p.law;
+    p2.kappa = p.kappa;
+    for (std::size_t i = 0; i < 2; ++i) p2.balls[i] = p.balls[i];
+    CellAnalyzer two_ball_cells(p2, x, y);
+    MapCell cell2;
+    const double t_cell_2 = seconds_per_call(reps, [&] { two_ball_cells.analyze(0, 0, cell2); });
+    fmt::print("  map cell ({} balanced states): isotropic two-ball path {:.3g} ms, isotropic n-ball path {:.3g} ms, "
+               "anisotropic {:.3g} ms: ratios {:.1f} and {:.1f}\n",
+               cell.equilibria.size(), 1e3 * t_cell_2, 1e3 * t_cell_iso, 1e3 * t_cell, t_cell / t_cell_2,
+               t_cell / t_cell_iso);
     // The same J (scaled coordinates) for the numpy script.
     const std::string file = "/tmp/bench_floquet_J.txt";
     {
