@@ -188,8 +188,8 @@ void refuse_unround(const Scene& scene, std::string_view command) {
 void refuse_anisotropic(const Scene& scene, std::string_view command) {
   if (scene.support)
     throw NotSupportedError(fmt::format(
-        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria` "
-        "handles it so far (the balanced states' Floquet multipliers)",
+        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria`, "
+        "`sweep`, `map` and `continue` handle it so far (the balanced states' Floquet multipliers)",
         command, scene.file));
 }
 

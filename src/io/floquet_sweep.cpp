@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -17,6 +18,10 @@ int find_member(const FloquetAnalysis& a, int member) {
     if (a.balanced[i].member == member) return int(i);
   return -1;
 }
+
+// |arg rho| [rad] below which a crossing multiplier counts as real (fold or flip): 1e-6, a
+// thousand times Magnus' relative error on it, so a resolved angle is never taken as real.
+constexpr double kUnresolvedAngle = 1e-6;
 
 // ln max |rho|: negative stable, positive unstable; the function whose root is the crossing.
 double growth(const BalancedFloquet& f) { return std::log(f.max_modulus); }
@@ -103,10 +108,12 @@ void locate_floquet_crossings(FloquetSweep& s, const ParamsN& base, const Anisot
       c.value = g_hi == g_lo ? lo : lo - g_lo * (hi - lo) / (g_hi - g_lo);
       const BalancedFloquet& near = std::abs(g_lo) <= std::abs(g_hi) ? f_lo : f_hi;
       c.multiplier = near.multipliers.front();
-      // floquet_order makes real multipliers exactly real: a pair off the axis is complex.
-      c.kind = c.multiplier.imag() != 0.0  ? FloquetCrossing::Kind::neimark_sacker
-               : c.multiplier.real() > 0.0 ? FloquetCrossing::Kind::fold
-                                           : FloquetCrossing::Kind::flip;
+      // A pair whose angle is below kUnresolvedAngle from the real axis is taken as real
+      // (the stuck coulomb balls' pair 1 +- 7e-8 i: a frequency Magnus does not resolve).
+      const double angle = std::abs(std::arg(c.multiplier));
+      c.kind = angle <= kUnresolvedAngle                     ? FloquetCrossing::Kind::fold
+               : angle >= std::numbers::pi - kUnresolvedAngle ? FloquetCrossing::Kind::flip
+                                                              : FloquetCrossing::Kind::neimark_sacker;
       s.crossings.push_back(c);
     }
   }
