@@ -13,28 +13,14 @@
 #include "abu/linear/balanced_floquet.hpp"
 #include "abu/scan/map.hpp"
 #include "abu/scan/scan.hpp"
+#include "anisotropic_base.hpp"
 
 using namespace abu;
 
 namespace {
 
-// BASE of docs/model.md §10.8 (two balls, rolling), friction law as given.
-ParamsN base(FrictionLaw law) {
-  ParamsN p;
-  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
-  p.omega = 900.0;
-  p.law = law;
-  p.kappa = 1e5;
-  p.balls.resize(2);
-  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-3, 0.001, 0.003, 0.1};
-  return p;
-}
-
-// §10.8's anisotropy times `scale` around the mean of p.
-AnisotropicSupport support_of(const ParamsN& p, double scale) {
-  const double k = p.rotor.stiffness, c = p.rotor.damping;
-  return {k + 375.0 * scale, k - 375.0 * scale, 150.0 * scale, c + 0.3 * scale, c - 0.3 * scale, 0.1 * scale};
-}
+ParamsN base(FrictionLaw law) { return testing::anisotropic_base(law); }
+AnisotropicSupport support_of(const ParamsN& p, double scale) { return testing::anisotropic_base_support(p, scale); }
 
 FloquetOptions magnus_route() {
   FloquetOptions o;

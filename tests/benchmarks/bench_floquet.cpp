@@ -18,6 +18,7 @@
 #include "abu/linear/magnus_monodromy.hpp"
 #include "abu/scan/map.hpp"
 #include "abu/scan/scan.hpp"
+#include "../anisotropic_base.hpp"
 
 using namespace abu;
 using Clock = std::chrono::steady_clock;
@@ -33,14 +34,8 @@ int main(int argc, char** argv) {
   const std::string script = argc > 1 ? argv[1] : "tests/benchmarks/bench_floquet_numpy.py";
   const int reps = argc > 2 ? std::atoi(argv[2]) : 20;
   for (FrictionLaw law : {FrictionLaw::viscous, FrictionLaw::coulomb}) {
-    ParamsN p;  // BASE of docs/model.md §10.8
-    p.rotor = {0.12, 7500.0, 2.0, 6e-7};
-    p.omega = 900.0;
-    p.law = law;
-    p.kappa = 1e5;
-    p.balls.resize(2);
-    for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-3, 0.001, 0.003, 0.1};
-    const AnisotropicSupport s{7875.0, 7125.0, 150.0, 2.3, 1.7, 0.1};
+    const ParamsN p = testing::anisotropic_base(law);  // BASE of docs/model.md §10.8
+    const AnisotropicSupport s = testing::anisotropic_base_support(p, 1.0);
     const EquilibriumSetN set = find_equilibria(p);
     const EquilibriumN e = set.points()[0];
     volatile double sink = 0.0;
