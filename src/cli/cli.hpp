@@ -53,7 +53,12 @@ struct Handles {
   bool lugre = false;       ///< the 3n + 4 LuGre state (§12.7, §12.8)
   bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8) or the stick set (§14.10)
   bool unround = false;     ///< an unround race (§11.10)
+  bool anisotropic = false; ///< an anisotropic support, balanced states by Floquet (§10.11–§10.13)
 };
+/// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
+/// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every
+/// command calls it (refuse_unmodelled does).
+void refuse_combined_extensions(const Scene& scene);
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).

@@ -20,6 +20,7 @@
 #include "abu/io/report.hpp"
 #include "commands.hpp"
 #include "unround_commands.hpp"
+#include "floquet_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -339,7 +340,7 @@ Action add_continue_command(CLI::App& app) {
       check_output_directory(o->output_dir);
       return continue_unroundness(scene, o->scene, o->to, o->numerics, o->chart, o->output_dir);
     }
-    refuse_unmodelled(scene, "continue", {.lugre = true});
+    refuse_unmodelled(scene, "continue", {.lugre = true, .anisotropic = true});
     if (scene.law == FrictionLaw::lugre) {  // model.md §12.8: n >= 3 balls, one parameter
       const char* rule = scene.balls.size() == 2 ? "two balls are not continued yet (the n-ball engine needs n >= 3)"
                          : !o->param2.empty()    ? "--param2 (two-parameter boundaries) is not available for it yet"
@@ -355,11 +356,22 @@ Action add_continue_command(CLI::App& app) {
     if (o->cycles && scene.balls.size() != 2)
       throw InputError("--cycles", 0, "", fmt::format("periodic orbits are followed for two balls only (the scene has {})",
                                                       scene.balls.size()));
+    if (scene.support && scene.balls.size() != 2)
+      throw NotSupportedError(fmt::format("continue: {} has an anisotropic support and {} balls: its balanced branches "
+                                          "are continued for two balls only so far (docs/model.md §10.13)",
+                                          scene.file, scene.balls.size()));
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
     const Params p = params_of<2>(scene);
     check_moves(p, param, o->to, "--to", o->param);
+    if (scene.support) {  // balanced branches with Floquet multipliers (model.md §10.13)
+      if (o->cycles || !o->param2.empty() || !o->state.empty() || (!o->family.empty() && o->family != "balanced"))
+        throw InputError(o->cycles ? "--cycles" : !o->param2.empty() ? "--param2" : !o->state.empty() ? "--from-state"
+                                                                                                      : "--family",
+                         0, "", "with an anisotropic support only the balanced branches are continued (model.md §10.13)");
+      return continue_anisotropic(scene, o->scene, param, o->to, o->numerics, o->chart, o->output_dir);
+    }
     StartSelection start;
     if (!o->family.empty()) start.family = o->family == "balanced" ? Family::balanced
                                            : o->family == "together" ? Family::together

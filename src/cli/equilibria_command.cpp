@@ -160,17 +160,7 @@ std::string render_unround(const Scene& scene, const EquilibriaOptions& o, std::
 }
 
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
-  {
-    // The extensions are modelled one at a time (model.md §10-§12): a scene that combines
-    // them is refused rather than analysed with one of them silently dropped.
-    const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
-                           int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set);
-    if (extensions > 1)
-      throw NotSupportedError(fmt::format("{} combines two of an anisotropic support, an unround race, LuGre and "
-                                          "coulomb-set friction; each is analysed only on its own so far "
-                                          "(model.md §10-§12, §14)",
-                                          scene.file));
-  }
+  refuse_combined_extensions(scene);
   if (!scene.race.round()) return render_unround(scene, o, warnings);
   if (scene.support) {  // anisotropic support: Floquet verdicts of the balanced states (model.md §10)
     if (!o.mode_shapes.empty())

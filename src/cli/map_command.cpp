@@ -97,8 +97,7 @@ Action add_map_command(CLI::App& app) {
                           o->threads, o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
-    if (stick) refuse_stick_set_combinations(scene, "map");
-    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true});
+    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true, .anisotropic = true});
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

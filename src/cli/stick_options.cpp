@@ -29,11 +29,4 @@ StickSetOptions stick_resolution(StickSetOptions options) {
   return options;
 }
 
-void refuse_stick_set_combinations(const Scene& scene, std::string_view command) {
-  if (scene.race.round() && !scene.support) return;
-  throw NotSupportedError(fmt::format("`{}`: {} combines coulomb-set friction with {}; the stick set is computed only "
-                                      "on a round race and an isotropic support so far (model.md §14)",
-                                      command, scene.file, scene.support ? "an anisotropic support" : "an unround race"));
-}
-
 }  // namespace abu::cli

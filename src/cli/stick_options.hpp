@@ -21,11 +21,6 @@ void add_stick_resolution_options(CLI::App& sub, StickSetOptions& options);
 /// `options` with the samples per column following the columns (2 C), as parsed.
 StickSetOptions stick_resolution(StickSetOptions options);
 
-/// A coulomb-set scene that `command` (sweep, map) analyses by its stick set: refused
-/// (NotSupportedError) if it also has an unround race or an anisotropic support, as
-/// `equilibria` refuses it; the stick set is of the round race on the isotropic support.
-void refuse_stick_set_combinations(const Scene& scene, std::string_view command);
-
 /// A sweep of a coulomb-set scene (sweep_stick_set.cpp): the values of the parameter and
 /// each value's scene, as `sweep` checked them.
 struct StickSweepInput {

@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "stick_options.hpp"
 #include "unround_commands.hpp"
+#include "floquet_commands.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -192,9 +193,8 @@ Action add_sweep_command(CLI::App& app) {
   return [o]() -> int {
     Scene scene = load(o->scene);
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
-    if (stick) refuse_stick_set_combinations(scene, "sweep");
     const bool unround = !scene.race.round() || o->param == kUnroundnessParam;  // model.md §11.10
-    refuse_unmodelled(scene, "sweep", unround ? Handles{.unround = true} : Handles{.lugre = true, .set_valued = true});
+    refuse_unmodelled(scene, "sweep", unround ? Handles{.unround = true} : Handles{.lugre = true, .set_valued = true, .anisotropic = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (unround)
@@ -211,7 +211,9 @@ Action add_sweep_command(CLI::App& app) {
                                      stick_resolution(o->stick), o->scene.overrides});
     }
     const int n_balls = int(scene.balls.size());
-    if (o->param == "n" || n_balls != 2) return sweep_any_balls(scene, *o);
+    if (scene.support && o->param == "n")
+      throw InputError("--param", 0, "n", "the ball count is not a sweep parameter with an anisotropic support");
+    if (!scene.support && (o->param == "n" || n_balls != 2)) return sweep_any_balls(scene, *o);
     const auto ref = std::optional<ParamRef>(checked_param(*o, n_balls));
     {
       Scene probe = scene;
@@ -220,8 +222,10 @@ Action add_sweep_command(CLI::App& app) {
       set_checked(probe, *ref, o->to, "--to");
       check_numerical_range(probe, "--to");
     }
-    const Params base = params_of<2>(scene);
     const auto values = grid_values(o->from, o->to, o->steps, o->logarithmic);
+    if (scene.support)  // Floquet multipliers per value and their crossings (model.md §10.11)
+      return sweep_anisotropic(scene, o->scene, *ref, values, o->logarithmic, o->chart, o->output_dir, o->sampling);
+    const Params base = params_of<2>(scene);
     const SweepResult result = sweep(base, *ref, values);
     for (std::size_t i = 0; i < values.size(); ++i)
       fmt::print(stderr, "{}", analysis_warnings(result.points[i], fmt::format("{}={}", o->param, values[i])));

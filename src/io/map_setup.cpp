@@ -169,8 +169,9 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
     return job;
   }
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;
-  // LuGre takes the n-ball cells, which know its spectra (model.md §12.8).
-  job.any_balls = count_axis || scene.balls.size() != 2 || scene.law == FrictionLaw::lugre;
+  job.support = scene.support;  // cells by Floquet multipliers (model.md §10.12), the n-ball path
+  // LuGre takes the n-ball cells too, which know its spectra (model.md §12.8).
+  job.any_balls = count_axis || scene.balls.size() != 2 || scene.law == FrictionLaw::lugre || scene.support;
   if (!job.any_balls) {
     job.params = params_of<2>(scene);
     job.provenance = provenance_header(request.command_line, scene.file, job.params);
@@ -347,8 +348,10 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     } else if (job.stick_set) {
       report.boundary_note = "no fold/Hopf boundaries: a coulomb-set map has stick sets, not isolated equilibria";
     } else {
-      report.boundary_note = "no fold/Hopf boundaries: the ball count is an axis of this map (continuation needs "
-                             "one ball count)";
+      report.boundary_note = job.support ? "no fold/Hopf boundaries: the support is anisotropic (the boundaries "
+                                           "would be the mean system's; model.md §10.12)"
+                                         : "no fold/Hopf boundaries: the ball count is an axis of this map "
+                                           "(continuation needs one ball count)";
     }
   }
   if (output.chart && job.stick_set) {

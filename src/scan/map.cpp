@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "abu/linear/lugre_spectrum.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/linear/balanced_floquet.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/friction.hpp"
 
@@ -158,8 +160,8 @@ int MapCellN::best_stable() const {
 }
 
 CellAnalyzerN::CellAnalyzerN(const ParamsN& base, std::vector<ParamsN> by_count, const Axis& x, const Axis& y,
-                             const BalancedSampling& sampling)
-    : base_(base), by_count_(std::move(by_count)), x_(x), y_(y), sampling_(sampling) {}
+                             const BalancedSampling& sampling, std::optional<AnisotropicSupport> support)
+    : base_(base), by_count_(std::move(by_count)), x_(x), y_(y), sampling_(sampling), support_(support) {}
 
 ParamsN CellAnalyzerN::cell_params(int ix, int iy) const {
   ParamsN p = x_.ball_count ? by_count_[std::size_t(ix)] : y_.ball_count ? by_count_[std::size_t(iy)] : base_;
@@ -186,6 +188,10 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
   out.balanced_samples = out.balanced_stable = out.aligned = out.aligned_stable = 0;
   out.normal_abscissa_max = 0;
   const auto points = set_.points();
+  if (support_) {
+    analyze_floquet_cell(p, points, out);
+    return;
+  }
   out.equilibria.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
     const EquilibriumN& e = points[k];
@@ -217,6 +223,41 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
       ++out.aligned;
       out.aligned_stable += m.stable;
     }
+  }
+}
+
+void CellAnalyzerN::analyze_floquet_cell(const ParamsN& p, std::span<const EquilibriumN> points, MapCellN& out) {
+  // Anisotropic support (model.md §10.12): the balanced states stay equilibria, judged by
+  // the Floquet multipliers over pi/omega on the magnus route (§10.10, ~1 ms a state); the
+  // mean system's other equilibria are periodic orbits and have no row here.
+  FloquetOptions options;
+  options.route = FloquetRoute::magnus;
+  std::size_t count = 0;
+  for (const EquilibriumN& e : points) count += e.family == Family::balanced;
+  out.equilibria.resize(count);
+  std::size_t k = 0;
+  for (const EquilibriumN& e : points) {
+    if (e.family != Family::balanced) continue;
+    const BalancedFloquet f = balanced_floquet(p, *support_, e, options);
+    if (!f.status.ok())
+      throw NumericalError(fmt::format("omega={}: Floquet multipliers of balanced state {}: {}", p.omega, e.member,
+                                       f.status.reason));
+    MapEquilibriumN& m = out.equilibria[k++];
+    m.family = e.family;
+    m.pattern = e.pattern;
+    m.member = e.member;
+    m.n_unstable = 0;
+    for (const auto& rho : f.multipliers) m.n_unstable += std::abs(rho) > 1.0;
+    m.n_structural = f.deflated;
+    m.stable = f.verdict == Stability::stable;
+    m.abscissa = f.abscissa;
+    m.rho_abs_max = f.max_modulus;
+    m.q_abs = std::hypot(double(e.position(0)), double(e.position(1)));
+    m.beta.fill(0);
+    for (int i = 0; i < out.n_balls; ++i) m.beta[std::size_t(i)] = double(e.position(2 + i));
+    out.normal_abscissa_max = out.balanced_samples == 0 ? m.abscissa : std::max(out.normal_abscissa_max, m.abscissa);
+    ++out.balanced_samples;
+    out.balanced_stable += m.stable;
   }
 }
 

@@ -102,6 +102,16 @@ std::string tile_directory_name(const MapJob& job) {
 
 namespace {
 
+// An anisotropic support changes what the n-ball columns mean (model.md §10.12).
+std::string floquet_note(const MapJob& job) {
+  if (!job.support) return {};
+  return "# anisotropic support (model.md §10.12): only the balanced states, which stay equilibria; the mean "
+         "system's other equilibria are pi/omega-periodic orbits and have no row (aligned = 0). stable, n_unstable, "
+         "n_structural_zero (the deflated unit multipliers) and spectral_abscissa (the Floquet decay rate "
+         "(omega/pi) ln max|rho|, rotating frame, 1/s) come from the Floquet multipliers rho over pi/omega; the "
+         "summary's rho_abs_max = max |rho| over the cell's balanced states\n";
+}
+
 // The n-ball CSVs' columns (one place: this file writes and documents both).
 std::string map_csv_header_n(const MapJob& job) {
   const std::string x = axis_name(job.x), y = axis_name(job.y);
@@ -121,9 +131,10 @@ std::string map_csv_header_n(const MapJob& job) {
              "set on it);\n"
              "#   q_abs [m] = |q|, the residual vibration; beta_i [rad] in [0, 2 pi), empty beyond the cell's "
              "ball count\n"
+             "{5}"
              "ix,iy,{0},{1},balls,family,pattern,member,stable,n_unstable,n_structural_zero,spectral_abscissa,q_abs"
              "{4}\n",
-             x, y, axis_unit(job.x), axis_unit(job.y), betas);
+             x, y, axis_unit(job.x), axis_unit(job.y), betas, floquet_note(job));
 }
 
 std::string summary_csv_header_n(const MapJob& job) {
@@ -144,10 +155,11 @@ std::string summary_csv_header_n(const MapJob& job) {
              "none is stable);\n"
              "#   degenerate = bit flags (equilibria.hpp, Degeneracy): 1 U = 0, 8 K = C = 0, 64 a pattern's double "
              "root (fold), 128 a pattern with S = 0, 256 a collinear point of the balanced set, 512 no balanced set\n"
+             "{4}"
              "ix,iy,{0},{1},balls,capacity,U,balanced_exists,balanced_samples,balanced_stable_fraction,"
              "normal_abscissa_max,aligned,aligned_stable,n_stable,best_family,best_pattern,best_member,best_q_abs,"
-             "degenerate\n",
-             x, y, axis_unit(job.x), axis_unit(job.y));
+             "degenerate{5}\n",
+             x, y, axis_unit(job.x), axis_unit(job.y), floquet_note(job), job.support ? ",rho_abs_max" : "");
 }
 
 }  // namespace
@@ -161,7 +173,7 @@ int MapJob::max_balls_in_map() const {
 CellWorkspace::CellWorkspace(const MapJob& job) {
   if (job.stick_set) return;  // stick_set() keeps no state between cells
   if (job.any_balls)
-    any_balls.emplace(job.params_n, job.by_count, job.x, job.y, job.sampling);
+    any_balls.emplace(job.params_n, job.by_count, job.x, job.y, job.sampling, job.support);
   else
     two_balls.emplace(job.params, job.x, job.y, job.method);
 }
@@ -249,7 +261,16 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
   } else {
     fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,,"));
   }
-  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), cell.degeneracy);
+  if (job.support) {  // max |rho| over the balanced states (model.md §10.12); empty without one
+    double rho_max = 0.0;
+    for (const MapEquilibriumN& e : cell.equilibria) rho_max = std::max(rho_max, e.rho_abs_max);
+    if (cell.equilibria.empty())
+      summary.push_back(',');
+    else
+      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), rho_max);
+  }
+  summary.push_back('\n');
 }
 
 }  // namespace
@@ -846,7 +867,9 @@ std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
 }
 
 std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job) {
-  if (!job.any_balls || job.stick_set || job.x.ball_count || job.y.ball_count || job.params_n.n_balls() < 3) return std::nullopt;
+  if (!job.any_balls || job.stick_set || job.support || job.x.ball_count || job.y.ball_count ||
+      job.params_n.n_balls() < 3)
+    return std::nullopt;
   const ContinuationOptions options;
   BoundaryRunN all = along_edges<BoundaryRunN>(job, job.params_n, [&](const ParamsN& p, double to2) {
     const ContinuationRunN run = continue_branches(p, job.x.param, job.x.to, options, job.sampling);

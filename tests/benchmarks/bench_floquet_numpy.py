@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """numpy side of bench_floquet: RK4 monodromy of x' = J(t) x over pi/omega (800 steps, as
 needed for ~1e-11 in the viscous case), timed; prints the ratio to the C++ verdict time.
-Usage: bench_floquet_numpy.py J_FILE CPP_SECONDS"""
+Usage: bench_floquet_numpy.py J_FILE CPP_SECONDS [CPP_CELL_SECONDS STATES]
+With the map cell's time, also the ratio of a numpy map cell (STATES monodromies) to it."""
 import sys
 import time
 
@@ -39,7 +40,11 @@ def main():
         rho = monodromy()
     t = (time.perf_counter() - t0) / reps
     print(f"numpy RK4-800 monodromy {1e3 * t:.3g} ms (max |rho| = {max(abs(rho)):.12f}): "
-          f"{t / cpp:.1f} x the C++ Floquet verdict")
+          f"{t / cpp:.1f} x the C++ Floquet verdict (magnus route)")
+    if len(sys.argv) > 4:
+        cell, states = float(sys.argv[3]), int(sys.argv[4])
+        print(f"numpy map cell ({states} monodromies, equilibria not counted) {1e3 * states * t:.3g} ms: "
+              f"{states * t / cell:.1f} x the C++ anisotropic map cell")
 
 
 if __name__ == "__main__":

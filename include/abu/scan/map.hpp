@@ -21,6 +21,8 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -29,6 +31,7 @@
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/characteristic.hpp"
+#include "abu/model/anisotropic_support.hpp"
 
 namespace abu {
 
@@ -119,7 +122,9 @@ struct MapEquilibriumN {
   int n_unstable = 0;
   int n_structural = 0;  ///< zero by construction (model.md §13.4), left out of the verdict
   bool stable = false;
-  double abscissa = 0;   ///< spectral abscissa [1/s]; on the balanced set the normal one
+  double abscissa = 0;   ///< spectral abscissa [1/s]; on the balanced set the normal one;
+                         ///< anisotropic support: the Floquet decay rate (omega/pi) ln max|rho|
+  double rho_abs_max = 0;  ///< anisotropic support: max |rho| over pi/omega (model.md §10.12); else 0
   double q_abs = 0;      ///< |q| [m]
   std::array<double, max_balls> beta{};
 };
@@ -149,17 +154,23 @@ class CellAnalyzerN {
  public:
   /// `base`: the scene's parameters; with a ball-count axis `by_count[k]` are those of
   /// the scene's ring with from + k balls (io builds them: scan does not know scenes).
+  /// With `support` (the scene's anisotropic support, `base` its mean), a cell holds only its
+  /// balanced states, judged by their Floquet multipliers (model.md §10.12); the others are
+  /// periodic orbits, not equilibria, and are left out.
   CellAnalyzerN(const ParamsN& base, std::vector<ParamsN> by_count, const Axis& x, const Axis& y,
-                const BalancedSampling& sampling);
+                const BalancedSampling& sampling, std::optional<AnisotropicSupport> support = std::nullopt);
   void analyze(int ix, int iy, MapCellN& out);
   /// The parameters of cell (ix, iy).
   ParamsN cell_params(int ix, int iy) const;
 
  private:
+  void analyze_floquet_cell(const ParamsN& p, std::span<const EquilibriumN> points, MapCellN& out);
+
   ParamsN base_;
   std::vector<ParamsN> by_count_;
   Axis x_, y_;
   BalancedSampling sampling_;
+  std::optional<AnisotropicSupport> support_;
   EquilibriumSetN set_;
 };
 

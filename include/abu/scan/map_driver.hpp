@@ -64,6 +64,10 @@ struct MapJob {
   /// count (no ball-count axis), any_balls false, `method` and `sampling` not used.
   bool stick_set = false;
   StickSetOptions stick;
+  /// An anisotropic support (model.md §10): `params_n` carries its mean, `any_balls` is set,
+  /// cells hold the balanced states judged by Floquet multipliers (§10.12), the summary
+  /// gains rho_abs_max, and there are no fold/Hopf boundaries (they are the mean system's).
+  std::optional<AnisotropicSupport> support;
   /// The most balls of any cell: the number of beta columns of the n-ball long CSV.
   int max_balls_in_map() const;
   /// Columns per tile: kTileColumns for two balls; 1 for n balls, whose cells cost up to
