@@ -86,24 +86,15 @@ int forced_jacobian(double t, const double y[], double* dfdy, double dfdt[], voi
   return GSL_SUCCESS;
 }
 
-struct Evaluated {
-  Eigen::VectorXd u;
-  Eigen::VectorXd residual;
-  Eigen::MatrixXd jacobian;
-  std::vector<Eigen::MatrixXd> transitions;
-  bool ok = false;
-  std::string_view why;
-};
+using Evaluated = detail::ShootingEvaluation;
 
-class ForcedProblem {
+class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
  public:
-  using Vec = Eigen::VectorXd;
-  using Jacobian = Eigen::MatrixXd;
   static constexpr std::size_t test_count = 1;  // d delta / ds: a fold in delta
 
   ForcedProblem(const ParamsN& p, const AnisotropicSupport& s, const Eigen::VectorXd& scale,
                 const ForcedOrbitOptions& o, const gsl_odeiv2_step_type* type)
-      : o_(o), m_(o.intervals), dim_(int(scale.size())),
+      : ShootingSystem(o.rtol, 1e2), o_(o), m_(o.intervals), dim_(int(scale.size())),
         full_(type, dim_ * (dim_ + 2), o.rtol, "forced orbit: integrating an interval"),
         plain_(type, dim_, o.rtol, "forced orbit: sampling") {
     ctx_.p = p;
@@ -156,21 +147,6 @@ class ForcedProblem {
     return e;
   }
 
-  Vec residual(const Vec& u) const { return at(u).residual; }
-  Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
-  double residual_size(const Vec& u) const {
-    const Evaluated& e = at(u);
-    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
-  }
-  arclength::NewtonSettings newton() const {
-    // The residual is an integration to rtol: Newton stops at its noise level, not at eps.
-    arclength::NewtonSettings s;
-    s.max_iterations = 10;
-    s.step_tolerance = 10 * o_.rtol;
-    s.stall_tolerance = 1e7 * o_.rtol;
-    s.residual_tolerance = 1e2 * o_.rtol;
-    return s;
-  }
 
   arclength::Crossing crossing(const Vec&, const Vec& to) const {
     // Back below delta = 0: the family turned (a fold in delta) before reaching delta_end.

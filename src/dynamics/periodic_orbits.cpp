@@ -161,25 +161,16 @@ HopfPrediction predict_from_hopf(const Params& p0, ParamRef ref, const SpecialPo
 
 namespace {
 
-struct Evaluated {
-  Eigen::VectorXd u;
-  Eigen::VectorXd residual;
-  Eigen::MatrixXd jacobian;
-  std::vector<Eigen::MatrixXd> transitions;
-  bool ok = false;
-  std::string_view why;
-};
+using Evaluated = detail::ShootingEvaluation;
 
-class CycleProblem {
+class CycleProblem : public detail::ShootingSystem<CycleProblem> {
  public:
-  using Vec = Eigen::VectorXd;
-  using Jacobian = Eigen::MatrixXd;
   static constexpr std::size_t test_count = 3;  // LPC, PD, NS
   static constexpr bool tangent_at_solution = true;
 
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
                const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
-      : o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
+      : ShootingSystem(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
         full_(type, kAugmented, o.rtol), plain_(type, kDim, o.rtol) {
     ctx_.p = p;
     ctx_.ref = ref;
@@ -256,21 +247,6 @@ class CycleProblem {
     return e;
   }
 
-  Vec residual(const Vec& u) const { return at(u).residual; }
-  Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
-  double residual_size(const Vec& u) const {
-    const Evaluated& e = at(u);
-    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
-  }
-  arclength::NewtonSettings newton() const {
-    // The residual is an integration to rtol: Newton stops at its noise level, not at eps.
-    arclength::NewtonSettings s;
-    s.max_iterations = 10;
-    s.step_tolerance = 10 * o_.rtol;
-    s.stall_tolerance = 1e7 * o_.rtol;
-    s.residual_tolerance = 1e3 * o_.rtol;
-    return s;
-  }
 
   arclength::Crossing crossing(const Vec&, const Vec& to) const {
     if (!(to(period_index()) > 0)) return arclength::Crossing::leaving("the period went to zero");

@@ -13,6 +13,9 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "abu/continuation/bordered.hpp"
 #include "abu/core/cancel.hpp"
 
 namespace abu::detail {
@@ -66,6 +69,45 @@ class FlowIntegrator {
   gsl_odeiv2_evolve* evolve_;
   double first_step_ = 1e-6;
   long steps_ = 0;
+};
+
+// One evaluation of a shooting problem at its unknowns u: the residuals, their Jacobian and
+// the intervals' transition matrices (the Floquet factors), cached by the problem.
+struct ShootingEvaluation {
+  Eigen::VectorXd u;
+  Eigen::VectorXd residual;
+  Eigen::MatrixXd jacobian;
+  std::vector<Eigen::MatrixXd> transitions;
+  bool ok = false;
+  std::string_view why;
+};
+
+// The System part of a shooting problem (continuation/bordered.hpp) from its cached
+// evaluation `at(u)`: Newton stops at the integration's noise (rtol), not at eps.
+template <class Problem>
+class ShootingSystem {
+ public:
+  using Vec = Eigen::VectorXd;
+  using Jacobian = Eigen::MatrixXd;
+  ShootingSystem(double rtol, double residual_factor) : rtol_(rtol), residual_factor_(residual_factor) {}
+  Vec residual(const Vec& u) const { return self().at(u).residual; }
+  Jacobian jacobian(const Vec& u) const { return self().at(u).jacobian; }
+  double residual_size(const Vec& u) const {
+    const ShootingEvaluation& e = self().at(u);
+    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
+  }
+  arclength::NewtonSettings newton() const {
+    arclength::NewtonSettings s;
+    s.max_iterations = 10;
+    s.step_tolerance = 10 * rtol_;
+    s.stall_tolerance = 1e7 * rtol_;
+    s.residual_tolerance = residual_factor_ * rtol_;
+    return s;
+  }
+
+ private:
+  const Problem& self() const { return static_cast<const Problem&>(*this); }
+  double rtol_, residual_factor_;
 };
 
 // Parabola through three equally spaced samples: the extreme value.

@@ -82,7 +82,7 @@ std::string forced_orbits_csv(const ForcedOrbitAnalysis& a, const ParamsN& p) {
         out += fmt::format(",{},{},{}", o.multipliers[k].real(), o.multipliers[k].imag(), o.log_moduli[k]);
       out += ",\n";
     } else {
-      out += std::string(std::size_t(3 + 2 * n + 3 * dim), ',');
+      out += std::string(std::size_t(4 + 2 * n + 3 * dim), ',');  // the empty fields, then the reason
       out += csv_quoted(o.reason) + "\n";
     }
   }
