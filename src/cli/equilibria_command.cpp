@@ -18,6 +18,7 @@
 #include "abu/equilibria/stick_set.hpp"
 #include "abu/io/report.hpp"
 #include "abu/io/report_floquet.hpp"
+#include "abu/io/report_forced_orbits.hpp"
 #include "abu/io/report_lugre.hpp"
 #include "abu/io/report_stick_set.hpp"
 #include "abu/io/report_unround.hpp"
@@ -166,10 +167,15 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     if (!o.mode_shapes.empty())
       throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
     const ParamsN p = params_of<any_balls>(scene);
-    const FloquetAnalysis a = analyze_floquet(p, *scene.support, o.sampling);
-    if (o.format == "csv") return floquet_csv(a, p, provenance_header(command_line(), scene.file, p));
-    if (o.format == "json") return floquet_json(a, p, *scene.support, command_line(), scene.file);
-    return floquet_table(a, p, *scene.support);
+    FloquetAnalysis a = analyze_floquet(p, *scene.support, o.sampling);
+    // The other states: periodic orbits continued from the mean system's (model.md §10.14).
+    const ForcedOrbitAnalysis orbits = analyze_forced_orbits(p, *scene.support, a.mean_equilibria);
+    a.periodic_orbits_not_computed = 0;
+    if (o.format == "csv")
+      return floquet_csv(a, p, provenance_header(command_line(), scene.file, p)) + forced_orbits_csv(orbits, p);
+    if (o.format == "json")
+      return floquet_json(a, p, *scene.support, command_line(), scene.file, forced_orbits_json(orbits));
+    return floquet_table(a, p, *scene.support) + forced_orbits_table(orbits, p);
   }
   const SpeedUnit unit = o.scene.speed_unit();
   if (scene.law == FrictionLaw::coulomb_set) return render_stick_set(scene, o, out);

@@ -19,6 +19,7 @@
 #include "abu/core/gsl_errors.hpp"
 #include "abu/linear/floquet.hpp"
 #include "abu/model/model.hpp"
+#include "shooting_flow.hpp"
 
 namespace abu {
 namespace {
@@ -87,70 +88,22 @@ int flow_jacobian(double, const double y[], double* dfdy, double dfdt[], void* p
   return GSL_SUCCESS;
 }
 
-// One GSL stepper/control/evolve set for a system size.
+// The flow over [0, h] of the scaled system (stopping at every target in between).
 class Integrator {
  public:
   Integrator(const gsl_odeiv2_step_type* type, int dim, double rtol)
-      : dim_(dim), step_(gsl_odeiv2_step_alloc(type, std::size_t(dim))),
-        control_(gsl_odeiv2_control_standard_new(rtol, rtol, 1.0, 0.0)),
-        evolve_(gsl_odeiv2_evolve_alloc(std::size_t(dim))) {}
-  ~Integrator() {
-    gsl_odeiv2_evolve_free(evolve_);
-    gsl_odeiv2_control_free(control_);
-    gsl_odeiv2_step_free(step_);
-  }
-  Integrator(const Integrator&) = delete;
-  Integrator& operator=(const Integrator&) = delete;
-  // Integrates y over [0, h] (stopping at every target in between); false with why.
+      : flow_(type, dim, rtol, "cycle continuation: integrating an interval") {}
   bool run(FlowContext& c, double* y, double h, const std::vector<double>& targets,
            const std::function<void(const double*)>& at_target, std::string_view& why) {
-    gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(dim_), &c};
-    gsl_odeiv2_evolve_reset(evolve_);
-    gsl_odeiv2_step_reset(step_);
-    double t = 0, dt = std::min(first_step_, h);
-    for (double target : targets) {
-      while (t < target) {
-        const int st = gsl_odeiv2_evolve_apply(evolve_, control_, step_, &sys, &t, target, &dt, y);
-        if (st != GSL_SUCCESS) {
-          why = "the integrator failed (a non-finite field or a step below rounding)";
-          return false;
-        }
-        if ((++steps_ & 1023) == 0) throw_if_stopped("cycle continuation: integrating an interval");
-        if (steps_ > 50'000'000) {
-          why = "the integrator needed more than 5e7 steps";
-          return false;
-        }
-      }
-      if (at_target) at_target(y);
-    }
-    first_step_ = std::max(dt, 1e-12 * h);
-    return true;
+    gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(flow_.dimension()), &c};
+    return flow_.run(sys, 0.0, y, h, targets, at_target, why);
   }
 
  private:
-  int dim_;
-  gsl_odeiv2_step* step_;
-  gsl_odeiv2_control* control_;
-  gsl_odeiv2_evolve* evolve_;
-  double first_step_ = 1e-6;
-  long steps_ = 0;
+  detail::FlowIntegrator flow_;
 };
 
-// Parabola through three equally spaced samples: the extreme value.
-double parabolic_peak(double a, double b, double c) {
-  const double den = a - 2 * b + c;
-  if (den == 0) return b;
-  const double s = 0.5 * (a - c) / den;
-  if (std::abs(s) > 1) return b;
-  return b - 0.25 * (a - c) * s;
-}
-
-// The largest of cyclic uniform samples, refined by a parabola.
-double cyclic_max(const std::vector<double>& v) {
-  const std::size_t n = v.size();
-  const std::size_t k = std::size_t(std::max_element(v.begin(), v.end()) - v.begin());
-  return parabolic_peak(v[(k + n - 1) % n], v[k], v[(k + 1) % n]);
-}
+using detail::cyclic_max;
 
 }  // namespace
 
@@ -208,25 +161,16 @@ HopfPrediction predict_from_hopf(const Params& p0, ParamRef ref, const SpecialPo
 
 namespace {
 
-struct Evaluated {
-  Eigen::VectorXd u;
-  Eigen::VectorXd residual;
-  Eigen::MatrixXd jacobian;
-  std::vector<Eigen::MatrixXd> transitions;
-  bool ok = false;
-  std::string_view why;
-};
+using Evaluated = detail::ShootingEvaluation;
 
-class CycleProblem {
+class CycleProblem : public detail::ShootingSystem<CycleProblem> {
  public:
-  using Vec = Eigen::VectorXd;
-  using Jacobian = Eigen::MatrixXd;
   static constexpr std::size_t test_count = 3;  // LPC, PD, NS
   static constexpr bool tangent_at_solution = true;
 
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
                const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
-      : o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
+      : ShootingSystem(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
         full_(type, kAugmented, o.rtol), plain_(type, kDim, o.rtol) {
     ctx_.p = p;
     ctx_.ref = ref;
@@ -303,21 +247,6 @@ class CycleProblem {
     return e;
   }
 
-  Vec residual(const Vec& u) const { return at(u).residual; }
-  Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
-  double residual_size(const Vec& u) const {
-    const Evaluated& e = at(u);
-    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
-  }
-  arclength::NewtonSettings newton() const {
-    // The residual is an integration to rtol: Newton stops at its noise level, not at eps.
-    arclength::NewtonSettings s;
-    s.max_iterations = 10;
-    s.step_tolerance = 10 * o_.rtol;
-    s.stall_tolerance = 1e7 * o_.rtol;
-    s.residual_tolerance = 1e3 * o_.rtol;
-    return s;
-  }
 
   arclength::Crossing crossing(const Vec&, const Vec& to) const {
     if (!(to(period_index()) > 0)) return arclength::Crossing::leaving("the period went to zero");

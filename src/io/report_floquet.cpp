@@ -82,8 +82,9 @@ std::string floquet_table(const FloquetAnalysis& a, const ParamsN& p, const Anis
 
 std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::string& header) {
   std::string out = header;
-  out += fmt::format("# anisotropic support: balanced states only; {} other state(s): {}\n",
-                     a.periodic_orbits_not_computed, kOrbitsNote);
+  if (a.periodic_orbits_not_computed > 0)
+    out += fmt::format("# anisotropic support: balanced states only; {} other state(s): {}\n",
+                       a.periodic_orbits_not_computed, kOrbitsNote);
   const int n = p.n_balls();
   out += "state,member";
   for (int k = 1; k <= n; ++k) out += fmt::format(",beta{}", k);
@@ -105,7 +106,8 @@ std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::s
 }
 
 std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& s,
-                         std::string_view command_line, std::string_view scene_file) {
+                         std::string_view command_line, std::string_view scene_file,
+                         std::string_view periodic_orbits) {
   std::string out = "{\n";
   out += fmt::format("  \"command\": {},\n  \"scene\": {},\n  \"balls\": {},\n  \"omega\": {},\n", json_string(command_line),
                      json_string(scene_file), p.n_balls(), p.omega);
@@ -137,6 +139,7 @@ std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const Aniso
     out += "]}";
   }
   out += a.balanced.empty() ? "],\n" : "\n  ],\n";
+  if (!periodic_orbits.empty()) return out + fmt::format("  {}\n}}\n", periodic_orbits);
   out += fmt::format("  \"periodic_orbits\": {{\"count\": {}, \"computed\": false, \"note\": {}}}\n}}\n",
                      a.periodic_orbits_not_computed, json_string(kOrbitsNote));
   return out;

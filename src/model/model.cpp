@@ -1,4 +1,5 @@
 #include "abu/model/model.hpp"
+#include "abu/model/mass_derivative.hpp"
 
 #include <cmath>
 #include <complex>
@@ -180,6 +181,11 @@ DofMatrix<T, N> mass_matrix(const ParamsT<T, N>& p, const Coordinates<T, N>& s) 
     A(2 + i, 2 + i) = p.balls[j].inertia_factor * kin.ml[j] * p.balls[j].race_radius;
   }
   return A;
+}
+
+template <class T, int N>
+DofMatrix<T, N> mass_derivative_times(const ParamsT<T, N>& p, const Coordinates<T, N>& s, const Coordinates<T, N>& z) {
+  return mass_derivative_times(Kinematics<T, N>(p, at_rest<T, N>(s)), z);
 }
 
 template <class T, int N>
@@ -472,6 +478,8 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
 
 #define ABU_INSTANTIATE_MODEL(T, N)                                                                  \
   template DofMatrix<T, N> mass_matrix<T, N>(const ParamsT<T, N>&, const Coordinates<T, N>&);         \
+  template DofMatrix<T, N> mass_derivative_times<T, N>(const ParamsT<T, N>&, const Coordinates<T, N>&,  \
+                                                       const Coordinates<T, N>&);                    \
   template Coordinates<T, N> generalized_forces<T, N>(const ParamsT<T, N>&, const State<T, N>&);      \
   template State<T, N> vector_field<T, N>(const ParamsT<T, N>&, const State<T, N>&);                  \
   template State<T, N> vector_field<T, N>(const ParamsT<T, N>&, const State<T, N>&, const T&);        \

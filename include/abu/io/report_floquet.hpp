@@ -32,7 +32,11 @@ FloquetAnalysis analyze_floquet(const ParamsN& p, const AnisotropicSupport& supp
 std::string floquet_table(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support);
 /// One row per balanced state; `header` is written first (provenance, comment lines).
 std::string floquet_csv(const FloquetAnalysis& a, const ParamsN& p, const std::string& header);
+/// `periodic_orbits`: the JSON members on the periodic orbits ("periodic_orbits": [...] and
+/// their counts) when they were computed (report_forced_orbits.hpp); empty: the note that
+/// they were not.
 std::string floquet_json(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support,
-                         std::string_view command_line, std::string_view scene_file);
+                         std::string_view command_line, std::string_view scene_file,
+                         std::string_view periodic_orbits = {});
 
 }  // namespace abu

@@ -1,0 +1,73 @@
+// The non-balanced states on an anisotropic support (docs/model.md §10.14): each aligned
+// equilibrium of the mean (isotropic) system becomes a pi/omega-periodic orbit of the
+// rotating-frame system, which is non-autonomous. The orbit is continued from the
+// equilibrium in the homotopy parameter delta of model/anisotropic_field.hpp (delta = 0:
+// the mean support, delta = 1: the scene's), by multiple shooting over the fixed period
+// pi/omega with the project's pseudo-arclength engine, and its 2n + 4 Floquet multipliers
+// come from the product of the short-interval transition matrices (linear/floquet.hpp).
+//
+// Unknowns (scaled, model.md (10.14.3)): the states y_1..y_M at t_j = (j - 1) pi/(omega M)
+// (y = D^-1 x, D = diag(L, L, 1.., L omega, L omega, omega..)) and delta / delta_end.
+// Equations: phi(t_j, t_j + h; y_j) - y_{j+1} = 0, cyclic. No phase condition and no
+// trivial multiplier: the period is the forcing's, and a time shift of an orbit is not
+// an orbit (the support turns in the rotating frame).
+//
+//   abu::ForcedOrbit o = abu::forced_orbit(p, support, aligned_equilibrium, {});
+//   if (o.status.ok()) ... o.q_abs_max, o.multipliers, o.verdict ...
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "abu/continuation/arclength.hpp"
+#include "abu/core/params.hpp"
+#include "abu/core/status.hpp"
+#include "abu/equilibria/equilibria.hpp"
+#include "abu/linear/spectrum.hpp"
+#include "abu/model/anisotropic_support.hpp"
+
+namespace abu {
+
+struct ForcedOrbitOptions {
+  int intervals = 8;              ///< M shooting intervals per pi/omega; default 8
+  double rtol = 1e-13;            ///< integrator tolerance (relative = absolute, scaled state); default 1e-13
+  int samples_per_interval = 16;  ///< for |q| and the ball angles; default 16
+  double delta_end = 1.0;         ///< continue to this delta (1: the scene's support); default 1
+  /// In delta / delta_end (the orbit moves O(|kappa| / |K|) per unit delta, scaled O(1)): a first step of 0.1,
+  /// ds_min 1e-4 (a family that needs shorter steps is in trouble: stick-slip of coulomb balls), 400 attempts.
+  ContinuationOptions continuation{0.1, 1e-4, 0.5, 400, 1};
+};
+
+struct ForcedOrbit {
+  // The aligned equilibrium of the mean system it continues (model.md §13.2).
+  Family family = Family::aligned;
+  unsigned pattern = 0;
+  int member = 1;
+  std::string kind;  ///< e.g. "together 1", "aligned ++- 2"
+  double delta = 0;  ///< the last delta reached (delta_end when converged)
+  double period = 0;  ///< pi / omega [s]
+  double q_abs_max = 0, q_abs_mean = 0;  ///< over the period [m] (rotating frame; fixed-frame whirl radius, §2)
+  std::vector<double> ball_min, ball_max;  ///< range of each beta_i over the period [rad]
+  /// All 2n + 4 multipliers over pi/omega, modulus descending; log_moduli keeps those below 1e-308.
+  std::vector<std::complex<double>> multipliers;
+  std::vector<double> log_moduli;
+  std::vector<std::complex<double>> exponents;  ///< (omega/pi) ln rho [1/s, rotating frame], Im in (-omega, omega]
+  /// The verdict: stable if ln max|rho| < -band, unstable if > band, else marginal;
+  /// band = 1e3 * rtol * M (the integration's relative error carried to ln rho).
+  Stability verdict = Stability::marginal;
+  double band = 0;
+  std::vector<double> state0;     ///< x(0) SI (model.md (2.2)): the orbit at t = 0
+  double periodicity = 0;         ///< max |x(pi/omega) - x(0)| / D (scaled), integrated from state0 in one run
+  Status status;                  ///< converged, or the kind of failure (see reason)
+  std::string reason;             ///< where and why it failed; empty when converged
+  long steps = 0, newton_iterations = 0;
+  bool stable() const { return verdict == Stability::stable; }
+};
+
+/// Continues the aligned equilibrium `e` of `p` (which must carry the mean support
+/// k_bar, c_bar; e an equilibrium of it with q != 0) to delta_end.
+ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& support, const EquilibriumN& e,
+                         const ForcedOrbitOptions& options = {});
+
+}  // namespace abu

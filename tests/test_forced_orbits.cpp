@@ -1,0 +1,151 @@
+// The non-balanced states on an anisotropic support as pi/omega-periodic orbits
+// (docs/model.md §10.14): the field's Jacobian against finite differences, the isotropic
+// limit delta -> 0 (the orbit is the equilibrium, the multipliers exp(lambda pi/omega)),
+// the first-order growth of the orbit with delta, and the periodicity at full anisotropy.
+// The orbits' values at full anisotropy are checked against the independent Python
+// reference (tests/reference/forced_orbit_reference.py, ctest reference_forced_orbits/*).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "abu/dynamics/forced_orbits.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/model/anisotropic_field.hpp"
+
+using namespace abu;
+
+namespace {
+
+// BASE of docs/model.md §10.8 (two viscous balls, omega = 900 rad/s).
+ParamsN base() {
+  ParamsN p;
+  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
+  p.omega = 900.0;
+  p.law = FrictionLaw::viscous;
+  p.kappa = 1e6;
+  p.balls.resize(2);
+  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-3, 0.001, 0.003, 0.1};
+  return p;
+}
+
+// §10.8's anisotropy: dk = 375, k_xy = 150, dc = 0.3, c_xy = 0.1 about the mean of `p`.
+AnisotropicSupport support_of(const ParamsN& p) {
+  const double k = p.rotor.stiffness, c = p.rotor.damping;
+  return {k + 375.0, k - 375.0, 150.0, c + 0.3, c - 0.3, 0.1};
+}
+
+std::vector<EquilibriumN> aligned(const ParamsN& p) {
+  std::vector<EquilibriumN> out;
+  const EquilibriumSetN set = find_equilibria(p);
+  for (const auto& e : set.points())
+    if (e.family != Family::balanced) out.push_back(e);
+  return out;
+}
+
+}  // namespace
+
+// (10.14.2) is the analytic Jacobian of (10.14.1); central differences of the field with
+// steps 1e-6 of each coordinate's scale have a truncation error ~1e-12 relative and a
+// rounding error ~1e-10 of the largest entry: 1e-7 of the row's largest entry is safe.
+TEST_CASE("forced orbits: the anisotropic field's Jacobian and derivatives are exact", "[forced]") {
+  const ParamsN p = base();
+  const AnisotropicSupport s = support_of(p);
+  State<double, any_balls> x(8);
+  x << 2e-6, -1e-6, 2.9, 3.4, 1e-4, -3e-4, 0.2, -0.1;
+  const double t = 7e-4, delta = 0.7;
+  AnisotropicFieldValue v, a, b;
+  anisotropic_field(p, s, x, t, delta, v, true);
+  const double scale[8] = {1e-6, 1e-6, 1, 1, 1e-3, 1e-3, 1, 1};
+  for (int j = 0; j < 8; ++j) {
+    State<double, any_balls> xp = x, xm = x;
+    const double h = 1e-6 * scale[j];
+    xp(j) += h;
+    xm(j) -= h;
+    anisotropic_field(p, s, xp, t, delta, a, false);
+    anisotropic_field(p, s, xm, t, delta, b, false);
+    const State<double, any_balls> fd = (a.field - b.field) / (2 * h);
+    for (int i = 0; i < 8; ++i) {
+      const double row = v.jacobian.row(i).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(scale, 8).transpose()).cwiseAbs().maxCoeff();
+      INFO("J(" << i << "," << j << ") = " << v.jacobian(i, j) << ", differences " << fd(i));
+      CHECK(std::abs(v.jacobian(i, j) - fd(i)) * scale[j] <= 1e-7 * row + 1e-300);
+    }
+  }
+  // d/ddelta (exactly linear) and d/dt (first harmonic in 2 omega t).
+  anisotropic_field(p, s, x, t, delta + 1e-3, a, false);
+  anisotropic_field(p, s, x, t, delta - 1e-3, b, false);
+  CHECK(((a.field - b.field) / 2e-3 - v.delta_derivative).norm() <= 1e-9 * v.delta_derivative.norm());
+  const double ht = 1e-9;
+  anisotropic_field(p, s, x, t + ht, delta, a, false);
+  anisotropic_field(p, s, x, t - ht, delta, b, false);
+  CHECK(((a.field - b.field) / (2 * ht) - v.time_derivative).norm() <= 1e-5 * v.time_derivative.norm());
+}
+
+// delta_end = 0: the mean system, whose aligned equilibrium is a constant orbit. Its
+// shooting multipliers (the transition matrices integrated to rtol 1e-13 and multiplied
+// by periodic orthogonal iteration) must equal exp(lambda pi/omega) of the equilibrium's
+// eigenvalues (Eigen's, of the analytic Jacobian) to 1e-9 relative: the integration's
+// error over 8 intervals, far above rounding, far below any modelling question.
+TEST_CASE("forced orbits: delta -> 0 gives the equilibrium and exp(lambda pi/omega)", "[forced]") {
+  const ParamsN p = base();
+  const AnisotropicSupport s = support_of(p);
+  const std::vector<EquilibriumN> eqs = aligned(p);
+  REQUIRE(eqs.size() == 4);
+  ForcedOrbitOptions o;
+  o.delta_end = 0;
+  for (const EquilibriumN& e : eqs) {
+    const ForcedOrbit orbit = forced_orbit(p, s, e, o);
+    INFO(orbit.kind << ": " << orbit.reason);
+    REQUIRE(orbit.status.ok());
+    const double q = std::hypot(double(e.position(0)), double(e.position(1)));
+    CHECK(std::abs(orbit.q_abs_max - q) <= 1e-10 * q);
+    CHECK(std::abs(orbit.q_abs_mean - q) <= 1e-10 * q);
+    CHECK(orbit.periodicity <= 1e-10);
+    const Eigen::MatrixXd J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
+    Eigen::EigenSolver<Eigen::MatrixXd> es(J, false);
+    std::vector<std::complex<double>> want;
+    for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k)
+      want.push_back(std::exp(es.eigenvalues()(k) * std::numbers::pi / p.omega));
+    REQUIRE(orbit.multipliers.size() == want.size());
+    for (const auto& rho : orbit.multipliers) {
+      double best = 1e300;
+      for (const auto& w : want) best = std::min(best, std::abs(rho - w) / std::abs(w));
+      INFO("rho = " << rho);
+      CHECK(best <= 1e-9);
+    }
+  }
+}
+
+// A small anisotropy moves the orbit off the equilibrium at first order in delta (the
+// residual e^{-2i omega t}(kappa - i omega gamma) conj(q) of §10.3 is linear in delta):
+// the spread max|q| - min... measured as max|q| - mean|q| doubles with delta to 2 %
+// (the second-order term is delta^2 against delta), and the multipliers stay within
+// O(delta) of the equilibrium's. At full anisotropy the orbit closes to its tolerance.
+TEST_CASE("forced orbits: first order in delta, periodic at full anisotropy", "[forced]") {
+  const ParamsN p = base();
+  const AnisotropicSupport s = support_of(p);
+  const std::vector<EquilibriumN> eqs = aligned(p);
+  REQUIRE(!eqs.empty());
+  const EquilibriumN& e = eqs.front();
+  ForcedOrbitOptions o;
+  o.delta_end = 0.01;
+  const ForcedOrbit a = forced_orbit(p, s, e, o);
+  o.delta_end = 0.02;
+  const ForcedOrbit b = forced_orbit(p, s, e, o);
+  REQUIRE(a.status.ok());
+  REQUIRE(b.status.ok());
+  const double sa = a.q_abs_max - a.q_abs_mean, sb = b.q_abs_max - b.q_abs_mean;
+  CHECK(sa > 0);
+  CHECK(std::abs(sb / sa - 2.0) <= 0.04);
+  const ForcedOrbit full = forced_orbit(p, s, e, {});
+  INFO(full.reason);
+  REQUIRE(full.status.ok());
+  CHECK(full.delta == 1.0);
+  CHECK(full.periodicity <= 1e-9);
+  CHECK(full.multipliers.size() == 8);
+}
