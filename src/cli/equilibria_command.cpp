@@ -40,6 +40,7 @@ struct EquilibriaOptions {
   std::string at_balls;     // --at-balls b1,..,bn: a LuGre stuck state [rad]
   std::string stick_dir;    // --stick-set DIR (coulomb-set scenes)
   StickSetOptions stick;
+  bool periodic_orbits = true;  // anisotropic support: the other states' orbits (model.md §10.14)
 };
 
 // --at-balls "b1,b2,..": one finite angle [rad] per ball.
@@ -169,13 +170,17 @@ std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& 
     const ParamsN p = params_of<any_balls>(scene);
     FloquetAnalysis a = analyze_floquet(p, *scene.support, o.sampling);
     // The other states: periodic orbits continued from the mean system's (model.md §10.14).
-    const ForcedOrbitAnalysis orbits = analyze_forced_orbits(p, *scene.support, a.mean_equilibria);
-    a.periodic_orbits_not_computed = 0;
+    // They cost seconds to minutes on stiff coulomb balls; --no-periodic-orbits skips them.
+    const ForcedOrbitAnalysis orbits =
+        o.periodic_orbits ? analyze_forced_orbits(p, *scene.support, a.mean_equilibria) : ForcedOrbitAnalysis{};
+    if (o.periodic_orbits) a.periodic_orbits_not_computed = 0;
     if (o.format == "csv")
-      return floquet_csv(a, p, provenance_header(command_line(), scene.file, p)) + forced_orbits_csv(orbits, p);
+      return floquet_csv(a, p, provenance_header(command_line(), scene.file, p)) +
+             (o.periodic_orbits ? forced_orbits_csv(orbits, p) : "");
     if (o.format == "json")
-      return floquet_json(a, p, *scene.support, command_line(), scene.file, forced_orbits_json(orbits));
-    return floquet_table(a, p, *scene.support) + forced_orbits_table(orbits, p);
+      return floquet_json(a, p, *scene.support, command_line(), scene.file,
+                          o.periodic_orbits ? forced_orbits_json(orbits) : "");
+    return floquet_table(a, p, *scene.support) + (o.periodic_orbits ? forced_orbits_table(orbits, p) : "");
   }
   const SpeedUnit unit = o.scene.speed_unit();
   if (scene.law == FrictionLaw::coulomb_set) return render_stick_set(scene, o, out);
@@ -241,6 +246,9 @@ Action add_equilibria_command(CLI::App& app) {
                   "LuGre scenes (model.md §12): also analyse the stuck state with these ball angles "
                   "beta_1,..,beta_n [rad] (q from (5.4), z from (12.5)), both one-sided spectra")
       ->type_name("B1,..,BN");
+  sub->add_flag("!--no-periodic-orbits", options->periodic_orbits,
+                "Anisotropic support: do not compute the other states' pi/omega-periodic orbits (model.md §10.14; "
+                "seconds to minutes with stiff coulomb balls); the balanced states' Floquet verdicts only");
   sub->add_flag("!--no-chart", options->chart,
                 "Do not draw the --mode-shapes chart (its CSV is still written)");
   sub->add_option("--mode-shapes", options->mode_shapes,

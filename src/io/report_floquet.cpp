@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::string_view kOrbitsNote =
     "the mean system's other equilibria become pi/omega-periodic orbits on an anisotropic support "
-    "(docs/model.md §10.5); they are not computed yet (no shooting/harmonic balance), so none is reported";
+    "(docs/model.md §10.3); --no-periodic-orbits asked not to compute them (model.md §10.14), so none is reported";
 
 std::string support_text(const AnisotropicSupport& s) {
   return fmt::format("K_f = [[{}, {}], [{}, {}]] N/m, C_f = [[{}, {}], [{}, {}]] N s/m (fixed frame); k_bar = {}, "

@@ -6,5 +6,5 @@ set -eu
 binary=$1; scene=$2; shift 2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"$binary" equilibria "$scene" --format json -o "$tmp/out.json"
+"$binary" equilibria "$scene" --format json --no-periodic-orbits -o "$tmp/out.json"
 exec /usr/bin/python3 "$(dirname "$0")/mp_floquet.py" "$scene" --json "$tmp/out.json" "$@"
