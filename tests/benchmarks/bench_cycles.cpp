@@ -1,6 +1,8 @@
 // Cost per orbit of cycle continuation (docs/developers.md "Periodic orbits: benchmark"):
 // the viscous two-ball scene (the default rotor, viscous d = 1e-4), the cycle branch of its
-// Hopf point at omega_H = 281.31 rad/s, 30 steps, integrator rtol 1e-13, M = 40 intervals.
+// Hopf point at omega_H = 281.31 rad/s, 30 steps, integrator rtol 1e-13, in four configurations
+// in one run: M = 40 with full Newton (the method before the chord corrector), then the chord
+// corrector (model.md §17.7) at M = 40, 20 and 10. Optional second argument: one configuration.
 // Prints CPU seconds per orbit (process CPU time: the machine is shared), flows, Newton
 // iterations, and the fast rotor multiplier pair of the last orbit.
 //   build/tests/benchmarks/bench_cycles [steps]
@@ -57,7 +59,7 @@ int main(int argc, char** argv) {
                c.newton_iterations);
     if (n == 0) return 1;
     const abu::CycleOrbit& last = c.orbits.back();
-    fmt::print("  last orbit: omega {:.12g}, period {:.15g} s, amplitude {:.6g} m, trivial |mu - 1| {:.2e}\n",
+    fmt::print("  last orbit: omega {:.17g}, period {:.15g} s, amplitude {:.6g} m, trivial |mu - 1| {:.2e}\n",
                last.parameter, last.period, last.amplitude, last.trivial_distance);
     for (std::size_t k = 0; k < last.multipliers.size(); ++k)
       fmt::print("    mu{} = {:.10g} {:+.10g} i   |mu| = {:.6g}\n", k + 1, last.multipliers[k].real(),
