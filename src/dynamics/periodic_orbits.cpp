@@ -254,27 +254,33 @@ class CycleProblem {
     if (n > 0) f_ref_ /= n;
   }
 
-  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
-  const Evaluated& at(const Vec& u) const {
-    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+  // Starts an evaluation of u into e (the residual zeroed, the context set to u's
+  // parameter); false, e marked failed, if the period is not positive.
+  bool begin(Evaluated& e, const Vec& u, bool variational) const {
     throw_if_stopped("cycle continuation");
-    Evaluated& e = cache_;
     e.u = u;
     e.ok = true;
     e.why = {};
+    e.residual = Vec::Zero(size() - 1);
+    ctx_.variational = variational;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    const double h = period(u) / m_;
+    if (h > 0 && std::isfinite(h)) return true;
+    e.ok = false;
+    e.why = "the period is not positive";
+    e.residual.setConstant(1e300);
+    return false;
+  }
+
+  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
+  const Evaluated& at(const Vec& u) const {
+    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+    Evaluated& e = cache_;
     const int n = size();
-    e.residual = Vec::Zero(n - 1);
     e.jacobian = Jacobian::Zero(n - 1, n);
     e.transitions.assign(std::size_t(m_), Eigen::MatrixXd::Identity(kDim, kDim));
-    const double T = period(u), h = T / m_;
-    ctx_.variational = true;
-    set(ctx_.p, ctx_.ref, parameter(u));
-    if (!(h > 0) || !std::isfinite(h)) {
-      e.ok = false;
-      e.why = "the period is not positive";
-      e.residual.setConstant(1e300);
-      return e;
-    }
+    if (!begin(e, u, true)) return e;
+    const double h = period(u) / m_;
     std::vector<double> y(kAugmented);
     for (int j = 0; j < m_; ++j) {
       std::fill(y.begin(), y.end(), 0.0);
@@ -312,22 +318,10 @@ class CycleProblem {
     if constexpr (!Chord) return at(u);
     if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
     if (plain_.u.size() == u.size() && plain_.u == u) return plain_;
-    throw_if_stopped("cycle continuation");
     Evaluated& e = plain_;
-    e.u = u;
-    e.ok = true;
-    e.why = {};
+    if (!begin(e, u, false)) return e;
     const int n = size();
-    e.residual = Vec::Zero(n - 1);
     const double h = period(u) / m_;
-    ctx_.variational = false;
-    set(ctx_.p, ctx_.ref, parameter(u));
-    if (!(h > 0) || !std::isfinite(h)) {
-      e.ok = false;
-      e.why = "the period is not positive";
-      e.residual.setConstant(1e300);
-      return e;
-    }
     for (int j = 0; j < m_; ++j) {
       double y[kDim];
       for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
