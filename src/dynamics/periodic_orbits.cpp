@@ -59,13 +59,12 @@ int flow_rhs(double, const double y[], double dydt[], void* params) {
   if (c.variational) {
     const Matrix8 J = c.scaled_jacobian(x);
     const State8 fp = parameter_derivative(c.p, x, c.ref);
-    for (int k = 0; k < kColumns; ++k) {
-      const Eigen::Map<const Eigen::Matrix<double, kDim, 1>> col(y + kDim * (1 + k));
-      Eigen::Map<Eigen::Matrix<double, kDim, 1>> out(dydt + kDim * (1 + k));
-      out.noalias() = J * col;
-      if (k == kColumns - 1)
-        for (int i = 0; i < kDim; ++i) out(i) += fp(i) * c.span / c.scale(i);
-    }
+    // All 9 columns in one fixed-size, unrolled product (Eigen's general matrix-vector
+    // kernel, called per column, was a fifth of a branch's instructions).
+    const Eigen::Map<const Eigen::Matrix<double, kDim, kColumns>> cols(y + kDim);
+    Eigen::Map<Eigen::Matrix<double, kDim, kColumns>> out(dydt + kDim);
+    out.noalias() = J.lazyProduct(cols);
+    for (int i = 0; i < kDim; ++i) out(i, kColumns - 1) += fp(i) * c.span / c.scale(i);
   }
   for (int i = 0; i < (c.variational ? kAugmented : kDim); ++i)
     if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
@@ -163,15 +162,22 @@ namespace {
 
 using Evaluated = detail::ShootingEvaluation;
 
-class CycleProblem : public detail::ShootingSystem<CycleProblem> {
+template <bool Chord>
+class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
  public:
+  using Base = detail::ShootingSystem<CycleProblem<Chord>>;
+  using Vec = typename Base::Vec;
+  using Jacobian = typename Base::Jacobian;
   static constexpr std::size_t test_count = 3;  // LPC, PD, NS
   static constexpr bool tangent_at_solution = true;
+  // The corrector keeps the Newton matrix of the predicted orbit (model.md §17.6): its
+  // iterations then integrate the 8 states only, not the 80 variational components.
+  static constexpr bool chord_corrector = Chord;
 
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
                const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
-      : ShootingSystem(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h), m_(o.intervals),
-        full_(type, kAugmented, o.rtol), plain_(type, kDim, o.rtol) {
+      : detail::ShootingSystem<CycleProblem<Chord>>(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h),
+        m_(o.intervals), full_(type, kAugmented, o.rtol), state_(type, kDim, o.rtol) {
     ctx_.p = p;
     ctx_.ref = ref;
     ctx_.scale = scale;
@@ -185,7 +191,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
   double period(const Vec& u) const { return u(period_index()) * period_h_; }
 
   void set_phase(const Vec& u) {
-    y_ref_ = u.head<kDim>();
+    y_ref_ = u.template head<kDim>();
     ctx_.variational = false;
     set(ctx_.p, ctx_.ref, parameter(u));
     double f[kDim];
@@ -195,27 +201,33 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
     if (n > 0) f_ref_ /= n;
   }
 
-  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
-  const Evaluated& at(const Vec& u) const {
-    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+  // Starts an evaluation of u into e (the residual zeroed, the context set to u's
+  // parameter); false, e marked failed, if the period is not positive.
+  bool begin(Evaluated& e, const Vec& u, bool variational) const {
     throw_if_stopped("cycle continuation");
-    Evaluated& e = cache_;
     e.u = u;
     e.ok = true;
     e.why = {};
+    e.residual = Vec::Zero(size() - 1);
+    ctx_.variational = variational;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    const double h = period(u) / m_;
+    if (h > 0 && std::isfinite(h)) return true;
+    e.ok = false;
+    e.why = "the period is not positive";
+    e.residual.setConstant(1e300);
+    return false;
+  }
+
+  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
+  const Evaluated& at(const Vec& u) const {
+    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+    Evaluated& e = cache_;
     const int n = size();
-    e.residual = Vec::Zero(n - 1);
     e.jacobian = Jacobian::Zero(n - 1, n);
     e.transitions.assign(std::size_t(m_), Eigen::MatrixXd::Identity(kDim, kDim));
-    const double T = period(u), h = T / m_;
-    ctx_.variational = true;
-    set(ctx_.p, ctx_.ref, parameter(u));
-    if (!(h > 0) || !std::isfinite(h)) {
-      e.ok = false;
-      e.why = "the period is not positive";
-      e.residual.setConstant(1e300);
-      return e;
-    }
+    if (!begin(e, u, true)) return e;
+    const double h = period(u) / m_;
     std::vector<double> y(kAugmented);
     for (int j = 0; j < m_; ++j) {
       std::fill(y.begin(), y.end(), 0.0);
@@ -241,12 +253,55 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
       for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, period_index()) = f[i] * period_h_ / m_;
       for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, param_index()) = y[std::size_t(kDim * kColumns + i)];
     }
-    e.residual(n - 2) = (u.head<kDim>() - y_ref_).dot(f_ref_);
+    e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
     e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
     flows_ += m_;
     return e;
   }
 
+  // The residual alone: from the full evaluation if u has one, else from flows of the
+  // state only (the chord corrector's iterations).
+  const Evaluated& residual_at(const Vec& u) const {
+    if constexpr (!Chord) return at(u);
+    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+    if (plain_.u.size() == u.size() && plain_.u == u) return plain_;
+    Evaluated& e = plain_;
+    if (!begin(e, u, false)) return e;
+    const int n = size();
+    const double h = period(u) / m_;
+    for (int j = 0; j < m_; ++j) {
+      double y[kDim];
+      for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
+      std::string_view why;
+      if (!state_.run(ctx_, y, h, {h}, {}, why)) {
+        e.ok = false;
+        e.why = why;
+        e.residual.setConstant(1e300);
+        return e;
+      }
+      const int next = (j + 1) % m_;
+      for (int i = 0; i < kDim; ++i) e.residual(kDim * j + i) = y[i] - u(kDim * next + i);
+    }
+    e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
+    state_flows_ += m_;
+    return e;
+  }
+
+  Vec residual(const Vec& u) const { return residual_at(u).residual; }
+  Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
+  double residual_size(const Vec& u) const {
+    const Evaluated& e = residual_at(u);
+    return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
+  }
+  arclength::NewtonSettings newton() const {
+    // The residual is an integration to rtol: Newton stops at its noise level, not at eps.
+    arclength::NewtonSettings s;
+    s.max_iterations = 10;
+    s.step_tolerance = 10 * o_.rtol;
+    s.stall_tolerance = 1e7 * o_.rtol;
+    s.residual_tolerance = 1e3 * o_.rtol;
+    return s;
+  }
 
   arclength::Crossing crossing(const Vec&, const Vec& to) const {
     if (!(to(period_index()) > 0)) return arclength::Crossing::leaving("the period went to zero");
@@ -267,19 +322,19 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
     orbit.floquet_status = f.status;
     orbit.multipliers = f.values;
     orbit.log_moduli = f.log_moduli;
-    std::size_t trivial = 0;
-    for (std::size_t i = 0; i < f.values.size(); ++i)
-      if (std::abs(f.values[i] - 1.0) < std::abs(f.values[trivial] - 1.0)) trivial = i;
-    orbit.trivial_distance = f.values.empty() ? 1.0 : std::abs(f.values[trivial] - 1.0);
-    std::complex<double> pd = 1, ns = 1;
-    for (std::size_t i = 0; i < f.values.size(); ++i) {
-      if (i == trivial) continue;
-      if (f.log_moduli[i] > 0) ++orbit.unstable;
-      pd *= 1.0 + f.values[i];
-      for (std::size_t j = i + 1; j < f.values.size(); ++j)
-        if (j != trivial) ns *= f.values[i] * f.values[j] - 1.0;
+    const CycleTestValues tv = cycle_test_values(f.values, f.log_moduli);
+    orbit.trivial_distance = tv.trivial_distance;
+    orbit.unstable = tv.unstable;
+    out.tests = {t(param_index()), tv.period_doubling, tv.neimark_sacker};
+    // A step on which a multiplier moved far could have carried a test function across
+    // zero and back: shorter (model.md §17.5, "whatever the step").
+    if (!orbits_.empty() && o_.max_multiplier_jump > 0) {
+      const double jump = multiplier_jump(last_.multipliers, orbit.multipliers);
+      if (jump > o_.max_multiplier_jump) {
+        out.retry = true;
+        out.reason = "a Floquet multiplier moved farther than max_multiplier_jump in one step";
+      }
     }
-    out.tests = {t(param_index()), pd.real(), ns.real()};
     if (!sample(u, orbit)) {
       out.retry = true;  // (taken anyway below the retry floor: the CSV then skips the row, the note says so)
       out.reason = "the orbit could not be sampled for its amplitude (the integrator failed)";
@@ -288,7 +343,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
     for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
     pending_ = orbit;
     pending_tests_ = out.tests;
-    pending_pair_ = ns_is_complex(f, trivial);
+    pending_pair_ = tv.complex_pair_near_circle;
     return out;
   }
 
@@ -322,15 +377,10 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
   std::vector<CycleOrbit> orbits_;
   std::vector<CycleSpecial> specials_;
   long flows() const { return flows_; }
+  long state_flows() const { return state_flows_; }
   const FlowContext& context() const { return ctx_; }
 
  private:
-  static bool ns_is_complex(const ProductEigenvalues& f, std::size_t trivial) {
-    for (std::size_t i = 0; i < f.values.size(); ++i)
-      if (i != trivial && std::abs(f.log_moduli[i]) < 0.05 && f.values[i].imag() != 0) return true;
-    return false;
-  }
-
   // Samples the orbit uniformly (samples_per_interval per interval): max |q| and the
   // ball angles' extremes, each refined by a parabola through its neighbours.
   bool sample(const Vec& u, CycleOrbit& orbit) {
@@ -345,7 +395,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
       double y[kDim];
       for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
       std::string_view why;
-      plain_.run(ctx_, y, h, targets, [&](const double* s) {
+      state_.run(ctx_, y, h, targets, [&](const double* s) {
         qabs.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
         b1.push_back(s[2]);
         b2.push_back(s[3]);
@@ -365,9 +415,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
   int m_;
   mutable FlowContext ctx_;
   mutable Integrator full_;
-  Integrator plain_;
-  mutable Evaluated cache_;
-  mutable long flows_ = 0;
+  mutable Integrator state_;
+  mutable Evaluated cache_, plain_;
+  mutable long flows_ = 0, state_flows_ = 0;
   Eigen::Matrix<double, kDim, 1> y_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
   Eigen::Matrix<double, kDim, 1> f_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
   CycleOrbit pending_, last_;
@@ -375,7 +425,13 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem> {
   bool pending_pair_ = false;
 };
 
-static_assert(arclength::Problem<CycleProblem>);
+static_assert(arclength::Problem<CycleProblem<true>>);
+static_assert(arclength::Problem<CycleProblem<false>>);
+
+template <class Problem>
+CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const SpecialPoint& hopf,
+                         const HopfPrediction& pred, double from, double to, const CycleOptions& o,
+                         const Eigen::Matrix<double, kDim, 1>& D, CycleBranch out);
 
 }  // namespace
 
@@ -414,7 +470,28 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
   const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
   const gsl_odeiv2_step_type* type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
 
-  CycleProblem problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+  if (o.chord_corrector) {
+    CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+    return trace_cycles(problem, p, ref, hopf, pred, from, to, o, D, std::move(out));
+  }
+  CycleProblem<false> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+  return trace_cycles(problem, p, ref, hopf, pred, from, to, o, D, std::move(out));
+}
+
+namespace {
+
+// The first orbit from the normal form, then the branch (continue_cycles).
+template <class Problem>
+CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const SpecialPoint& hopf,
+                         const HopfPrediction& pred, double from, double to, const CycleOptions& o,
+                         const Eigen::Matrix<double, kDim, 1>& D, CycleBranch out) {
+  const auto fail = [&](Outcome why_kind, std::string why) {
+    out.status.merge(why_kind, "see reason");
+    out.reason = std::move(why);
+    return out;
+  };
+  const double pH = out.hopf_parameter, w = hopf.frequency;
+  const State8 xH = at_rest<double, 2>(Coordinates<double, 2>(hopf.position.cast<double>()));
   // The first orbit from the normal form: scaled size first_amplitude.
   Eigen::VectorXcd q(kDim);
   for (int i = 0; i < kDim; ++i) q(i) = pred.eigenvector[std::size_t(i)];
@@ -451,7 +528,7 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
     return fail(first.status, fmt::format("the first orbit near {} = {:.10g} (from the normal form) did not converge: {}",
                                           to_string(ref), pH + dp, first.reason));
   problem.set_phase(first.u);
-  const arclength::Start<CycleProblem> st =
+  const arclength::Start<Problem> st =
       arclength::start(problem, first.u, Eigen::VectorXd(first.u - hopf_u), false);
   const auto r = arclength::trace(problem, st.u, st.tangent, st.jacobian, o.continuation);
   out.orbits = std::move(problem.orbits_);
@@ -460,6 +537,7 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
   out.steps = r.stats.steps;
   out.newton_iterations = r.stats.newton_iterations;
   out.flow_evaluations = problem.flows();
+  out.state_flow_evaluations = problem.state_flows();
   if (r.end != arclength::End::end_of_interval) {
     out.status.merge(r.status == Outcome::converged ? Outcome::converged : r.status, "see reason");
     const double last = out.orbits.empty() ? pH : out.orbits.back().parameter;
@@ -467,5 +545,7 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
   }
   return out;
 }
+
+}  // namespace
 
 }  // namespace abu

@@ -141,4 +141,42 @@ ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& facto
   return out;
 }
 
+CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
+                                  const std::vector<double>& log_moduli) {
+  CycleTestValues out;
+  const std::size_t n = multipliers.size();
+  if (n == 0 || log_moduli.size() != n) return out;
+  for (std::size_t i = 1; i < n; ++i)
+    if (std::abs(multipliers[i] - 1.0) < std::abs(multipliers[out.trivial] - 1.0)) out.trivial = i;
+  out.trivial_distance = std::abs(multipliers[out.trivial] - 1.0);
+  std::complex<double> pd = 1, ns = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == out.trivial) continue;
+    if (log_moduli[i] > 0) ++out.unstable;
+    if (std::abs(log_moduli[i]) < 0.05 && multipliers[i].imag() != 0) out.complex_pair_near_circle = true;
+    pd *= 1.0 + multipliers[i];
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (j != out.trivial) ns *= multipliers[i] * multipliers[j] - 1.0;
+  }
+  out.period_doubling = pd.real();
+  out.neimark_sacker = ns.real();
+  return out;
+}
+
+double multiplier_jump(const std::vector<std::complex<double>>& before, const std::vector<std::complex<double>>& after) {
+  if (before.size() != after.size()) return std::numeric_limits<double>::infinity();
+  const auto clamp2 = [](std::complex<double> z) { return std::abs(z) > 2 ? 2.0 * z / std::abs(z) : z; };
+  std::vector<char> used(before.size(), 0);
+  double jump = 0;
+  for (const std::complex<double>& a : after) {
+    std::size_t best = before.size();
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (!used[i] && std::abs(clamp2(before[i]) - clamp2(a)) < d) d = std::abs(clamp2(before[i]) - clamp2(a)), best = i;
+    if (best < before.size()) used[best] = 1;
+    jump = std::max(jump, d);
+  }
+  return jump;
+}
+
 }  // namespace abu

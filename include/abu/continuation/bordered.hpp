@@ -18,6 +18,7 @@
 #include <Eigen/LU>
 #include <concepts>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <type_traits>
 
@@ -101,6 +102,12 @@ struct Correction {
 
 /// Newton on [F(u); d . (u - u_pred)] = 0 from u_pred: the pseudo-arclength corrector with
 /// d the tangent, or with d = e_k the solution at a fixed value of u_k.
+///
+/// A system that declares `static constexpr bool chord_corrector = true` gets the chord
+/// method: F_u of the first iterate is kept for every step (linear convergence at a rate of
+/// order |F_u(u_pred) - F_u(u)| / |F_u|, i.e. of the step ds), for systems whose F_u costs
+/// many times F (the periodic orbits' variational equations). The returned `jacobian` is
+/// then that of u_pred: such a system wants `tangent_at_solution` too.
 template <System S>
 Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename S::Vec& d) {
   using Vec = typename S::Vec;
@@ -110,11 +117,22 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
   c.u = u_pred;
   c.jacobian = s.jacobian(u_pred);
   Scalar last = std::numeric_limits<Scalar>::infinity();
+  constexpr bool chord = requires { requires S::chord_corrector; };
+  using Factors = decltype(factor(bordered(c.jacobian, d)));
+  std::optional<Factors> kept;  // the chord method's one factorization
+  if constexpr (chord) kept.emplace(factor(bordered(c.jacobian, d)));
   for (int it = 0; it < rules.max_iterations; ++it) {
-    if (it > 0) c.jacobian = s.jacobian(c.u);
+    if constexpr (!chord) {
+      if (it > 0) c.jacobian = s.jacobian(c.u);
+    }
     Vec r(u_pred.size());
     r << s.residual(c.u), d.dot(c.u - u_pred);
-    const Vec step = factor(bordered(c.jacobian, d)).solve(Vec(-r));
+    Vec step;
+    if constexpr (chord) {
+      step = kept->solve(Vec(-r));
+    } else {
+      step = factor(bordered(c.jacobian, d)).solve(Vec(-r));
+    }
     if (!step.allFinite()) {
       c.status = Status::numerical_issue;
       c.reason = "a Newton step was not finite (singular bordered system)";

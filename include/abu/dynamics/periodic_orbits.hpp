@@ -30,12 +30,19 @@ namespace abu {
 
 struct CycleOptions {
   int intervals = 40;          ///< M shooting intervals per period
+  /// Newton's matrix kept from the predicted orbit, the iterations integrating the state
+  /// only (model.md §17.6); false: full Newton, the variational equations every iteration.
+  bool chord_corrector = true;
   double rtol = 1e-13;         ///< integrator tolerance on the scaled state and transition matrices
   /// Scaled amplitude |z| ||D^-1 q_H|| of the first orbit (model.md (17.3)): small enough
   /// for the normal form, large enough to stay off the Hopf point's singular Jacobian.
   double first_amplitude = 2e-3;
   double max_period_factor = 50;  ///< the branch ends where T > this * 2 pi / w_H (homoclinic approach)
   int samples_per_interval = 16;  ///< for the amplitude and the ball angle range
+  /// A step on which a Floquet multiplier moves farther than this (in the complex plane,
+  /// moduli clamped at 2) is retried shorter: a PD or NS crossing and its return within one
+  /// step would leave the test functions' signs unchanged (model.md §17.5). 0: no check.
+  double max_multiplier_jump = 0.25;
   ContinuationOptions continuation{0.02, 1e-7, 0.1, 300, 1};
 };
 
@@ -73,7 +80,9 @@ struct CycleBranch {
   arclength::End end = arclength::End::max_steps;
   Status status;
   std::string reason;  ///< where and why it ended when not at the interval's end
-  long steps = 0, newton_iterations = 0, flow_evaluations = 0;
+  long steps = 0, newton_iterations = 0;
+  long flow_evaluations = 0;        ///< interval flows with the variational equations (8 + 72 components)
+  long state_flow_evaluations = 0;  ///< interval flows of the state alone (the chord corrector's residuals)
 };
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in

@@ -23,6 +23,7 @@
 //   if (e.status.ok()) ... e.values[0] (largest modulus), e.log_moduli[0] ...
 #pragma once
 
+#include <cstddef>
 #include <complex>
 #include <vector>
 
@@ -62,5 +63,27 @@ struct ProductEigenvalues {
 /// Eigenvalues of factors.back() * ... * factors.front(), all square of one size.
 ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
                                        const ProductEigenvalueOptions& options = {});
+
+/// The test functions of the bifurcations of a periodic orbit on its Floquet multipliers
+/// (docs/model.md §17.5), generic: any multiplier set with one trivial multiplier (the one
+/// closest to 1, the flow direction), in the form product_eigenvalues returns.
+struct CycleTestValues {
+  std::size_t trivial = 0;      ///< index of the trivial multiplier
+  double trivial_distance = 1;  ///< |mu_trivial - 1|
+  int unstable = 0;             ///< nontrivial multipliers with |mu| > 1
+  double period_doubling = 1;   ///< Re prod_i (1 + mu_i): changes sign where a real mu crosses -1
+  double neimark_sacker = 1;    ///< Re prod_{i<j} (mu_i mu_j - 1): a complex pair crosses |mu| = 1
+  /// A nontrivial complex multiplier within |ln |mu|| < 0.05 of the unit circle: tells a
+  /// Neimark-Sacker sign change from a real pair with mu_i mu_j = 1 (a neutral saddle).
+  bool complex_pair_near_circle = false;
+};
+CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
+                                  const std::vector<double>& log_moduli);
+
+/// How far the multipliers moved between two orbits: max over `after` of the distance to
+/// the nearest not yet matched multiplier of `before` (greedy matching, both sets of one
+/// size; moduli clamped to 2, so escaping multipliers count by their direction). The step
+/// control of cycle continuation refuses a step on which it exceeds a limit (§17.5).
+double multiplier_jump(const std::vector<std::complex<double>>& before, const std::vector<std::complex<double>>& after);
 
 }  // namespace abu
