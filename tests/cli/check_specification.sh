@@ -39,7 +39,7 @@ body() {  # the output without what names the scene and its parameters
 }
 for fmt in table csv json; do
   "$bin" equilibria "$eng" --format $fmt > "$work/e.$fmt" 2> "$work/e.err" || check no "engineer scene runs ($fmt): $(cat "$work/e.err")"
-  "$bin" equilibria "$work/direct.toml" --format $fmt > "$work/d.$fmt" 2>&1 || check no "direct scene runs ($fmt)"
+  "$bin" equilibria "$work/direct.toml" --format $fmt > "$work/d.$fmt" 2> "$work/d.err" || check no "direct scene runs ($fmt)"
   if cmp -s <(body "$work/e.$fmt") <(body "$work/d.$fmt"); then check ok "engineer form = direct form ($fmt)"; else
     check no "engineer form = direct form ($fmt)"; diff <(body "$work/e.$fmt") <(body "$work/d.$fmt") | head -5; fi
 done
@@ -48,11 +48,11 @@ grep -q '^balls as specified (model.md §1.1): .*mu2=f2/r2=0.00125' "$work/e.tab
 grep -q '"parameters": ".* rho1=7850 R_s1=0.05 .*f1=5e-06' "$work/e.json" && check ok "JSON parameters name rho, R_s, f" || check no "JSON parameters name rho, R_s, f"
 grep -q -e 'specification' -e 'R_s1' "$work/d.csv" && check no "direct form header unchanged" || check ok "direct form header unchanged"
 
-"$bin" equilibria "$eng" --format csv --set r=0.005 > "$work/e5.csv" 2>&1 || check no "--set r runs"
+"$bin" equilibria "$eng" --format csv --set r=0.005 > "$work/e5.csv" 2> "$work/e.err" || check no "--set r runs"
 if cmp -s <(body "$work/e.csv") <(body "$work/e5.csv"); then check no "--set r=0.005 changes the engineer scene's output"; else
   check ok "--set r=0.005 changes the engineer scene's output"; fi
 grep -q 'mu1=f1/r1=0.001 ' "$work/e5.csv" && check ok "--set r=0.005 gives mu = f/r = 0.001" || check no "--set r=0.005 gives mu = f/r = 0.001"
-"$bin" equilibria "$work/direct.toml" --format csv --set r=0.005 > "$work/d5.csv" 2>&1 || check no "--set r runs (direct)"
+"$bin" equilibria "$work/direct.toml" --format csv --set r=0.005 > "$work/d5.csv" 2> "$work/d.err" || check no "--set r runs (direct)"
 if cmp -s <(body "$work/d.csv") <(body "$work/d5.csv"); then check ok "--set r changes nothing in the direct form"; else
   check no "--set r changes nothing in the direct form"; fi
 
