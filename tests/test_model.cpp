@@ -195,6 +195,9 @@ T& field(ParamsT<T, N>& p, Quantity q, int b) {
     case Quantity::sigma0: return ball.sigma0;
     case Quantity::sigma1: return ball.sigma1;
     case Quantity::sigma2: return ball.sigma2;
+    case Quantity::density: return ball.density;
+    case Quantity::rolling_length: return ball.rolling_length;
+    case Quantity::surface_radius: return ball.surface_radius;
   }
   return p.omega;
 }

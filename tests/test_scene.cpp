@@ -540,8 +540,8 @@ TEST_CASE("scene ring: ring errors name their line and key", "[scene][ring]") {
       {"neither mass", ring_with(9, ""), 7, "balls.mass", "mass (per ball) or total_mass (of the ring)"},
       {"missing race_radius", ring_with(10, ""), 7, "balls.race_radius", "missing required key"},
       {"unknown key", ring_with(9, "mass = 3.3e-5\nkappa = 5.0"), 10, "balls.kappa",
-       "unknown key; allowed here: count, mass, total_mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, "
-       "sigma0, sigma1, sigma2, override"},
+       "unknown key; allowed here: count, mass, total_mass, race_radius, radius, diameter, density, surface_radius, "
+       "rolling, mu, f, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2, override"},
       {"total_mass 0", ring_with(9, "total_mass = 0"), 9, "balls.total_mass", "must be > 0 (got 0)"},
       {"negative mass", ring_with(9, "mass = -1e-5"), 9, "balls.mass", "must be > 0 (got -1e-05)"},
       {"rolling not bool", ring_with(9, "mass = 3.3e-5\nrolling = 1"), 10, "balls.rolling", "must be true or false"},
@@ -552,8 +552,8 @@ TEST_CASE("scene ring: ring errors name their line and key", "[scene][ring]") {
       {"[balls.override] single", ring_plus("[balls.override]\nball = 2\n"), 18, "balls.override",
        "must be an array of tables ([[balls.override]], one per ball that differs), got a single table"},
       {"override unknown key", ring_plus(ovr + "count = 4\n"), 20, "balls.override[1].count",
-       "unknown key; allowed here: ball, mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, sigma0, "
-       "sigma1, sigma2"},
+       "unknown key; allowed here: ball, mass, race_radius, radius, diameter, density, surface_radius, rolling, mu, "
+       "f, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2"},
       {"override kappa", ring_plus(ovr + "kappa = 4\n"), 20, "balls.override[1].kappa", "unknown key"},
       {"override missing ball", ring_plus("[[balls.override]]\nmass = 4e-5\n"), 18, "balls.override[1].ball",
        "missing required key"},

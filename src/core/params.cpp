@@ -32,7 +32,7 @@ struct SymbolEntry {
   std::string_view unit;
 };
 // One spelling for CLI, scene overrides and CSV headers (model.md §1 symbols).
-constexpr std::array<SymbolEntry, 17> kSymbols{{
+constexpr std::array<SymbolEntry, 20> kSymbols{{
     {"omega", Quantity::omega, "rad/s"},
     {"U", Quantity::unbalance, "kg m"},
     {"k", Quantity::stiffness, "N/m"},
@@ -50,6 +50,9 @@ constexpr std::array<SymbolEntry, 17> kSymbols{{
     {"sigma1", Quantity::sigma1, "s/rad"},
     {"sigma2", Quantity::sigma2, "s/rad"},
     {"kappa", Quantity::kappa, "s/rad"},
+    {"rho", Quantity::density, "kg/m^3"},
+    {"f", Quantity::rolling_length, "m"},
+    {"R_s", Quantity::surface_radius, "m"},
 }};
 
 const SymbolEntry& entry(Quantity q) {
@@ -71,9 +74,17 @@ bool is_per_ball(Quantity q) {
     case Quantity::v_s:
     case Quantity::sigma0:
     case Quantity::sigma1:
-    case Quantity::sigma2: return true;
+    case Quantity::sigma2:
+    case Quantity::density:
+    case Quantity::rolling_length:
+    case Quantity::surface_radius: return true;
     default: return false;
   }
+}
+
+bool acts_through_specification(Quantity q) {
+  return q == Quantity::ball_radius || q == Quantity::density || q == Quantity::rolling_length ||
+         q == Quantity::surface_radius;
 }
 
 std::optional<ParamRef> parse_param(std::string_view symbol, int n_balls) {
@@ -103,13 +114,14 @@ std::string to_string(ParamRef ref) {
 std::string_view unit(Quantity q) { return entry(q).unit; }
 
 std::string_view param_symbols_help() {
-  return "omega U k c M_r kappa (global); m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2 (every ball) or with a "
-         "1-based ball index: m1 m2 l1 l2 mu1 mu2 ...";
+  return "omega U k c M_r kappa (global); m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2 rho f R_s (every ball) or "
+         "with a 1-based ball index: m1 m2 l1 l2 mu1 mu2 ...";
 }
 
 bool law_uses(FrictionLaw law, Quantity q) {
   switch (q) {
-    case Quantity::mu: return law == FrictionLaw::coulomb || law == FrictionLaw::coulomb_set;
+    case Quantity::mu:
+    case Quantity::rolling_length: return law == FrictionLaw::coulomb || law == FrictionLaw::coulomb_set;
     case Quantity::d: return law == FrictionLaw::viscous;
     case Quantity::mu_c:
     case Quantity::mu_s:
@@ -147,9 +159,9 @@ void set(ParamsT<T, N>& p, ParamRef ref, T value) {
     case Quantity::kappa: p.kappa = value; return;
     default:
       if (ref.ball >= 0) {
-        ball_field(p.balls[std::size_t(ref.ball)], ref.quantity) = value;
+        set_ball(p.balls[std::size_t(ref.ball)], ref.quantity, value);
       } else {
-        for (auto& b : p.balls) ball_field(b, ref.quantity) = value;
+        for (auto& b : p.balls) set_ball(b, ref.quantity, value);
       }
   }
 }
@@ -177,6 +189,8 @@ std::optional<std::string> range_violation(Quantity q, double value) {
     case Quantity::kappa:
     case Quantity::v_s:
     case Quantity::sigma0:
+    case Quantity::density:
+    case Quantity::surface_radius:
       if (!(value > 0.0)) return fmt::format("must be > 0 (got {})", value);
       return std::nullopt;
     case Quantity::unbalance:
@@ -187,6 +201,7 @@ std::optional<std::string> range_violation(Quantity q, double value) {
     case Quantity::mu_s:
     case Quantity::sigma1:
     case Quantity::sigma2:
+    case Quantity::rolling_length:
       if (value < 0.0) return fmt::format("must be >= 0 (got {})", value);
       return std::nullopt;
   }

@@ -69,7 +69,7 @@ std::vector<std::string_view> split_names(std::string_view list) {
 std::optional<std::string> closest_param(std::string_view word, bool with_ball_count) {
   // Every symbol, by the one spelling params.cpp gives it.
   std::vector<std::string> symbols, per_ball_symbols;
-  for (int q = int(Quantity::omega); q <= int(Quantity::kappa); ++q) {
+  for (int q = int(Quantity::omega); q <= int(Quantity::surface_radius); ++q) {  // the last Quantity
     symbols.push_back(to_string(ParamRef{Quantity(q), -1}));
     if (is_per_ball(Quantity(q))) per_ball_symbols.push_back(symbols.back());
   }

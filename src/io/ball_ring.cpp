@@ -21,8 +21,9 @@ RingInput read_ring(Problems& p, const toml::table& table) {
   RingInput ring;
   ring.slots = {{"mass", Quantity::ball_mass, false},
                 {"total_mass", Quantity::ball_mass, false},
-                {"race_radius", Quantity::race_radius, true},
-                {"radius", Quantity::ball_radius, true}};
+                {"race_radius", Quantity::race_radius, false},
+                {"radius", Quantity::ball_radius, false}};
+  add_specification_slots(ring.slots);
   add_coefficient_slots(ring.slots, false);
   bool count_seen = false;
   std::optional<std::int64_t> count;
@@ -49,7 +50,14 @@ RingInput read_ring(Problems& p, const toml::table& table) {
     return true;
   };
   read_table(p, table, "balls", ring.slots,
-             "count, mass, total_mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2, override", other);
+             "count, mass, total_mass, race_radius, radius, diameter, density, surface_radius, rolling, mu, f, d, mu_c, "
+             "mu_s, v_s, sigma0, sigma1, sigma2, override",
+             other);
+  // Each geometry value in one of its forms (model.md §1.1; both forms: check_ball_form).
+  for (auto [key, alternative] : {std::pair{"race_radius", "surface_radius"}, {"radius", "diameter"}})
+    if (!find(ring.slots, key)->seen && !find(ring.slots, alternative)->seen)
+      p.add_missing(table.source().begin, fmt::format("balls.{}", key),
+                    fmt::format("missing required key (or {})", alternative));
 
   if (!count_seen) {
     p.add_missing(table.source().begin, "balls.count", "missing required key");
@@ -69,9 +77,9 @@ RingInput read_ring(Problems& p, const toml::table& table) {
     p.add(later->pos, later->key,
           fmt::format("give either mass (per ball) or total_mass (of the ring), not both ({} is at line {})",
                       earlier->name, earlier->pos.line));
-  } else if (!mass->seen && !total->seen) {
+  } else if (!mass->seen && !total->seen && !find(ring.slots, "diameter")->seen) {
     p.add_missing(table.source().begin, "balls.mass",
-                  "missing required key: mass (per ball) or total_mass (of the ring)");
+                  "missing required key: mass (per ball) or total_mass (of the ring), or diameter (with density)");
   } else if (total->value && ring.count) {
     // m = total_mass / count must itself be a valid mass (it is unless total_mass is denormal).
     if (auto bad = range_violation(Quantity::ball_mass, *total->value / *ring.count))
@@ -83,7 +91,7 @@ RingInput read_ring(Problems& p, const toml::table& table) {
       const toml::table& t = *element.as_table();
       OverrideInput o;
       o.path = fmt::format("balls.override[{}]", ring.overrides.size() + 1);
-      o.slots = ball_slots(false);
+      o.slots = ball_slots();
       bool ball_seen = false;
       auto other_key = [&](std::string_view name, const toml::node& node, const std::string& key,
                            toml::source_position pos) {
@@ -132,7 +140,7 @@ std::vector<BallInput> expand(const RingInput& ring) {
     BallInput b;
     b.path = fmt::format("ball {} of the [balls] ring", i);
     b.ring_index = i;
-    b.slots = ball_slots(false);
+    b.slots = ball_slots();
     for (Slot& s : b.slots) {
       if (s.name == "mass") {
         take(s, total.seen ? total : mass);
@@ -164,9 +172,6 @@ BallRing make_ring(const RingInput& in, const std::vector<Slot>& friction_slots,
   const Slot& total = *find(in.slots, "total_mass");
   ring.total_mass_held = total.seen;
   ring.total_mass = total.seen ? *total.value : 0.0;
-  ring.ball.mass = total.seen ? ring.total_mass / ring.count : value(in.slots, "mass");
-  ring.ball.race_radius = value(in.slots, "race_radius");
-  ring.ball.radius = value(in.slots, "radius");
   ring.ball.inertia_factor = in.rolling.value_or(rolling) ? kRollingJ : kSlidingJ;
   for (const auto& c : kCoefficients) {
     if (c.quantity == Quantity::kappa) continue;
@@ -177,13 +182,22 @@ BallRing make_ring(const RingInput& in, const std::vector<Slot>& friction_slots,
       v = *own.value;
     else if (global.seen)
       v = *global.value;
-    else
-      v = law_uses(law, c.quantity) ? std::numeric_limits<double>::quiet_NaN() : 0.0;  // only overrides give it
+    else  // only overrides give it (f never stands alone: it gives mu)
+      v = law_uses(law, c.quantity) && c.quantity != Quantity::rolling_length ? std::numeric_limits<double>::quiet_NaN()
+                                                                               : 0.0;
+    if (c.quantity == Quantity::rolling_length && (own.seen || global.seen))
+      ring.ball.specified |= specified::rolling_length;
   }
+  assemble_geometry(ring.ball, in.slots);  // r, then m, mu, l from it (model.md §1.1)
+  if (total.seen) ring.ball.mass = ring.total_mass / ring.count;
   for (const OverrideInput& o : in.overrides) {
     const int ball = int(*o.ball) - 1;
-    for (const Slot& s : o.slots)
-      if (s.seen) ring.overrides.push_back({ball, field_of(s.quantity), *s.value, file, int(s.pos.line), s.key});
+    for (const Slot& s : o.slots) {
+      if (!s.seen) continue;
+      const bool diameter = s.name == "diameter";  // kept as the radius it gives
+      ring.overrides.push_back(
+          {ball, field_of(s.quantity), diameter ? *s.value / 2.0 : *s.value, file, int(s.pos.line), s.key});
+    }
     if (o.rolling)
       ring.overrides.push_back({ball, BallField::inertia_factor, *o.rolling ? kRollingJ : kSlidingJ, file,
                                 int(o.rolling_pos.line), o.path + ".rolling"});
@@ -220,7 +234,8 @@ std::optional<std::string> ring_violation(const BallRing& ring, const std::vecto
   for (int i = 0; i < int(balls.size()); ++i) {
     BallT<double> b = balls[std::size_t(i)];
     for (const auto& k : kBallKeys) {
-      if (!law_uses(law, k.quantity)) continue;
+      if (!law_uses(law, k.quantity) || k.quantity == Quantity::rolling_length) continue;
+      if (k.quantity == Quantity::density || k.quantity == Quantity::surface_radius) continue;  // gave m, l
       const double v = field(b, k.field);
       if (std::isnan(v) && k.quantity != Quantity::ball_mass && k.quantity != Quantity::race_radius &&
           k.quantity != Quantity::ball_radius)
@@ -244,8 +259,14 @@ std::vector<BallT<double>> ring_balls(const BallRing& ring) {
   BallT<double> ball = ring.ball;
   if (ring.total_mass_held && ring.count > 0) ball.mass = ring.total_mass / ring.count;
   std::vector<BallT<double>> balls(std::size_t(std::max(ring.count, 0)), ball);
-  for (const auto& o : ring.overrides)
-    if (o.ball >= 0 && o.ball < ring.count) field(balls[std::size_t(o.ball)], o.field) = o.value;
+  for (const auto& o : ring.overrides) {
+    if (o.ball < 0 || o.ball >= ring.count) continue;
+    BallT<double>& b = balls[std::size_t(o.ball)];
+    if (o.field == BallField::inertia_factor)
+      b.inertia_factor = o.value;
+    else
+      set_ball(b, ball_key(o.field).quantity, o.value);  // the specification's values follow (model.md §1.1)
+  }
   return balls;
 }
 

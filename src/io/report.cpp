@@ -300,6 +300,8 @@ std::string equilibria_table(const A& a, const ParamsT<double, N>& p) {
   const double omega_n = std::sqrt(p.rotor.stiffness / p.total_mass());
   std::string out = fmt::format("{} balls; omega = {} rad/s = {:.4f} omega_n (omega_n = {:.6g} rad/s), friction {}\n",
                                 p.n_balls(), p.omega, p.omega / omega_n, omega_n, to_string(p.law));
+  if (const std::string spec = describe_specification(p); !spec.empty())
+    out += fmt::format("balls as specified (model.md §1.1): {}\n", spec);
   out += "eigenvalues in the rotating frame [1/s]\n";
   for (const auto& line : describe_degeneracy(a.equilibria.degeneracy)) out += fmt::format("degenerate: {}\n", line);
   const std::string set_line = balanced_set_comment(a);

@@ -49,6 +49,59 @@ const Slot* find(const std::vector<Slot>& slots, std::string_view name) {
 }
 double value(const std::vector<Slot>& slots, std::string_view name) { return find(slots, name)->value.value_or(0.0); }
 
+void check_ball_form(Problems& p, const BallInput& b, bool listed) {
+  const Slot* diameter = find(b.slots, "diameter");
+  const Slot* density = find(b.slots, "density");
+  const Slot* surface = find(b.slots, "surface_radius");
+  // Two keys that give the same value: reported at the later (a ring ball's keys may be
+  // the template's and an override's).
+  auto exclusive = [&](std::string_view direct, const Slot* specified, std::string_view why) {
+    const Slot* d = find(b.slots, direct);
+    if (!d->seen || !specified->seen) return;
+    const Slot* later = before(d->pos, specified->pos) ? specified : d;
+    const Slot* earlier = later == d ? specified : d;
+    const std::string which = b.ring_index ? fmt::format(" for ball {} of the ring", b.ring_index) : "";
+    p.add(later->pos, later->key,
+          fmt::format("give either {} or {}, not both{} ({} is at line {}; {}, model.md §1.1)", direct, specified->name,
+                      which, earlier->key, earlier->pos.line, why));
+  };
+  exclusive("mass", diameter, "a ball given by its diameter has the mass rho pi d^3/6 of its density");
+  exclusive("radius", diameter, "r = diameter/2");
+  exclusive("race_radius", surface, "l = surface_radius - r");
+  if (density->seen && !diameter->seen)
+    p.add(density->pos, density->key,
+          "density needs the ball's diameter (m = density pi diameter^3/6, model.md (1.1.1)): give diameter instead of "
+          "mass and radius");
+  if (!listed) return;
+  auto missing = [&](std::string_view key, const Slot* other, std::string_view alternative) {
+    if (!find(b.slots, key)->seen && !other->seen)
+      p.add_missing(b.header, fmt::format("{}.{}", b.path, key), fmt::format("missing required key (or {})", alternative));
+  };
+  missing("mass", diameter, "diameter, with density");
+  missing("race_radius", surface, "surface_radius");
+  missing("radius", diameter, "diameter");
+}
+
+void assemble_geometry(BallT<double>& ball, const std::vector<Slot>& slots) {
+  const Slot* diameter = find(slots, "diameter");
+  if (diameter->seen) {
+    ball.radius = value(slots, "diameter") / 2.0;
+    const Slot* density = find(slots, "density");
+    ball.density = density->seen ? value(slots, "density") : kSteelDensity;
+    ball.specified |= specified::density;
+  } else {
+    ball.mass = value(slots, "mass");
+    ball.radius = value(slots, "radius");
+  }
+  if (find(slots, "surface_radius")->seen) {
+    ball.surface_radius = value(slots, "surface_radius");
+    ball.specified |= specified::surface_radius;
+  } else {
+    ball.race_radius = value(slots, "race_radius");
+  }
+  derive_specified(ball);
+}
+
 }  // namespace scene_reading
 
 namespace {
@@ -66,13 +119,34 @@ std::string law_mismatch(FrictionLaw law, Quantity q) {
 }
 
 // Cross rule: the ball must fit inside its race (r = l would put it on the axis).
-// Reported at the radius, unless only the race radius came from a ring override.
+// Reported at the radius, unless only the race radius came from a ring override. A ball
+// given by its diameter and the race by its surface radius (model.md §1.1): r = diameter/2,
+// l = surface_radius - r, and the rule reads surface_radius > diameter.
 void check_fit(Problems& p, const BallInput& b) {
+  const Slot* diameter = find(b.slots, "diameter");
+  const Slot* surface = find(b.slots, "surface_radius");
   const Slot* r = find(b.slots, "radius");
   const Slot* l = find(b.slots, "race_radius");
-  if (!r->value || !l->value || *r->value < *l->value) return;
-  const bool overridden = b.ring_index && (r->from_override || l->from_override);
+  const bool overridden = b.ring_index && (r->from_override || l->from_override || diameter->from_override ||
+                                           surface->from_override);
   const std::string which = overridden ? fmt::format(" for ball {} of the ring", b.ring_index) : "";
+  if (diameter->seen || surface->seen) {
+    if (r->seen && diameter->seen) return;  // check_ball_form reports both
+    if (l->seen && surface->seen) return;
+    const Slot* r_at = diameter->seen ? diameter : r;
+    const Slot* l_at = surface->seen ? surface : l;
+    if (!r_at->value || !l_at->value) return;
+    const double radius = diameter->seen ? *r_at->value / 2.0 : *r_at->value;
+    const double race_radius = surface->seen ? *l_at->value - radius : *l_at->value;
+    if (radius < race_radius) return;
+    const Slot* at = l_at->from_override && !r_at->from_override ? l_at : r_at;
+    p.add(at->pos, at->key,
+          fmt::format("the ball does not fit its race: r = {} m{} and l = {} m{} need r < l (model.md §1.1){}", radius,
+                      diameter->seen ? " (diameter/2)" : "", race_radius,
+                      surface->seen ? " (surface_radius - r)" : "", which));
+    return;
+  }
+  if (!r->value || !l->value || *r->value < *l->value) return;
   if (l->from_override && !r->from_override)
     p.add(l->pos, l->key,
           fmt::format("must be > radius, as radius < race_radius (got race_radius {} <= radius {}){}", *l->value,
@@ -360,7 +434,8 @@ Scene parse_scene(std::string_view text, const std::string& file) {
         p.add(t.source().begin, "ball", *ball_count_violation(std::int64_t(ball_array->size())));
       BallInput b;
       b.path = fmt::format("ball[{}]", listed.size() + 1);
-      b.slots = ball_slots(true);
+      b.header = t.source().begin;
+      b.slots = ball_slots();
       auto other = [&](std::string_view key_name, const toml::node& node, const std::string& key,
                        toml::source_position pos) {
         if (key_name != "rolling") return false;
@@ -384,7 +459,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     if (ring_in->count && !balls_seen) expanded = expand(*ring_in);
   }
   const std::vector<BallInput>& balls = ring_in && !balls_seen ? expanded : listed;
-  for (const BallInput& b : balls) check_fit(p, b);
+  for (const BallInput& b : balls) {
+    check_ball_form(p, b, !b.ring_index);
+    check_fit(p, b);
+  }
 
   // --- [race] (optional): an unround race (model.md §11), checked on the balls below.
   RaceSpec race_spec;
@@ -410,7 +488,8 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       }
       return true;
     };
-    read_table(p, *friction.table, "friction", friction_slots, "law, mu, d, kappa, mu_c, mu_s, v_s, sigma0, sigma1, sigma2", other);
+    read_table(p, *friction.table, "friction", friction_slots,
+               "law, mu, f, d, kappa, mu_c, mu_s, v_s, sigma0, sigma1, sigma2", other);
     if (!law_seen) p.add_missing(friction.table->source().begin, "friction.law", "missing required key");
   }
   if (law) {
@@ -424,18 +503,39 @@ Scene parse_scene(std::string_view text, const std::string& file) {
     for (const auto* slots : written)
       for (const Slot& s : *slots)
         if (s.seen && !law_uses(*law, s.quantity)) p.add(s.pos, s.key, law_mismatch(*law, s.quantity));
-    // A coefficient the law needs comes from [friction], or from every ball's own value.
+    // mu or the rolling-resistance length f (mu = f / r, model.md (1.1.2)): one form per scene.
+    const Slot* first_mu = nullptr;
+    const Slot* first_f = nullptr;
+    for (const auto* slots : written)
+      for (const Slot& s : *slots)
+        for (auto [name, first] : {std::pair{"mu", &first_mu}, {"f", &first_f}})
+          if (s.seen && s.name == name && (!*first || before(s.pos, (*first)->pos))) *first = &s;
+    if (first_mu && first_f) {
+      const Slot* later = before(first_mu->pos, first_f->pos) ? first_f : first_mu;
+      const Slot* earlier = later == first_f ? first_mu : first_f;
+      p.add(later->pos, later->key,
+            fmt::format("give the Coulomb level either as mu or as the rolling-resistance length f (mu = f / r, model.md "
+                        "(1.1.2)), not both in one scene ({} is at line {})",
+                        earlier->key, earlier->pos.line));
+    }
+    // A coefficient the law needs comes from [friction], or from every ball's own value;
+    // mu may come as f.
+    const Slot* friction_f = find(friction_slots, "f");
     for (const Slot& s : friction_slots) {
-      if (s.seen || !law_uses(*law, s.quantity)) continue;
+      if (s.seen || !law_uses(*law, s.quantity) || s.quantity == Quantity::rolling_length) continue;
+      const bool as_f = s.quantity == Quantity::mu;
+      if (as_f && friction_f->seen) continue;
       auto has_own = [&](const BallInput& b) {
         const Slot* own = find(b.slots, s.name);
-        return own && own->seen;
+        const Slot* own_f = find(b.slots, "f");
+        return (own && own->seen) || (as_f && own_f->seen);
       };
       const auto lacking = std::find_if_not(balls.begin(), balls.end(), has_own);
       if (balls.empty() || lacking != balls.end()) {
         const std::string why =
             std::none_of(balls.begin(), balls.end(), has_own)
-                ? fmt::format("missing key (friction law '{}' requires it)", to_string(*law))
+                ? fmt::format("missing key (friction law '{}' requires it{})", to_string(*law),
+                              as_f ? ", or the rolling-resistance length f" : "")
                 : fmt::format("missing key (friction law '{}' requires it; per-ball values replace it only "
                               "if every ball has one, and {} has none)",
                               to_string(*law), lacking->path);
@@ -477,15 +577,15 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   }
   for (const BallInput& in : listed) {
     BallT<double> b;
-    b.mass = value(in.slots, "mass");
-    b.race_radius = value(in.slots, "race_radius");
-    b.radius = value(in.slots, "radius");
     b.inertia_factor = in.rolling.value_or(rolling) ? kRollingJ : kSlidingJ;
     for (const auto& c : kCoefficients) {
       if (c.quantity == Quantity::kappa) continue;
       const Slot* own = find(in.slots, c.name);
       ball_field(b, c.quantity) = own->seen ? *own->value : value(friction_slots, c.name);
+      if (c.quantity == Quantity::rolling_length && (own->seen || find(friction_slots, c.name)->seen))
+        b.specified |= specified::rolling_length;
     }
+    assemble_geometry(b, in.slots);  // r first, then m, mu, l from it (1.1.1)-(1.1.3)
     scene.balls.push_back(b);
   }
   scene_reading::check_race(scene);
@@ -535,22 +635,29 @@ void set_checked(Scene& scene, ParamRef ref, double value, const std::string& or
     first = ref.ball < 0 ? 0 : std::size_t(ref.ball);
     last = ref.ball < 0 ? n : first + 1;
   }
-  // Cross rule r_i < l_i, checked for every ball before anything changes.
+  // Cross rule r_i < l_i, checked for every ball before anything changes, on the ball as
+  // it would be (with R_s given, r moves l = R_s - r; model.md (1.1.3)).
   for (std::size_t i = first; i < last; ++i) {
     const auto& b = scene.balls[i];
-    if (ref.quantity == Quantity::ball_radius && !(value < b.race_radius))
+    BallT<double> changed = b;
+    set_ball(changed, ref.quantity, value);
+    if (changed.radius < changed.race_radius) continue;
+    if (ref.quantity == Quantity::ball_radius && !(b.specified & specified::surface_radius))
       throw InputError(origin, 0, key,
                        fmt::format("must be < race_radius (l{} = {}, got {})", i + 1, b.race_radius, value));
-    if (ref.quantity == Quantity::race_radius && !(b.radius < value))
+    if (ref.quantity == Quantity::race_radius)
       throw InputError(origin, 0, key,
                        fmt::format("must be > ball radius, as radius < race_radius (r{} = {}, got {})", i + 1,
                                    b.radius, value));
+    throw InputError(origin, 0, key,
+                     fmt::format("gives ball {} l = R_s - r = {} m, which must be > r = {} m (got {}; model.md (1.1.3))",
+                                 i + 1, changed.race_radius, changed.radius, value));
   }
   if (!is_per_ball(ref.quantity)) {
     global_field(scene, ref.quantity) = value;
     return;
   }
-  for (std::size_t i = first; i < last; ++i) ball_field(scene.balls[i], ref.quantity) = value;
+  for (std::size_t i = first; i < last; ++i) set_ball(scene.balls[i], ref.quantity, value);
 
   // The ring follows: every ball -> the template (no ball differs in this field any more,
   // active or not); one ball -> that ball's override.
@@ -559,8 +666,11 @@ void set_checked(Scene& scene, ParamRef ref, double value, const std::string& or
   const BallField f = field_of(ref.quantity);
   auto& overrides = ring.overrides;
   if (ref.ball < 0) {
-    field(ring.ball, f) = value;
-    std::erase_if(overrides, [&](const RingOverride& o) { return o.field == f; });
+    set_ball(ring.ball, ref.quantity, value);
+    // The value and the specification that gives it are one field (m and rho, mu and f,
+    // l and R_s): an override of either would undo the every-ball setting for its ball.
+    const BallField partner = specification_partner(f);
+    std::erase_if(overrides, [&](const RingOverride& o) { return o.field == f || o.field == partner; });
     if (f == BallField::mass) {
       ring.total_mass_held = false;
       ring.total_mass = 0.0;

@@ -24,7 +24,9 @@ namespace abu::scene_reading {
 
 inline constexpr double kRollingJ = 7.0 / 5.0;  // solid sphere: 1 + (2/5 m r^2) / (m r^2)
 inline constexpr double kSlidingJ = 1.0;        // point mass that slides
-inline constexpr std::string_view kBallKeysHelp = "mass, race_radius, radius, rolling, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2";
+inline constexpr std::string_view kBallKeysHelp =
+    "mass, race_radius, radius, diameter, density, surface_radius, rolling, mu, f, d, mu_c, mu_s, v_s, sigma0, sigma1, "
+    "sigma2";
 
 // The friction coefficients; their TOML keys are their model.md symbols. kappa is
 // global (the law's sharpness), the others may be overridden per ball.
@@ -32,7 +34,8 @@ struct Coefficient {
   std::string_view name;
   Quantity quantity;
 };
-inline constexpr Coefficient kCoefficients[] = {{"mu", Quantity::mu},     {"d", Quantity::d},
+inline constexpr Coefficient kCoefficients[] = {{"mu", Quantity::mu},     {"f", Quantity::rolling_length},
+                                                {"d", Quantity::d},
                                                 {"mu_c", Quantity::mu_c}, {"mu_s", Quantity::mu_s},
                                                 {"v_s", Quantity::v_s},   {"sigma0", Quantity::sigma0},
                                                 {"sigma1", Quantity::sigma1}, {"sigma2", Quantity::sigma2},
@@ -54,7 +57,10 @@ inline constexpr BallKey kBallKeys[] = {{"mass", Quantity::ball_mass, BallField:
                                         {"v_s", Quantity::v_s, BallField::v_s},
                                         {"sigma0", Quantity::sigma0, BallField::sigma0},
                                         {"sigma1", Quantity::sigma1, BallField::sigma1},
-                                        {"sigma2", Quantity::sigma2, BallField::sigma2}};
+                                        {"sigma2", Quantity::sigma2, BallField::sigma2},
+                                        {"density", Quantity::density, BallField::density},
+                                        {"f", Quantity::rolling_length, BallField::rolling_length},
+                                        {"surface_radius", Quantity::surface_radius, BallField::surface_radius}};
 
 inline const BallKey& ball_key(BallField f) {
   for (const auto& k : kBallKeys)
@@ -65,6 +71,19 @@ inline BallField field_of(Quantity q) {
   for (const auto& k : kBallKeys)
     if (k.quantity == q) return k.field;
   return BallField::mass;  // only called for per-ball quantities
+}
+// The field that gives the same model value in the other form (model.md §1.1): mass and
+// density, mu and f, race_radius and surface_radius; f itself for any other field.
+inline BallField specification_partner(BallField f) {
+  switch (f) {
+    case BallField::mass: return BallField::density;
+    case BallField::density: return BallField::mass;
+    case BallField::mu: return BallField::rolling_length;
+    case BallField::rolling_length: return BallField::mu;
+    case BallField::race_radius: return BallField::surface_radius;
+    case BallField::surface_radius: return BallField::race_radius;
+    default: return f;
+  }
 }
 inline std::string_view field_name(BallField f) {
   return f == BallField::inertia_factor ? "rolling" : ball_key(f).name;
@@ -83,6 +102,9 @@ inline double& field(BallT<double>& b, BallField f) {
     case BallField::sigma0: return b.sigma0;
     case BallField::sigma1: return b.sigma1;
     case BallField::sigma2: return b.sigma2;
+    case BallField::density: return b.density;
+    case BallField::rolling_length: return b.rolling_length;
+    case BallField::surface_radius: return b.surface_radius;
     case BallField::v_s: break;
   }
   return b.v_s;
@@ -261,16 +283,27 @@ inline const auto no_other = [](std::string_view, const toml::node&, const std::
   return false;
 };
 
+// The geometry keys of a ball as an engineer gives them (model.md §1.1), besides mass,
+// race_radius and radius.
+inline void add_specification_slots(std::vector<Slot>& slots) {
+  slots.push_back({"diameter", Quantity::ball_radius, false});
+  slots.push_back({"density", Quantity::density, false});
+  slots.push_back({"surface_radius", Quantity::surface_radius, false});
+}
+
 inline void add_coefficient_slots(std::vector<Slot>& slots, bool with_kappa) {
   for (const auto& c : kCoefficients)
     if (with_kappa || c.quantity != Quantity::kappa) slots.push_back({c.name, c.quantity, false});
 }
 
-// The keys of one ball: geometry (required in a [[ball]] table) and the coefficients.
-inline std::vector<Slot> ball_slots(bool geometry_required) {
-  std::vector<Slot> slots{{"mass", Quantity::ball_mass, geometry_required},
-                          {"race_radius", Quantity::race_radius, geometry_required},
-                          {"radius", Quantity::ball_radius, geometry_required}};
+// The keys of one ball: geometry, in either form (mass radius race_radius, or diameter
+// density surface_radius, model.md §1.1; which ones are required is check_ball_form's),
+// and the coefficients.
+inline std::vector<Slot> ball_slots() {
+  std::vector<Slot> slots{{"mass", Quantity::ball_mass, false},
+                          {"race_radius", Quantity::race_radius, false},
+                          {"radius", Quantity::ball_radius, false}};
+  add_specification_slots(slots);
   add_coefficient_slots(slots, false);  // kappa is global: [friction] only
   return slots;
 }
@@ -282,6 +315,7 @@ inline bool all_tables(const toml::array* array) {
 // One ball as the rules see it: a [[ball]] table, or a ball of the expanded ring.
 struct BallInput {
   std::vector<Slot> slots;
+  toml::source_position header{};  // the [[ball]] table's header line (where a missing key is reported)
   std::optional<bool> rolling;
   std::string path;    // for messages: "ball[2]", "ball 4 of the [balls] ring"
   int ring_index = 0;  // 1-based ball of the ring; 0 for a [[ball]] table
@@ -305,6 +339,14 @@ struct RingInput {
   std::optional<int> count;  // if valid
   std::vector<OverrideInput> overrides;
 };
+
+// The two forms of a ball's geometry (model.md §1.1): never both for one ball, density
+// only with a diameter; for a [[ball]] table (`listed`) also that one form is complete.
+void check_ball_form(Problems& p, const BallInput& b, bool listed);
+// The ball's specification and the values it gives: r = diameter/2, m from density
+// (default steel), l = surface_radius - r; mass, radius, race_radius as given otherwise.
+// The slots must have passed check_ball_form. Friction is not touched.
+void assemble_geometry(BallT<double>& ball, const std::vector<Slot>& slots);
 
 // The [balls] table read, its rules checked (ball_ring.cpp).
 RingInput read_ring(Problems& p, const toml::table& table);

@@ -323,6 +323,23 @@ template <class T, int N>
 ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref,
                                            const Kinematics<T, N>& kin, const Coordinates<T, N>& accel) {
   ParameterPartials<T, N> out(kin.dofs());
+  if (acts_through_specification(ref.quantity)) {
+    // r, rho, f, R_s enter §3 only through m, mu, l (model.md (1.1.1)-(1.1.3)): the chain
+    // rule over the balls they move (r alone enters nothing, §1).
+    const int first = ref.ball < 0 ? 0 : ref.ball;
+    const int last = ref.ball < 0 ? kin.n : ref.ball + 1;
+    for (int i = first; i < last; ++i) {
+      const auto s = specified_sensitivity(p.balls[std::size_t(i)], ref.quantity);
+      for (const auto& [q, factor] : {std::pair{Quantity::ball_mass, s.dmass}, std::pair{Quantity::mu, s.dmu},
+                                      std::pair{Quantity::race_radius, s.drace_radius}}) {
+        if (factor == T(0)) continue;
+        const ParameterPartials<T, N> d = parameter_partials(p, x, ParamRef{q, i}, kin, accel);
+        out.db += factor * d.db;
+        out.dA_accel += factor * d.dA_accel;
+      }
+    }
+    return out;
+  }
   auto& db = out.db;
   auto& dA_accel = out.dA_accel;
   const T w = kin.w;

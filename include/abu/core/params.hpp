@@ -14,10 +14,12 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <stdexcept>
 #include <string_view>
+#include <numbers>
 #include <type_traits>
 
 namespace abu {
@@ -31,8 +33,23 @@ enum class FrictionLaw { none, viscous, coulomb, stribeck, lugre, coulomb_set };
 std::string_view to_string(FrictionLaw law);
 std::optional<FrictionLaw> friction_law_from_string(std::string_view name);
 
+/// Which of a ball's model values follow from an engineer's specification (model.md
+/// §1.1): bits of BallT::specified. A set bit makes the derived value follow the ball
+/// radius r (set_ball).
+namespace specified {
+inline constexpr std::uint8_t density = 1;         ///< m = rho (4/3) pi r^3 = rho pi d^3 / 6   (1.1.1)
+inline constexpr std::uint8_t rolling_length = 2;  ///< mu = f / r                               (1.1.2)
+inline constexpr std::uint8_t surface_radius = 4;  ///< l = R_s - r                              (1.1.3)
+}  // namespace specified
+
+/// The density a ball given by its diameter has unless the scene says otherwise:
+/// bearing steel [kg/m^3].
+inline constexpr double kSteelDensity = 7850.0;
+
 /// One ball of the balancing unit. Friction coefficients are per ball; which of them
-/// enter the model depends on the law (see `law_uses`).
+/// enter the model depends on the law (see `law_uses`). mass, mu and race_radius are
+/// what the equations use; density, rolling_length and surface_radius are the
+/// engineer's specification they were derived from, where `specified` says so.
 template <class T>
 struct BallT {
   T mass{};            ///< m_i [kg]
@@ -47,11 +64,17 @@ struct BallT {
   T sigma0{};          ///< lugre: bristle stiffness per unit normal force [1/rad]
   T sigma1{};          ///< lugre: bristle damping per unit normal force [s/rad]
   T sigma2{};          ///< lugre: viscous coefficient per unit normal force [s/rad]
+  T density{};         ///< rho_i [kg/m^3], if specified & specified::density
+  T rolling_length{};  ///< f_i [m], if specified & specified::rolling_length
+  T surface_radius{};  ///< R_s,i [m], race surface radius, if specified & specified::surface_radius
+  std::uint8_t specified = 0;  ///< bits of abu::specified: which of m, mu, l are derived
 
   template <class U>
   BallT<U> cast() const {
-    return {U(mass), U(race_radius), U(radius), U(inertia_factor), U(mu), U(d), U(mu_c), U(mu_s), U(v_s),
-            U(sigma0), U(sigma1), U(sigma2)};
+    return {U(mass),   U(race_radius), U(radius),         U(inertia_factor), U(mu),
+            U(d),      U(mu_c),        U(mu_s),           U(v_s),            U(sigma0),
+            U(sigma1), U(sigma2),      U(density),        U(rolling_length), U(surface_radius),
+            specified};
   }
 };
 
@@ -159,11 +182,13 @@ enum class Quantity {
   omega, unbalance, stiffness, damping, rotor_mass,          // global
   ball_mass, race_radius, ball_radius, mu, d, mu_c, mu_s, v_s,  // per ball
   sigma0, sigma1, sigma2,                                      // per ball (lugre)
-  kappa                                                        // global friction
+  kappa,                                                       // global friction
+  density, rolling_length, surface_radius                      // per ball: specification (model.md §1.1)
 };
 
 /// A parameter as model.md names it: `omega U k c M_r kappa` (global) and
-/// `m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2` (every ball) or `m1 l2 mu1 ...` (one ball, 1-based).
+/// `m l r mu d mu_c mu_s v_s sigma0 sigma1 sigma2 rho f R_s` (every ball) or `m1 l2 mu1 ...`
+/// (one ball, 1-based).
 struct ParamRef {
   Quantity quantity = Quantity::omega;
   int ball = -1;  ///< -1: every ball; otherwise 0-based ball index
@@ -199,6 +224,9 @@ T& ball_field(BallT<T>& b, Quantity q) {
     case Quantity::sigma0: return b.sigma0;
     case Quantity::sigma1: return b.sigma1;
     case Quantity::sigma2: return b.sigma2;
+    case Quantity::density: return b.density;
+    case Quantity::rolling_length: return b.rolling_length;
+    case Quantity::surface_radius: return b.surface_radius;
     default: return b.v_s;
   }
 }
@@ -206,6 +234,72 @@ template <class T>
 const T& ball_field(const BallT<T>& b, Quantity q) {
   return ball_field(const_cast<BallT<T>&>(b), q);
 }
+
+/// pi in the scalar's own precision (double's for scalars that are not floating point).
+template <class T>
+T pi_in() {
+  if constexpr (std::is_floating_point_v<T>) {
+    return std::numbers::pi_v<T>;
+  } else {
+    return T(std::numbers::pi_v<double>);
+  }
+}
+
+/// Recomputes the values of a ball that its specification gives (model.md (1.1.1)-(1.1.3)):
+/// m = rho (4/3) pi r^3, mu = f / r, l = R_s - r, each where `specified` has its bit.
+template <class T>
+void derive_specified(BallT<T>& b) {
+  if (b.specified & specified::density) b.mass = b.density * T(4) / T(3) * pi_in<T>() * b.radius * b.radius * b.radius;
+  if (b.specified & specified::rolling_length) b.mu = b.rolling_length / b.radius;
+  if (b.specified & specified::surface_radius) b.race_radius = b.surface_radius - b.radius;
+}
+
+/// Sets one per-ball quantity of a ball, keeping its specification consistent: a
+/// specification value (rho, f, R_s) sets its bit, the value it gives directly (m, mu,
+/// l) clears it (the last one set wins), and every derived value follows (r included:
+/// with f given, a new r is a new mu).
+template <class T>
+void set_ball(BallT<T>& b, Quantity q, T value) {
+  ball_field(b, q) = value;
+  switch (q) {
+    case Quantity::density: b.specified |= specified::density; break;
+    case Quantity::rolling_length: b.specified |= specified::rolling_length; break;
+    case Quantity::surface_radius: b.specified |= specified::surface_radius; break;
+    case Quantity::ball_mass: b.specified &= std::uint8_t(~specified::density); break;
+    case Quantity::mu: b.specified &= std::uint8_t(~specified::rolling_length); break;
+    case Quantity::race_radius: b.specified &= std::uint8_t(~specified::surface_radius); break;
+    default: break;
+  }
+  derive_specified(b);
+}
+
+/// How the values the model uses (m, mu, l) of a ball change with a quantity that its
+/// specification ties to them: the chain rule's factors dm/dq, dmu/dq, dl/dq (all zero
+/// for a quantity that is not r, rho, f or R_s). rho, f and R_s count as specified (setting
+/// them makes them so); r moves only the values specified through it.
+template <class T>
+struct SpecifiedSensitivity {
+  T dmass{}, dmu{}, drace_radius{};
+};
+template <class T>
+SpecifiedSensitivity<T> specified_sensitivity(const BallT<T>& b, Quantity q) {
+  SpecifiedSensitivity<T> s;
+  const T r = b.radius;
+  switch (q) {
+    case Quantity::ball_radius:
+      if (b.specified & specified::density) s.dmass = T(4) * pi_in<T>() * b.density * r * r;  // d/dr (1.1.1)
+      if (b.specified & specified::rolling_length) s.dmu = -b.rolling_length / (r * r);            // d/dr (1.1.2)
+      if (b.specified & specified::surface_radius) s.drace_radius = T(-1);                         // d/dr (1.1.3)
+      break;
+    case Quantity::density: s.dmass = T(4) / T(3) * pi_in<T>() * r * r * r; break;
+    case Quantity::rolling_length: s.dmu = T(1) / r; break;
+    case Quantity::surface_radius: s.drace_radius = T(1); break;
+    default: break;
+  }
+  return s;
+}
+/// Is q a quantity that moves m, mu or l through a specification (r, rho, f, R_s)?
+bool acts_through_specification(Quantity q);
 
 /// Value of a parameter. For an every-ball reference it is ball 1's value (the balls
 /// of a scene addressed as a set are usually equal; `set` makes them so).

@@ -19,7 +19,10 @@ inline constexpr int kSceneMaxBalls = max_balls;  ///< the analyzer's bound (mod
 
 /// A field of BallT that a ring override sets. `inertia_factor` is the file's `rolling`
 /// (value 7/5 rolling, 1 sliding).
-enum class BallField { mass, race_radius, radius, inertia_factor, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2 };
+enum class BallField {
+  mass, race_radius, radius, inertia_factor, mu, d, mu_c, mu_s, v_s, sigma0, sigma1, sigma2,
+  density, rolling_length, surface_radius  // the specification, model.md §1.1 (diameter sets radius)
+};
 
 /// One ball of a ring that differs from the template in one field.
 struct RingOverride {

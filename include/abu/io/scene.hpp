@@ -16,6 +16,16 @@
 //              coulomb-set: mu (set-valued, model.md §14: only `equilibria` takes it)
 //   [speed]    omega = 900.0
 //
+// A ball and its race as an engineer specifies them (docs/model.md §1.1), in a [[ball]]
+// table, [balls] or an override: `diameter` (r = diameter/2) with optional `density`
+// (default kSteelDensity; m = density pi diameter^3 / 6) instead of mass and radius;
+// `surface_radius` (l = surface_radius - r) instead of race_radius; `f`, the
+// rolling-resistance length [m] (mu = f / r; also in [friction]; coulomb and coulomb-set
+// only) instead of mu. Never both forms of one value for one ball, density only with a
+// diameter, mu and f not both in one scene (reported at the later key). The ball keeps
+// its specification (BallT::density, rolling_length, surface_radius, `specified`), so
+// that a later r moves the values derived from it (set_ball).
+//
 // Instead of the [[ball]] tables (never both), a ring of `count` equal balls:
 //
 //   [balls]    count = 11          # an integer 2..12 (11.0 is not an integer)
@@ -54,9 +64,10 @@
 // key. Nothing downstream re-checks the file.
 //
 // Changing a ring scene keeps the ring consistent with `balls`:
-// - set_checked / apply_override of an every-ball symbol (m l r mu d mu_c mu_s v_s) sets
-//   the ring's template and drops the ring's overrides of that field (also inactive
-//   ones): every ball has the value. `m` on a total_mass ring switches the ring to mass
+// - set_checked / apply_override of an every-ball symbol (m l r mu d mu_c mu_s v_s rho f
+//   R_s) sets the ring's template and drops the ring's overrides of that field and of
+//   the other form of its value (m and rho, mu and f, l and R_s; also inactive ones):
+//   every ball has the value. `m` on a total_mass ring switches the ring to mass
 //   held (total_mass_held = false): the count no longer divides the mass.
 // - a one-ball symbol (m3, l2, ...) is recorded as a RingOverride of the ring (replacing
 //   an earlier one of the same ball and field), with the caller's origin and line 0.
@@ -129,7 +140,9 @@ Scene parse_scene(std::string_view text, const std::string& file);
 void apply_override(Scene& scene, std::string_view assignment);
 
 /// Sets a parameter of the scene by reference, checking its physical range, that the
-/// scene's friction law uses it, the ball index, and radius < race_radius for `r`/`l`.
+/// scene's friction law uses it, the ball index, and radius < race_radius for every
+/// quantity that moves them (`r`, `l`, `R_s`). The balls' specifications follow
+/// (set_ball: with f given, `r` moves mu; `mu` itself switches the ball to the direct form).
 /// On a ring scene the ring follows (see the top of this file).
 /// Throws InputError(origin, 0, symbol, rule) and leaves the scene unchanged then.
 void set_checked(Scene& scene, ParamRef ref, double value, const std::string& origin);
