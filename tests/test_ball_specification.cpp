@@ -104,7 +104,7 @@ TEST_CASE("the engineer's form and the model's form give the same parameters", "
   }
 }
 
-TEST_CASE("--set r moves mu, m and l of a specified ball, and nothing of a direct one", "[scene][specification]") {
+TEST_CASE("a --set of r moves mu, m and l of a specified ball, and nothing of a direct one", "[scene][specification]") {
   abu::Scene s = abu::parse_scene(kEngineer, "spec.toml");
   abu::apply_override(s, "r=0.005");
   for (std::size_t i = 0; i < 2; ++i) {
@@ -131,7 +131,7 @@ TEST_CASE("--set r moves mu, m and l of a specified ball, and nothing of a direc
   CHECK(d.balls[0].mu == 0.002);
 }
 
-TEST_CASE("--set refuses what does not fit the race or the law", "[scene][specification]") {
+TEST_CASE("a --set is refused where it does not fit the race or the law", "[scene][specification]") {
   abu::Scene s = abu::parse_scene(kEngineer, "spec.toml");
   // r = 0.03 gives l = 0.02 < r: the ball would reach past the axis.
   CHECK_THROWS_AS(abu::apply_override(s, "r=0.03"), abu::InputError);
