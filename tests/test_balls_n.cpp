@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "abu/core/widen_params.hpp"
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/spectrum.hpp"
@@ -39,18 +40,6 @@ ParamsN ring(int n, FrictionLaw law, double omega = 900.0, bool spread = true) {
                                0.001 * f, 0.003 * f, 0.1 * f};
   }
   return p;
-}
-
-ParamsN as_dynamic(const Params& p) {
-  ParamsN q;
-  q.rotor = p.rotor;
-  q.omega = p.omega;
-  q.law = p.law;
-  q.kappa = p.kappa;
-  q.balls.resize(2);
-  q.balls[0] = p.balls[0];
-  q.balls[1] = p.balls[1];
-  return q;
 }
 
 }  // namespace
@@ -110,7 +99,7 @@ TEST_CASE("the n-ball algorithm reproduces the two-ball closed forms", "[n-balls
     p.balls[0] = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 0, 0, 0, 0};
     p.balls[1] = {2.9e-5, 0.018, 1e-3, 1.4, 0.002, 0, 0, 0, 0};
     const Analysis two = analyze(p);
-    const AnalysisN general = analyze(as_dynamic(p));
+    const AnalysisN general = analyze(widen(p));
     const auto a = two.equilibria.points();
     const auto b = general.equilibria.points();
     INFO("omega = " << omega);

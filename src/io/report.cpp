@@ -1,4 +1,5 @@
 #include "abu/io/report.hpp"
+#include "abu/core/widen_params.hpp"
 #include "abu/io/report_stick_set.hpp"
 
 #include <fmt/format.h>
@@ -478,16 +479,8 @@ std::string analysis_warnings(const AnalysisN& a, std::string_view where) {
 // The table ends, for the smooth coulomb and stribeck laws, with the dry-friction verdict
 // (report_stick_set.hpp, model.md §14.10).
 std::string equilibria_report(const Analysis& a, const Params& p, SpeedUnit unit) {
-  ParamsN pn;
-  pn.rotor = p.rotor;
-  pn.omega = p.omega;
-  pn.law = p.law;
-  pn.kappa = p.kappa;
-  pn.balls.resize(2);
-  pn.balls[0] = p.balls[0];
-  pn.balls[1] = p.balls[1];
   return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
-         creep_lines(a, p, "") + stick_verdict_lines(pn, StickSetOptions{}, "");
+         creep_lines(a, p, "") + stick_verdict_lines(widen(p), StickSetOptions{}, "");
 }
 std::string equilibria_report(const AnalysisN& a, const ParamsN& p, SpeedUnit unit) {
   return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
