@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Benchmark (not a test): the rightmost 10 eigenvalues of the gyroscopic chain pencil
 (docs/model.md §19, tests/benchmarks/sparse_chain.hpp) against the number of states, by
 abu's ARPACK shift-invert (bench_sparse_spectrum) and by scipy.sparse.linalg.eigs on the
