@@ -170,12 +170,18 @@ void finish_shift(ShiftResult& out, const Pencil& p, cplx sigma, int k, const st
     const double lam = std::abs(e.value);
     e.residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
     e.backward_error = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
+    if (!std::isfinite(e.value.real()) || !std::isfinite(e.value.imag()) || !std::isfinite(e.residual) ||
+        !std::isfinite(e.backward_error)) {
+      // Never a NaN in a result: the pair is dropped and the shift says why.
+      out.run.status.merge(Outcome::numerical_issue, "a non-finite eigenvalue or residual at a shift");
+      continue;
+    }
     if (need_vectors) e.vector = vec / vn;
     out.pairs.push_back(std::move(e));
   }
   const int nconv = std::min(m, k);
   out.run.converged = nconv;
-  if (nconv < k) {
+  if (nconv < k || int(out.pairs.size()) < k) {  // short, or a pair dropped: no disc claimed
     out.run.status.merge(Outcome::not_converged, "fewer eigenvalues converged than asked at a shift");
     out.run.radius = 0.0;
   } else {
