@@ -163,6 +163,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
                    {"png", chart.reserve(png_path).string()},
                    {"n", std::to_string(n)},
                    {"rel", [&] {
+                      if (r.unround_race) return "0";  // no balanced set to measure from (§15.7)
                       std::vector<double> beta(static_cast<std::size_t>(n));
                       for (int i = 0; i < n; ++i) beta[std::size_t(i)] = r.x_end(2 + i);
                       return nearest_balanced_angles(p, beta) ? "1" : "0";
