@@ -195,6 +195,17 @@ Action add_basin_command(CLI::App& app) {
                                                      x.balanced_set ? " (set)" : fmt::format(" {}", x.member));
       job.provenance += fmt::format("# attractors of the settle test at omega = {:.10g} rad/s: {}\n", job.final_omega(),
                                     t.empty() ? "none stable" : t);
+      // Each attractor's certified region (model.md §15.8), or why it has none.
+      for (const auto& x : targets) {
+        const std::string name = x.balanced_set ? x.label + " (set)" : fmt::format("{} {}", x.label, x.member);
+        if (x.region.certified)
+          job.provenance += fmt::format(
+              "# certified region of {}: V = y^T P y < {:.6g} (scaled y), ball radius r = {:.6g}, |D^2 g| <= K2 = "
+              "{:.6g}, eig(P) in [{:.6g}, {:.6g}] (model.md §15.8)\n",
+              name, x.region.level, x.region.radius, x.region.second_derivative_bound, x.region.p_min, x.region.p_norm);
+        else
+          job.provenance += fmt::format("# no certified region for {}: {}\n", name, x.region.reason);
+      }
     }
     namespace fs = std::filesystem;
     const fs::path dir(b.output);
@@ -228,7 +239,7 @@ Action add_basin_command(CLI::App& app) {
     for (int t = 0; t < job.cells1; ++t) store.append(t, rows, none);
     std::map<std::pair<int, std::string>, long> count;
     std::set<std::pair<int, std::string>> classes;  // of the chart: attractor/member
-    long cells = 0, early = 0;
+    long cells = 0, early = 0, certified = 0;
     // coulomb-set (model.md §14.8): the end angles of the cells where every ball stuck, the
     // largest |s_i| and |q| there, and how many lie outside the stick set.
     const bool set_valued = scene.law == FrictionLaw::coulomb_set;
@@ -243,7 +254,8 @@ Action add_basin_command(CLI::App& app) {
         for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
         ++count[{label_rank(f[4]), f[4]}];
         classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
-        early += f[6] == "1";
+        early += f[6] != "0";
+        certified += f[6] == "1";
         ++cells;
         if (set_valued && f[std::size_t(14 + n)] != "-1") {
           ++stuck_cells;
@@ -258,8 +270,8 @@ Action add_basin_command(CLI::App& app) {
     for (const auto& angles : stuck_angles) spread.push_back(shortest_arc(angles));
     std::string fractions = job.provenance + "attractor,cells,fraction\n";
     std::string json = fmt::format("{{\n  \"cells\": {},\n  \"grid\": [{}, {}],\n  \"omega_final\": {},\n  \"t_end\": {},\n"
-                                   "  \"by_settle_test\": {},\n  \"fractions\": {{",
-                                   cells, job.cells1, job.cells2, job.final_omega(), job.sim.t_end, early);
+                                   "  \"by_settle_test\": {},\n  \"by_certified_region\": {},\n  \"fractions\": {{",
+                                   cells, job.cells1, job.cells2, job.final_omega(), job.sim.t_end, early, certified);
     std::string labels;
     bool first = true;
     for (const auto& [key, k] : count) {

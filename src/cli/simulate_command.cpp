@@ -20,6 +20,8 @@
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/dynamics/stick_slip.hpp"
+#include "abu/dynamics/unround_simulation.hpp"
+#include "abu/io/race_scene.hpp"
 #include "abu/io/equilibrium_start.hpp"
 #include "abu/io/io.hpp"
 #include "abu/io/report_simulation.hpp"
@@ -42,6 +44,11 @@ struct SimulateOptions {
   bool chart = true, progress = false, quiet = false;
 };
 
+
+template <int N>
+bool r_completed(const SimulationResult<N>& r) {
+  return r.status == SimulationStatus::completed && !r.samples.empty();
+}
 
 template <int N>
 int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProfile& speed) {
@@ -73,6 +80,14 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     x0 = State<double, N>::Zero(2 * n + 4);
     for (int i = 0; i < 2 * n + 4; ++i) x0(i) = v[std::size_t(i)];
   }
+  // An unround race (model.md §15.6): the balls run on their paths; the run's end is matched
+  // against the equilibria of §11.4 at the final speed (§15.7).
+  const RaceShape race = race_shape(scene);
+  const bool unround = !race.round();
+  if (unround) so.race = &race;
+  if (unround && !o.from_equilibrium.empty())
+    throw NotSupportedError("--from-equilibrium on an unround race (model.md §11): not supported yet; start from "
+                            "--balls or from an equilibrium's state with --from-state");
   if (!o.from_equilibrium.empty()) {
     const double eps = o.perturb.value_or(1e-3);
     if (!(std::isfinite(eps) && eps >= 0 && eps <= 1))
@@ -114,6 +129,13 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     stick_slip = simulate_stick_slip(p, speed, x0, so);
   else
     smooth = simulate(p, speed, x0, so);
+  if constexpr (N == any_balls) {
+    if (unround && r_completed(smooth)) {
+      ParamsN at = p;
+      at.omega = speed.omega(smooth.t_reached);
+      classify_unround_end(smooth.summary, at, find_unround_equilibria(at, race), so.settle_tolerance);
+    }
+  }
   const SimulationResult<N>& r = stick_slip ? stick_slip->run : smooth;
   if (show) fmt::print(stderr, "\r{:80}\r", "");
 
@@ -141,6 +163,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
                    {"png", chart.reserve(png_path).string()},
                    {"n", std::to_string(n)},
                    {"rel", [&] {
+                      if (r.unround_race) return "0";  // no balanced set to measure from (§15.7)
                       std::vector<double> beta(static_cast<std::size_t>(n));
                       for (int i = 0; i < n; ++i) beta[std::size_t(i)] = r.x_end(2 + i);
                       return nearest_balanced_angles(p, beta) ? "1" : "0";
@@ -238,7 +261,7 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o, sub]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "simulate", {.lugre = true, .set_valued = true});
+    refuse_unmodelled(scene, "simulate", {.lugre = true, .set_valued = true, .unround = true});
     apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
@@ -254,7 +277,8 @@ Action add_simulate_command(CLI::App& app) {
                                    ? *scene.simulate->speed
                                    : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
     // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
-    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre) return run_simulation<2>(scene, *o, speed);
+    // An unround race runs in the any-ball storage too (model.md §15.6).
+    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round()) return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);
   };
 }

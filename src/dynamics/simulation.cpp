@@ -17,6 +17,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/model/lugre.hpp"
+#include "abu/model/unround_field.hpp"
 
 namespace abu {
 
@@ -55,6 +56,7 @@ std::string_view to_string(SimulationOutcome o) {
     case SimulationOutcome::rest: return "stuck";
     case SimulationOutcome::periodic: return "periodic";
     case SimulationOutcome::not_settled: return "not_settled";
+    case SimulationOutcome::equilibrium: return "equilibrium";
   }
   return "?";
 }
@@ -124,6 +126,7 @@ struct OdeContext {
   int dim = 0;
   unsigned long rhs = 0, jac = 0;
   ParamRef omega_ref{Quantity::omega, -1};
+  const RaceShape* race = nullptr;  // unround race (model.md §15.6), N = any_balls
   void set_time(double t) { p.omega = segment_omega0 + omega_dot * (t - segment_t0); }
 };
 
@@ -170,6 +173,15 @@ int ode_rhs(double t, const double y[], double dydt[], void* params) {
   if constexpr (N == any_balls)
     if (c.p.law == FrictionLaw::lugre) return lugre_rhs(c.p, c.omega_dot, y, dydt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
+  if constexpr (N == any_balls)
+    if (c.race) {  // model.md §11.3 with the run-up's Euler terms (15.6.1)
+      const State<double, N> f = unround_vector_field(c.p, *c.race, x, c.omega_dot);
+      for (int i = 0; i < c.dim; ++i) {
+        if (!std::isfinite(f(i))) return GSL_EBADFUNC;
+        dydt[i] = f(i);
+      }
+      return GSL_SUCCESS;
+    }
   // model.md §3 at constant speed; §9 (Euler terms) while omega' != 0.
   const State<double, N> f = c.omega_dot == 0 ? vector_field(c.p, x) : vector_field(c.p, x, c.omega_dot);
   for (int i = 0; i < c.dim; ++i) {
@@ -187,7 +199,16 @@ int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
   if constexpr (N == any_balls)
     if (c.p.law == FrictionLaw::lugre) return lugre_jac(c.p, c.omega_dot, y, dfdy, dfdt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
-  const StateMatrix<double, N> J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
+  StateMatrix<double, N> J;
+  State<double, N> dfw;
+  if constexpr (N == any_balls) {
+    if (c.race) {  // (15.6.2)-(15.6.5)
+      J = unround_jacobian(c.p, *c.race, x, c.omega_dot);
+      if (c.omega_dot != 0) dfw = unround_omega_derivative(c.p, *c.race, x);
+    }
+  }
+  const bool unround = N == any_balls && c.race;
+  if (!unround) J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
   for (int i = 0; i < c.dim; ++i)
     for (int j = 0; j < c.dim; ++j) {
       if (!std::isfinite(J(i, j))) return GSL_EBADFUNC;
@@ -195,7 +216,7 @@ int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
     }
   // df/dt = omega' df/domega (+ omega'' df/domega', zero inside a segment of the profile).
   if (c.omega_dot != 0) {
-    const State<double, N> dfw = parameter_derivative(c.p, x, c.omega_ref);
+    if (!unround) dfw = parameter_derivative(c.p, x, c.omega_ref);
     for (int i = 0; i < c.dim; ++i) dfdt[i] = c.omega_dot * dfw(i);
   } else {
     for (int i = 0; i < c.dim; ++i) dfdt[i] = 0.0;
@@ -373,6 +394,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
         LugreState<double> xl = LugreState<double>::Zero(dim);
         xl.head(mech) = xs;
         rho = spectral_radius(lugre_jacobian(pp, xl, RestSide::forward));
+      } else if (o.race) {
+        rho = spectral_radius(unround_jacobian(pp, *o.race, xs));
       } else {
         rho = spectral_radius(jacobian(pp, xs));
       }
@@ -389,6 +412,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   OdeContext<N> ctx;
   ctx.p = p;
   ctx.dim = dim;
+  if constexpr (N == any_balls) ctx.race = o.race;
+  r.unround_race = ctx.race != nullptr;
   gsl_odeiv2_system sys{&ode_rhs<N>, &ode_jacobian<N>, std::size_t(dim), &ctx};
   const double h0 = std::min(1e-3 / (w_max + w_n), 1e-2 * o.t_end);
   // The driver allocates the stepper, a control and the evolve object once; its control is

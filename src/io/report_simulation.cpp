@@ -35,7 +35,8 @@ template <int N>
 std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
                            std::string_view header) {
   const int n = ball_count(p), d = n + 2;
-  const auto balanced = nearest_balanced_angles(p, end_angles(r, n));
+  // An unround race has no balanced set in general (model.md §11.4): no reference angles.
+  const auto balanced = r.unround_race ? std::nullopt : nearest_balanced_angles(p, end_angles(r, n));
   std::string out(header);
   out += fmt::format("# speed: {}\n", speed.describe());
   out += fmt::format("# method: {} (stiffness ratio rho(J)/(omega_max + omega_n) = {:.4g}, rho = {:.4g} 1/s; model.md §15.1)\n",
@@ -110,6 +111,10 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
   out += fmt::format("  \"status\": {},\n  \"reason\": {},\n", json_string(to_string(r.status)), json_string(r.reason));
   out += fmt::format("  \"outcome\": {},\n  \"pattern\": {},\n  \"note\": {},\n", json_string(to_string(s.outcome)),
                      json_string(s.pattern), json_string(s.note));
+  if (s.unround_member > 0)  // model.md §15.7
+    out += fmt::format("  \"unround_equilibrium\": {{\"member\": {}, \"q_abs\": {}, \"distance\": {}}},\n",
+                       s.unround_member, format_number(s.unround_q_abs, "unround q_abs"),
+                       format_number(s.unround_distance, "unround distance"));
   out += fmt::format("  \"t_end\": {},\n  \"state_end\": {},\n", format_number(s.t_end, "t_end"),
                      number_list(s.state_end, "state_end"));
   if (r.bristle_count > 0) out += fmt::format("  \"bristle_end\": {},\n", number_list(r.bristle_end, "bristle_end"));

@@ -50,7 +50,10 @@ std::vector<BasinTarget> targets_of(const EquilibriumSpan& points, const Spectra
     out.push_back(std::move(t));
   }
   if (!(any_set && set_stable)) return out;
-  std::vector<BasinTarget> all{BasinTarget{std::string("balanced"), 0, {}, true}};  // the balanced set first
+  BasinTarget set;
+  set.label = "balanced";
+  set.balanced_set = true;
+  std::vector<BasinTarget> all{std::move(set)};  // the balanced set first
   for (auto& t : out) all.push_back(std::move(t));
   return all;
 }
@@ -120,7 +123,7 @@ BasinCell stick_slip_cell(const BasinJob& job, const ParamsT<double, N>& p, cons
   take_run(c, r.run);
   c.max_abs_s = r.end.max_abs_s;
   c.in_stick_set = r.end.all_stuck ? (r.end.in_set ? 1 : 0) : -1;
-  c.by_settle_test = r.run.stopped_early;
+  c.by_settle_test = r.run.stopped_early ? 2 : 0;
   c.t_settle = r.run.stopped_early ? t_entry : (r.run.summary.settle_time ? *r.run.summary.settle_time : -1.0);
   if (r.end.all_stuck)
     c.attractor = r.end.in_set ? "stuck" : "stuck_outside";
@@ -174,8 +177,9 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   o.stop_at_sample = [&](double t, const double* x) {
     if (t < t_change) return false;  // the attractors are those of the final, constant speed
     const BasinTarget* now = nullptr;
+    // A certified region (model.md §15.8) decides by itself; without one, the radius test (§15.5).
     for (const auto& target : targets)
-      if (distance(target, x) <= job.settle_radius) {
+      if (target.region.certified ? inside_region(target.region, x) : distance(target, x) <= job.settle_radius) {
         now = &target;
         break;
       }
@@ -191,7 +195,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   if (r.stopped_early && inside) {
     c.attractor = inside->label;
     c.member = inside->member;
-    c.by_settle_test = true;
+    c.by_settle_test = inside->region.certified ? 1 : 2;
     c.t_settle = t_entry;
     return c;
   }
@@ -201,6 +205,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     case SimulationOutcome::rest: c.attractor = "stuck"; break;
     case SimulationOutcome::periodic: c.attractor = "periodic"; break;
     case SimulationOutcome::not_settled: c.attractor = "not_settled"; break;
+    case SimulationOutcome::equilibrium: c.attractor = "equilibrium"; break;  // unround race only (§15.7)
   }
   if (r.summary.settle_time) c.t_settle = *r.summary.settle_time;
   return c;
@@ -231,12 +236,16 @@ std::vector<BasinTarget> basin_targets(const BasinJob& job) {
     Params p = job.params;
     p.omega = job.final_omega();
     const Analysis a = analyze(p);
-    return targets_of(a.equilibria.points(), a.spectra, 2);
+    std::vector<BasinTarget> out = targets_of(a.equilibria.points(), a.spectra, 2);
+    for (auto& t : out) t.region = certify_basin_region(p, t.position);  // model.md §15.8
+    return out;
   }
   ParamsN p = job.params_n;
   p.omega = job.final_omega();
   const AnalysisN a = analyze(p);
-  return targets_of(a.equilibria.points(), a.spectra, ball_count(p));
+  std::vector<BasinTarget> out = targets_of(a.equilibria.points(), a.spectra, ball_count(p));
+  for (auto& t : out) t.region.reason = "n >= 3 balls: no certified region yet (model.md §15.8); the settle radius test";
+  return out;
 }
 
 BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
@@ -254,7 +263,7 @@ std::string basin_csv_header(const BasinJob& job) {
 std::string basin_row(const BasinCell& c) {
   std::string row = fmt::format("{},{},{:.10g},{:.10g},{},{},{},{},{:.10g},{:.6e},{:.6e}", c.i, c.j, c.beta1, c.beta2,
                                 c.attractor, c.member == 0 ? std::string() : std::to_string(c.member),
-                                c.by_settle_test ? 1 : 0, c.t_settle >= 0 ? fmt::format("{:.6g}", c.t_settle) : "",
+                                c.by_settle_test, c.t_settle >= 0 ? fmt::format("{:.6g}", c.t_settle) : "",
                                 c.t_end, c.q_abs_end, c.max_q_abs);
   const int n = (int(c.state_end.size()) - 4) / 2;
   // End angles wrapped to [0, 2 pi): where the balls came to lie on the race.

@@ -6,7 +6,7 @@
 #  2. an eccentric race (order 1, offset d = l eps) leaves the best stable state's
 #     residual whirl |q| = d (JSON best_stable.q_abs) to 1e-12 relative;
 #  3. the same run twice gives the same bytes; -o writes the file atomically;
-#  4. `continue --param omega`, `simulate` refuse an unround scene (exit 2 with the
+#  4. `continue --param omega`, `basin` refuse an unround scene (exit 2 with the
 #     reason), never computing the round race silently;
 #  8. four balls: equilibria by multistart, JSON search.complete false with the reason;
 #  6. `sweep` on a zero-amplitude race is the round scene's sweep byte for byte; an
@@ -42,7 +42,7 @@ mkdir -p "$work/d1" "$work/d2"
 if cmp -s "$work/d1/e.csv" "$work/d2/e.csv"; then check ok "deterministic CSV"; else check no "deterministic CSV"; fi
 
 for cmd in "continue --param omega --to 1000 -o $work/co" \
-           "simulate --t-end 0.01 -o $work/si"; do
+           "basin --grid 2 --t-end 0.01 -o $work/si"; do
   "$bin" ${cmd%% *} "$work/ecc.toml" ${cmd#* } > /dev/null 2> "$work/err"
   rc=$?
   if [ $rc -eq 2 ] && grep -q "unround" "$work/err"; then check ok "${cmd%% *} refuses an unround scene"; else check no "${cmd%% *} refuses an unround scene (exit $rc: $(head -c 300 "$work/err"))"; fi

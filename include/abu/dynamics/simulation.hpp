@@ -26,6 +26,8 @@
 
 namespace abu {
 
+struct RaceShape;  // model/unround_race.hpp
+
 /// GSL odeiv2 steppers the simulation offers (`--method`).
 enum class IntegrationMethod {
   automatic,  ///< bsimp if the start's stiffness ratio exceeds the threshold, else rk8pd (model.md §15.1)
@@ -61,13 +63,17 @@ struct SimulationOptions {
   /// Friction law `lugre` only: the bristle states z_i(0) [rad], one per ball; empty: 0
   /// (model.md §12.7).
   std::vector<double> bristle_start;
+  /// An unround race (model.md §11, §15.6): the balls' centre paths; null (or a round race):
+  /// the round race of §3. N = any_balls only. Not owned: it must outlive the run.
+  const RaceShape* race = nullptr;
 };
 
 enum class SimulationStatus { completed, interrupted, failed };
 std::string_view to_string(SimulationStatus s);
 
 /// What a run ended in (model.md §15.2).
-enum class SimulationOutcome { balanced, aligned, rest, periodic, not_settled };  // rest is written "stuck"
+/// equilibrium: at rest at an equilibrium of an unround race (model.md §11.4, §15.7).
+enum class SimulationOutcome { balanced, aligned, rest, periodic, not_settled, equilibrium };  // rest is written "stuck"
 std::string_view to_string(SimulationOutcome o);
 
 template <int N>
@@ -103,6 +109,10 @@ struct SimulationSummary {
   std::vector<double> t_omega_n;    ///< times at which omega(t) = omega_n
   std::optional<double> max_q_abs_run_up;  ///< largest |q| while omega' != 0 [m]
   bool speed_changing_at_end = false;
+  /// Unround race (model.md §15.7): the equilibrium of §11.4 the run ended at (1-based in the
+  /// list `equilibria` prints, sorted by |q|), its |q| [m] and the scaled distance to it.
+  int unround_member = 0;
+  double unround_q_abs = 0, unround_distance = 0;
 };
 
 template <int N>
@@ -119,6 +129,7 @@ struct SimulationResult {
   State<double, N> x_end;       ///< the state at the last time reached
   double t_reached = 0;
   bool stopped_early = false;   ///< options.stop_at_sample ended the run at t_reached
+  bool unround_race = false;    ///< integrated on an unround race (options.race, model.md §15.6)
   /// Friction law `lugre` (model.md §12.7): the n bristle states integrated beside x; the
   /// z_i of every sample (bristle_count per sample, in sample order) and at t_reached.
   int bristle_count = 0;

@@ -20,6 +20,7 @@
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/dynamics/speed_profile.hpp"
+#include "abu/scan/basin_certificate.hpp"
 #include "abu/scan/map_driver.hpp"
 
 namespace abu {
@@ -49,6 +50,9 @@ struct BasinTarget {
   int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set)
   std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set
   bool balanced_set = false;   ///< n >= 3: the whole (normally stable) balanced set
+  /// The Lyapunov region of model.md §15.8 (two balls): entering it decides the cell. Not
+  /// certified (n >= 3, the balanced set): the settle radius test of §15.5 instead.
+  BasinRegion region;
 };
 
 /// The attractors the settle test knows: the equilibria at the final speed whose spectrum
@@ -61,7 +65,9 @@ struct BasinCell {
   double beta1 = 0, beta2 = 0;      ///< start angles [rad]
   std::string attractor;            ///< balanced | aligned:PATTERN | periodic | stuck | not_settled
   int member = 0;                   ///< which target of that label (settle test), 0 if by §15.2 only
-  bool by_settle_test = false;      ///< ended by entering a target's neighbourhood (else §15.2 at t_end)
+  /// How the run ended: 0 at t_end (judged by §15.2), 1 by entering a target's certified
+  /// Lyapunov region (§15.8), 2 by the settle radius test of a target without one (§15.5).
+  int by_settle_test = 0;
   double t_settle = -1;             ///< [s]: entry time (settle test) or §15.2 settle time; -1 if none
   double t_end = 0;                 ///< [s]: the last time integrated
   double q_abs_end = 0, max_q_abs = 0;  ///< [m]
