@@ -163,6 +163,10 @@ std::string render_unround(const Scene& scene, const EquilibriaOptions& o, std::
 
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
   refuse_combined_extensions(scene);
+  if (scene.shaft)
+    throw NotSupportedError(fmt::format("`equilibria` on a flexible shaft ([shaft] in {}, model.md §18): the shaft "
+                                        "model is not wired in yet",
+                                        scene.file));
   if (!scene.race.round()) return render_unround(scene, o, warnings);
   if (scene.support) {  // anisotropic support: Floquet verdicts of the balanced states (model.md §10)
     if (!o.mode_shapes.empty())
