@@ -134,7 +134,7 @@ def main():
     for case in cases:
         M, K, Gm, C, kappa = element(case)
         if case['name'] == 'disc_and_bearing':
-            M, K, Gm, C = disc_and_bearing(M, K, Gm, C, (2.5, 0.016, 0.03), (1e7, 150.0, 2e4, 3.0))
+            M, K, Gm, C = disc_and_bearing(M, K, Gm, C, (2.5, 0.03, 0.016), (1e7, 150.0, 2e4, 3.0))
         if kappa is not None:
             err = abs(float(kappa) - case['kappa']) / float(kappa)
             print(f"{case['name']}: shear coefficient {float(kappa):.16g}, C++ relative error {err:.2e}")
