@@ -1,0 +1,448 @@
+// Shift-invert ARPACK on a sparse pencil; see include/abu/linear/sparse_spectrum.hpp and
+// docs/model.md §19 (method §19.1, the rightmost ladder and its coverage §19.2, the
+// residual §19.3).
+#include "abu/linear/sparse_spectrum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include <Eigen/SparseLU>
+#include <arpack/arpack.hpp>
+#include <fmt/format.h>
+
+namespace abu {
+
+namespace {
+
+using cplx = std::complex<double>;
+using SparseComplexMatrix = Eigen::SparseMatrix<cplx>;
+using ComplexLU = Eigen::SparseLU<SparseComplexMatrix, Eigen::COLAMDOrdering<int>>;
+
+// ARPACK keeps state in Fortran SAVE variables between the calls of one reverse-
+// communication loop: two loops at once (threads of a map) would corrupt each other.
+std::mutex& arpack_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// A shift as the cache's key: its exact bits (the same double shift again hits; a shift
+// that differs in the last bit is another factorization, as it should be).
+struct ShiftKey {
+  std::uint64_t re, im;
+  auto operator<=>(const ShiftKey&) const = default;
+};
+ShiftKey key_of(cplx s) {
+  ShiftKey k{};
+  const double re = s.real(), im = s.imag();
+  std::memcpy(&k.re, &re, sizeof re);
+  std::memcpy(&k.im, &im, sizeof im);
+  return k;
+}
+
+}  // namespace
+
+struct ShiftFactorizations::Impl {
+  Eigen::Index rows = -1, nonzeros = -1;  // the pencil the entries belong to
+  std::map<ShiftKey, std::unique_ptr<ComplexLU>> lu;
+};
+
+ShiftFactorizations::ShiftFactorizations() : impl(std::make_unique<Impl>()) {}
+ShiftFactorizations::~ShiftFactorizations() = default;
+ShiftFactorizations::ShiftFactorizations(ShiftFactorizations&&) noexcept = default;
+ShiftFactorizations& ShiftFactorizations::operator=(ShiftFactorizations&&) noexcept = default;
+void ShiftFactorizations::clear() { impl->lu.clear(); }
+int ShiftFactorizations::size() const { return int(impl->lu.size()); }
+
+namespace {
+
+// The pencil in complex form, with what every shift needs: the pattern of A - sigma B (the
+// union of A's and B's, explicit zeros kept) is the same for every sigma, so COLAMD's
+// ordering is computed once.
+struct Pencil {
+  Eigen::Index n = 0;
+  bool identity_b = false;
+  SparseComplexMatrix a, b;  // b: the identity when identity_b
+  double norm1_a = 0.0, norm1_b = 1.0;
+  const SparseRealMatrix* a_real = nullptr;
+  const SparseRealMatrix* b_real = nullptr;
+};
+
+double norm1(const SparseRealMatrix& m) {
+  double best = 0.0;
+  for (Eigen::Index j = 0; j < m.outerSize(); ++j) {
+    double s = 0.0;
+    for (SparseRealMatrix::InnerIterator it(m, j); it; ++it) s += std::abs(it.value());
+    best = std::max(best, s);
+  }
+  return best;
+}
+
+Pencil make_pencil(const SparseRealMatrix& A, const SparseRealMatrix& B, int k) {
+  if (A.rows() != A.cols()) throw std::invalid_argument("sparse spectrum: A is not square");
+  const bool identity_b = B.rows() == 0 && B.cols() == 0;
+  if (!identity_b && (B.rows() != A.rows() || B.cols() != A.cols()))
+    throw std::invalid_argument("sparse spectrum: B is not of A's size (pass a 0 x 0 B for the identity)");
+  if (k < 1 || k >= A.rows() - 1)
+    throw std::invalid_argument("sparse spectrum: k must satisfy 1 <= k < n - 1 (ARPACK's limit)");
+  Pencil p;
+  p.n = A.rows();
+  p.identity_b = identity_b;
+  p.a = A.cast<cplx>();
+  if (identity_b) {
+    p.b.resize(p.n, p.n);
+    p.b.setIdentity();
+  } else {
+    p.b = B.cast<cplx>();
+  }
+  p.a.makeCompressed();
+  p.b.makeCompressed();
+  p.norm1_a = norm1(A);
+  p.norm1_b = identity_b ? 1.0 : norm1(B);
+  p.a_real = &A;
+  p.b_real = identity_b ? nullptr : &B;
+  return p;
+}
+
+// ARPACK's start vector: a fixed sequence (splitmix64), so that the same input gives the
+// same bytes; not orthogonal to any eigenvector in practice, unlike a constant vector,
+// which is orthogonal to every mode antisymmetric in a symmetric structure.
+void start_vector(std::vector<cplx>& resid) {
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  auto next = [&state] {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return double(z >> 11) * 0x1.0p-53 * 2.0 - 1.0;  // uniform in [-1, 1)
+  };
+  for (auto& r : resid) {
+    const double re = next();
+    r = cplx(re, next());
+  }
+}
+
+struct ShiftResult {
+  ShiftRun run;
+  std::vector<SparseEigenpair> pairs;
+  bool factorized = false;
+};
+
+// One shift: factorize (or reuse) A - sigma B, run znaupd on OP = (A - sigma B)^-1 B,
+// extract the Ritz pairs with zneupd, map nu -> lambda = sigma + 1/nu, compute residuals.
+ShiftResult run_shift(const Pencil& p, cplx sigma, int k, const SparseSpectrumOptions& o,
+                      ShiftFactorizations* cache, bool need_vectors) {
+  ShiftResult out;
+  out.run.shift = sigma;
+  out.run.requested = k;
+  const int n = int(p.n);
+
+  // The factorization: from the cache, or new.
+  std::unique_ptr<ComplexLU> owned;
+  ComplexLU* lu = nullptr;
+  if (cache) {
+    auto& c = *cache->impl;
+    if (c.rows != p.n || c.nonzeros != p.a.nonZeros() + p.b.nonZeros()) {
+      c.lu.clear();
+      c.rows = p.n;
+      c.nonzeros = p.a.nonZeros() + p.b.nonZeros();
+    }
+    auto it = c.lu.find(key_of(sigma));
+    if (it != c.lu.end()) {
+      lu = it->second.get();
+      out.run.reused_factorization = true;
+    }
+  }
+  if (!lu) {
+    SparseComplexMatrix shifted = p.a - sigma * p.b;
+    shifted.makeCompressed();
+    owned = std::make_unique<ComplexLU>();
+    owned->analyzePattern(shifted);
+    owned->factorize(shifted);
+    out.factorized = true;
+    if (owned->info() != Eigen::Success) {
+      out.run.status.merge(Outcome::numerical_issue,
+                           "the sparse LU of A - sigma B failed: the shift is an eigenvalue or the pencil is singular");
+      return out;
+    }
+    lu = owned.get();
+  }
+
+  const int ncv = std::min(n, o.ncv > 0 ? std::max(o.ncv, k + 2) : std::max(2 * k + 1, 20));
+  const int lworkl = 3 * ncv * ncv + 5 * ncv;
+  const auto un = static_cast<std::size_t>(n), uncv = static_cast<std::size_t>(ncv);
+  std::vector<cplx> resid(un), v(un * uncv), workd(3 * un), workl(static_cast<std::size_t>(lworkl)),
+      workev(2 * uncv);
+  std::vector<double> rwork(uncv);
+  start_vector(resid);
+  a_int iparam[11] = {}, ipntr[14] = {};
+  iparam[0] = 1;                   // exact shifts
+  iparam[2] = o.max_iterations;    // restarts
+  iparam[6] = 1;                   // mode 1: we apply OP ourselves (bmat 'I', see header)
+  a_int ido = 0, info = 1;         // info = 1: use resid as the start vector
+  Eigen::VectorXcd bx(n);
+  int nconv = 0;
+  {
+    std::lock_guard<std::mutex> hold(arpack_mutex());
+    for (;;) {
+      arpack::naupd(ido, arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv,
+                    v.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info);
+      if (ido != -1 && ido != 1) break;
+      Eigen::Map<const Eigen::VectorXcd> x(workd.data() + ipntr[0] - 1, n);
+      Eigen::Map<Eigen::VectorXcd> y(workd.data() + ipntr[1] - 1, n);
+      if (p.identity_b)
+        y = lu->solve(x);
+      else {
+        bx.noalias() = p.b * x;
+        y = lu->solve(bx);
+      }
+    }
+    out.run.iterations = int(iparam[2]);
+    out.run.operator_applications = int(iparam[8]);
+    if (info < 0 || info == 3) {
+      out.run.status.merge(Outcome::numerical_issue,
+                           info == 3 ? "ARPACK could not apply shifts during a restart (znaupd info = 3): raise ncv"
+                                     : "ARPACK's znaupd reported an error");
+      return out;
+    }
+    if (info == 1)
+      out.run.status.merge(Outcome::not_converged,
+                           "ARPACK reached max_iterations with fewer eigenvalues converged than asked");
+    std::vector<a_int> select(uncv, 0);
+    std::vector<cplx> d(static_cast<std::size_t>(k) + 1), z(un * static_cast<std::size_t>(k));
+    a_int info2 = 0;
+    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), z.data(), n, cplx(0.0), workev.data(),
+                  arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv, v.data(),
+                  n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
+    if (info2 != 0) {
+      out.run.status.merge(Outcome::numerical_issue, "ARPACK's zneupd reported an error");
+      return out;
+    }
+    nconv = std::min(int(iparam[4]), k);
+
+    // The converged Ritz pairs, largest |nu| first (the nearest lambda).
+    std::vector<int> order(static_cast<std::size_t>(nconv));
+    for (int i = 0; i < nconv; ++i) order[std::size_t(i)] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int l, int r) { return std::abs(d[std::size_t(l)]) > std::abs(d[std::size_t(r)]); });
+    Eigen::VectorXcd av(n), bv(n), r(n);
+    for (int i : order) {
+      const cplx nu = d[std::size_t(i)];
+      if (nu == cplx(0.0)) continue;  // an infinite eigenvalue (singular B): never nearest
+      SparseEigenpair e;
+      e.value = sigma + 1.0 / nu;
+      e.shift = sigma;
+      Eigen::Map<const Eigen::VectorXcd> vec(z.data() + std::size_t(i) * std::size_t(n), n);
+      av.noalias() = p.a * vec;
+      if (p.identity_b)
+        bv = vec;
+      else
+        bv.noalias() = p.b * vec;
+      r = av - e.value * bv;
+      const double rn = r.norm(), vn = vec.norm(), bn = bv.norm();
+      const double lam = std::abs(e.value);
+      e.residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
+      e.backward_error = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
+      if (need_vectors) e.vector = vec / vn;
+      out.pairs.push_back(std::move(e));
+    }
+  }
+  out.run.converged = nconv;
+  if (nconv < k) {
+    out.run.status.merge(Outcome::not_converged, "fewer eigenvalues converged than asked at a shift");
+    out.run.radius = 0.0;
+  } else {
+    double r = 0.0;
+    for (const auto& e : out.pairs) r = std::max(r, std::abs(e.value - sigma));
+    out.run.radius = r;
+  }
+  if (cache && owned) cache->impl->lu.emplace(key_of(sigma), std::move(owned));
+  return out;
+}
+
+void sort_pairs(std::vector<SparseEigenpair>& pairs) {
+  std::stable_sort(pairs.begin(), pairs.end(), [](const SparseEigenpair& l, const SparseEigenpair& r) {
+    if (l.value.real() != r.value.real()) return l.value.real() > r.value.real();
+    return l.value.imag() > r.value.imag();
+  });
+}
+
+// Two computed values are one eigenvalue when they agree to 1e-9 of their modulus: ARPACK's
+// values at tol 1e-12 differ between shifts by ~1e-12 x a condition number; distinct
+// eigenvalues closer than 1e-9 relative are beyond what double shift-invert separates anyway.
+bool same_value(cplx a, cplx b) {
+  return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)) + 1e-300;
+}
+
+// A value counts as real (its conjugate is itself) when |Im| <= 1e-10 |lambda|: complex
+// arithmetic leaves ~1e-16 |lambda| x condition in the imaginary part of a real eigenvalue.
+bool is_real(cplx a) { return std::abs(a.imag()) <= 1e-10 * std::abs(a); }
+
+// The covered band at depth d: the discs (centre frequency omega_j on Re = shift_real,
+// radius r_j) cut the vertical line at distance d from the centres in intervals of
+// half-width sqrt(r_j^2 - d^2); the band [0, Y] is their contiguous union from 0 (the disc
+// at omega = 0 also covers its mirror; the pencil is real).
+double covered_band(const std::vector<std::pair<double, double>>& discs, double d) {
+  double reach = -1.0;
+  for (const auto& [omega, r] : discs) {
+    if (r <= d) return reach;
+    const double h = std::sqrt(r * r - d * d);
+    if (reach < 0.0) {
+      if (omega - h > 0.0) return -1.0;
+      reach = omega + h;
+    } else {
+      if (omega - h >= reach) return reach;  // a gap: open discs must overlap
+      reach = std::max(reach, omega + h);
+    }
+  }
+  return reach;
+}
+
+}  // namespace
+
+SparseSpectrum eigenvalues_near(const SparseRealMatrix& A, const SparseRealMatrix& B,
+                                std::span<const std::complex<double>> shifts, int k,
+                                const SparseSpectrumOptions& options, ShiftFactorizations* cache) {
+  const Pencil p = make_pencil(A, B, k);
+  SparseSpectrum out;
+  // Repeated shifts in one call reuse their LU even without a caller's cache.
+  ShiftFactorizations local;
+  ShiftFactorizations* c = cache ? cache : &local;
+  for (cplx sigma : shifts) {
+    ShiftResult s = run_shift(p, sigma, k, options, c, options.keep_vectors);
+    out.factorizations += s.factorized ? 1 : 0;
+    out.status.merge(s.run.status);
+    out.shifts.push_back(s.run);
+    for (auto& e : s.pairs) out.eigenpairs.push_back(std::move(e));
+  }
+  sort_pairs(out.eigenpairs);
+  return out;
+}
+
+SparseSpectrum rightmost_eigenvalues(const SparseRealMatrix& A, const SparseRealMatrix& B, int k,
+                                     const RightmostOptions& options, ShiftFactorizations* cache) {
+  const int per = options.per_shift > 0 ? options.per_shift : std::max(k, 6);
+  const Pencil p = make_pencil(A, B, per);
+  if (!(options.spacing > 0.0 && options.spacing < 2.0))
+    throw std::invalid_argument("rightmost_eigenvalues: spacing must be in (0, 2) (consecutive discs must overlap)");
+  if (!(options.max_frequency >= 0.0) || !std::isfinite(options.shift_real))
+    throw std::invalid_argument("rightmost_eigenvalues: max_frequency must be >= 0 and shift_real finite");
+  SparseSpectrum out;
+  const double alpha = options.shift_real;
+  std::vector<std::pair<double, double>> discs;  // (omega_j, r_j)
+  // Distinct eigenvalues in the upper half-plane (Im >= 0), the lower half by conjugation.
+  std::vector<SparseEigenpair> upper;
+  double omega = 0.0;
+  bool reached = false;
+  for (int j = 0; j < std::max(1, options.max_shifts); ++j) {
+    const cplx sigma(alpha, omega);
+    ShiftResult s = run_shift(p, sigma, per, options.arpack, cache, true);
+    out.factorizations += s.factorized ? 1 : 0;
+    out.status.merge(s.run.status);
+    out.shifts.push_back(s.run);
+    // This shift's values folded into the upper half-plane; a conjugate pair that this
+    // shift saw whole (the real shift sees both members) folds to one value.
+    std::vector<SparseEigenpair> folded;
+    std::vector<bool> from_lower;
+    for (auto& e : s.pairs) {
+      const bool lower = e.value.imag() < 0.0 && !is_real(e.value);
+      if (lower) {
+        e.value = std::conj(e.value);
+        if (e.vector.size()) e.vector = e.vector.conjugate().eval();
+      }
+      bool dup = false;
+      for (std::size_t i = 0; i < folded.size() && !dup; ++i)
+        dup = from_lower[i] != lower && same_value(folded[i].value, e.value);
+      if (dup) continue;
+      folded.push_back(std::move(e));
+      from_lower.push_back(lower);
+    }
+    // One-to-one merge with the values of earlier shifts: keep the smaller residual.
+    std::vector<bool> used(upper.size(), false);
+    for (auto& e : folded) {
+      bool merged = false;
+      for (std::size_t i = 0; i < upper.size() && !merged; ++i) {
+        if (used[i] || !same_value(upper[i].value, e.value)) continue;
+        used[i] = merged = true;
+        if (e.residual < upper[i].residual) upper[i] = std::move(e);
+      }
+      if (!merged) upper.push_back(std::move(e));
+    }
+    if (s.run.radius <= 0.0) break;  // no disc to step from; the status says why
+    discs.emplace_back(omega, s.run.radius);
+    if (omega >= options.max_frequency) {
+      reached = true;
+      break;
+    }
+    omega += options.spacing * s.run.radius;
+  }
+  if (!reached && out.status.ok())
+    out.status.merge(Outcome::not_converged, "the shift ladder stopped (max_shifts) below max_frequency");
+
+  // Coverage: the deepest rectangle |Re - alpha| <= d, |Im| <= Y that the discs cover, with
+  // Y the band asked for (or, with one real shift and no band, the inscribed square).
+  if (!discs.empty()) {
+    double rmin = discs.front().second;
+    for (const auto& dr : discs) rmin = std::min(rmin, dr.second);
+    const double y0 = covered_band(discs, 0.0);
+    double target = options.max_frequency > 0.0 ? std::min(options.max_frequency, y0) : 0.0;
+    if (options.max_frequency > 0.0 && y0 < options.max_frequency)
+      out.status.merge(Outcome::not_converged, "the shifts' discs leave a gap below max_frequency");
+    double lo = 0.0, hi = rmin;  // covered_band(lo) >= target; find the largest such d
+    if (options.max_frequency <= 0.0) {
+      lo = hi = rmin / std::sqrt(2.0);  // one disc: the square inscribed in it
+      target = covered_band(discs, lo);
+    } else {
+      for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (covered_band(discs, mid) >= target ? lo : hi) = mid;
+      }
+    }
+    // 1 - 1e-12: the bisection's last step and the discs being open.
+    const double depth = lo * (1.0 - 1e-12);
+    out.coverage.real_min = alpha - depth;
+    out.coverage.real_max = alpha + depth;
+    out.coverage.imag_max = target * (1.0 - 1e-12);
+    out.coverage.how = fmt::format(
+        "{} shift(s) sigma = {:.6g} + i omega, omega = 0 .. {:.6g} 1/s, {} nearest eigenvalues each; their "
+        "discs |lambda - sigma| < r (r = {:.6g} .. {:.6g} 1/s) cover |Re - {:.6g}| <= {:.6g}, |Im| <= {:.6g} 1/s",
+        discs.size(), alpha, discs.back().first, per, rmin,
+        std::max_element(discs.begin(), discs.end(), [](auto& l, auto& r) { return l.second < r.second; })->second,
+        alpha, depth, out.coverage.imag_max);
+  }
+
+  // Both halves, sorted; the k rightmost, a pair the k-th splits kept whole.
+  std::vector<SparseEigenpair> all;
+  for (auto& e : upper) {
+    if (!is_real(e.value)) {
+      SparseEigenpair c = e;
+      c.value = std::conj(e.value);
+      if (c.vector.size()) c.vector = c.vector.conjugate().eval();
+      all.push_back(std::move(c));
+    }
+    all.push_back(std::move(e));
+  }
+  sort_pairs(all);
+  const auto& cov = out.coverage;
+  for (auto& e : all)
+    e.covered = !cov.empty() && e.value.real() >= cov.real_min && e.value.real() <= cov.real_max &&
+                std::abs(e.value.imag()) <= cov.imag_max;
+  std::size_t keep = std::min(all.size(), std::size_t(k));
+  if (keep > 0 && keep < all.size() && !is_real(all[keep - 1].value) &&
+      same_value(all[keep].value, std::conj(all[keep - 1].value)))
+    ++keep;
+  all.resize(keep);
+  if (!options.arpack.keep_vectors)
+    for (auto& e : all) e.vector.resize(0);
+  if (int(all.size()) < k || cov.empty() || all.back().value.real() < cov.real_min)
+    out.status.merge(Outcome::not_converged,
+                     "fewer than k eigenvalues lie in the covered region: the k-th rightmost is not certified");
+  out.eigenpairs = std::move(all);
+  return out;
+}
+
+}  // namespace abu
