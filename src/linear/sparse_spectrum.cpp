@@ -22,6 +22,7 @@ namespace {
 using cplx = std::complex<double>;
 using SparseComplexMatrix = Eigen::SparseMatrix<cplx>;
 using ComplexLU = Eigen::SparseLU<SparseComplexMatrix, Eigen::COLAMDOrdering<int>>;
+using RealLU = Eigen::SparseLU<SparseRealMatrix, Eigen::COLAMDOrdering<int>>;
 
 // ARPACK keeps state in Fortran SAVE variables between the calls of one reverse-
 // communication loop: two loops at once (threads of a map) would corrupt each other.
@@ -48,7 +49,11 @@ ShiftKey key_of(cplx s) {
 
 struct ShiftFactorizations::Impl {
   Eigen::Index rows = -1, nonzeros = -1;  // the pencil the entries belong to
-  std::map<ShiftKey, std::unique_ptr<ComplexLU>> lu;
+  struct Entry {  // one of the two: real shifts take the real path (model.md §19.1)
+    std::unique_ptr<ComplexLU> complex;
+    std::unique_ptr<RealLU> real;
+  };
+  std::map<ShiftKey, Entry> lu;
 };
 
 ShiftFactorizations::ShiftFactorizations() : impl(std::make_unique<Impl>()) {}
@@ -70,6 +75,7 @@ struct Pencil {
   double norm1_a = 0.0, norm1_b = 1.0;
   const SparseRealMatrix* a_real = nullptr;
   const SparseRealMatrix* b_real = nullptr;
+  SparseRealMatrix identity_real;  // B when identity_b, for the real path
 };
 
 double norm1(const SparseRealMatrix& m) {
@@ -96,6 +102,8 @@ Pencil make_pencil(const SparseRealMatrix& A, const SparseRealMatrix& B, int k) 
   if (identity_b) {
     p.b.resize(p.n, p.n);
     p.b.setIdentity();
+    p.identity_real.resize(p.n, p.n);
+    p.identity_real.setIdentity();
   } else {
     p.b = B.cast<cplx>();
   }
@@ -132,18 +140,208 @@ struct ShiftResult {
   bool factorized = false;
 };
 
-// One shift: factorize (or reuse) A - sigma B, run znaupd on OP = (A - sigma B)^-1 B,
-// extract the Ritz pairs with zneupd, map nu -> lambda = sigma + 1/nu, compute residuals.
+// The pairs of one shift from ARPACK's converged Ritz values nu (of OP) and vectors
+// (columns of `vectors`): lambda = sigma + 1/nu, the residuals (19.6)-(19.7) from A and B,
+// the k of largest |nu| (a real run may return k + 1 to keep a pair whole), the disc (19.3).
+void finish_shift(ShiftResult& out, const Pencil& p, cplx sigma, int k, const std::vector<cplx>& nus,
+                  const Eigen::MatrixXcd& vectors, bool need_vectors) {
+  const auto n = p.n;
+  const int m = int(nus.size());
+  std::vector<int> order(static_cast<std::size_t>(m));
+  for (int i = 0; i < m; ++i) order[std::size_t(i)] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int l, int r) { return std::abs(nus[std::size_t(l)]) > std::abs(nus[std::size_t(r)]); });
+  if (m > k) order.resize(std::size_t(k));
+  Eigen::VectorXcd av(n), bv(n), r(n);
+  for (int i : order) {
+    const cplx nu = nus[std::size_t(i)];
+    if (nu == cplx(0.0)) continue;  // an infinite eigenvalue (singular B): never nearest
+    SparseEigenpair e;
+    e.value = sigma + 1.0 / nu;
+    e.shift = sigma;
+    const auto vec = vectors.col(i);
+    av.noalias() = p.a * vec;
+    if (p.identity_b)
+      bv = vec;
+    else
+      bv.noalias() = p.b * vec;
+    r = av - e.value * bv;
+    const double rn = r.norm(), vn = vec.norm(), bn = bv.norm();
+    const double lam = std::abs(e.value);
+    e.residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
+    e.backward_error = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
+    if (need_vectors) e.vector = vec / vn;
+    out.pairs.push_back(std::move(e));
+  }
+  const int nconv = std::min(m, k);
+  out.run.converged = nconv;
+  if (nconv < k) {
+    out.run.status.merge(Outcome::not_converged, "fewer eigenvalues converged than asked at a shift");
+    out.run.radius = 0.0;
+  } else {
+    double rad = 0.0;
+    for (const auto& e : out.pairs) rad = std::max(rad, std::abs(e.value - sigma));
+    out.run.radius = rad;
+  }
+}
+
+// What ARPACK's info after the iteration means for the status; false: stop (error).
+bool iteration_status(ShiftResult& out, a_int info) {
+  if (info < 0) {
+    out.run.status.merge(Outcome::numerical_issue, "ARPACK's naupd reported an error");
+    return false;
+  }
+  // Both end the iteration short; what did converge is still extracted and reported.
+  if (info == 1)
+    out.run.status.merge(Outcome::not_converged,
+                         "ARPACK reached max_iterations with fewer eigenvalues converged than asked");
+  if (info == 3)
+    out.run.status.merge(Outcome::not_converged,
+                         "ARPACK could not apply shifts during a restart (naupd info = 3): raise ncv");
+  return true;
+}
+
+int basis_size(int n, int k, const SparseSpectrumOptions& o) {
+  return std::min(n, o.ncv > 0 ? std::max(o.ncv, k + 2) : std::max(2 * k + 1, 20));
+}
+
+// Complex shift: znaupd on OP = (A - sigma B)^-1 B with the complex LU.
+void arnoldi_complex(ShiftResult& out, const Pencil& p, ComplexLU& lu, int k, const SparseSpectrumOptions& o,
+                     std::vector<cplx>& nus, Eigen::MatrixXcd& vectors) {
+  const int n = int(p.n);
+  const int ncv = basis_size(n, k, o);
+  const int lworkl = 3 * ncv * ncv + 5 * ncv;
+  const auto un = static_cast<std::size_t>(n), uncv = static_cast<std::size_t>(ncv);
+  std::vector<cplx> resid(un), v(un * uncv), workd(3 * un), workl(static_cast<std::size_t>(lworkl)),
+      workev(2 * uncv);
+  std::vector<double> rwork(uncv);
+  start_vector(resid);
+  a_int iparam[11] = {}, ipntr[14] = {};
+  iparam[0] = 1;                 // exact shifts
+  iparam[2] = o.max_iterations;  // restarts
+  iparam[6] = 1;                 // mode 1: we apply OP ourselves (bmat 'I', see header)
+  a_int ido = 0, info = 1;       // info = 1: use resid as the start vector
+  Eigen::VectorXcd bx(n);
+  std::lock_guard<std::mutex> hold(arpack_mutex());
+  for (;;) {
+    arpack::naupd(ido, arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv,
+                  v.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info);
+    if (ido != -1 && ido != 1) break;
+    Eigen::Map<const Eigen::VectorXcd> x(workd.data() + ipntr[0] - 1, n);
+    Eigen::Map<Eigen::VectorXcd> y(workd.data() + ipntr[1] - 1, n);
+    if (p.identity_b)
+      y = lu.solve(x);
+    else {
+      bx.noalias() = p.b * x;
+      y = lu.solve(bx);
+    }
+  }
+  out.run.iterations = int(iparam[2]);
+  out.run.operator_applications = int(iparam[8]);
+  if (!iteration_status(out, info)) return;
+  std::vector<a_int> select(uncv, 0);
+  std::vector<cplx> d(static_cast<std::size_t>(k) + 1), z(un * static_cast<std::size_t>(k));
+  a_int info2 = 0;
+  if (iparam[4] > 0)  // nothing converged: zneupd would only report that (info -14)
+    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), z.data(), n, cplx(0.0), workev.data(),
+                  arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv, v.data(),
+                  n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
+  // After a short iteration zneupd's complaint (-14: no Ritz value met tol) is that same
+  // shortfall, already in the status: nothing to extract.
+  if (iparam[4] <= 0 || (info2 != 0 && info != 0)) return;
+  if (info2 != 0) {
+    out.run.status.merge(Outcome::numerical_issue, "ARPACK's zneupd reported an error");
+    return;
+  }
+  const int m = std::min(int(iparam[4]), k);
+  nus.assign(d.begin(), d.begin() + m);
+  vectors = Eigen::Map<const Eigen::MatrixXcd>(z.data(), n, k).leftCols(m);
+}
+
+// Real shift: dnaupd on the real OP = (A - sigma B)^-1 B with the real LU (a quarter of the
+// complex flops, half the memory; model.md §19.1). Complex Ritz values come in conjugate
+// pairs, their vectors packed as (Re, Im) in two columns.
+void arnoldi_real(ShiftResult& out, const Pencil& p, RealLU& lu, int k, const SparseSpectrumOptions& o,
+                  std::vector<cplx>& nus, Eigen::MatrixXcd& vectors) {
+  const int n = int(p.n);
+  const int ncv = basis_size(n, k + 1, o);  // dnaupd needs ncv >= nev + 2
+  const int lworkl = 3 * ncv * ncv + 6 * ncv;
+  const auto un = static_cast<std::size_t>(n), uncv = static_cast<std::size_t>(ncv);
+  std::vector<cplx> start(un);
+  start_vector(start);
+  std::vector<double> resid(un), v(un * uncv), workd(3 * un), workl(static_cast<std::size_t>(lworkl)),
+      workev(3 * uncv);
+  for (std::size_t i = 0; i < un; ++i) resid[i] = start[i].real();
+  a_int iparam[11] = {}, ipntr[14] = {};
+  iparam[0] = 1;
+  iparam[2] = o.max_iterations;
+  iparam[6] = 1;
+  a_int ido = 0, info = 1;
+  Eigen::VectorXd bx(n);
+  std::lock_guard<std::mutex> hold(arpack_mutex());
+  for (;;) {
+    arpack::naupd(ido, arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv,
+                  v.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+    if (ido != -1 && ido != 1) break;
+    Eigen::Map<const Eigen::VectorXd> x(workd.data() + ipntr[0] - 1, n);
+    Eigen::Map<Eigen::VectorXd> y(workd.data() + ipntr[1] - 1, n);
+    if (p.identity_b)
+      y = lu.solve(x);
+    else {
+      bx.noalias() = *p.b_real * x;
+      y = lu.solve(bx);
+    }
+  }
+  out.run.iterations = int(iparam[2]);
+  out.run.operator_applications = int(iparam[8]);
+  if (!iteration_status(out, info)) return;
+  std::vector<a_int> select(uncv, 0);
+  std::vector<double> dr(static_cast<std::size_t>(k) + 1), di(static_cast<std::size_t>(k) + 1),
+      z(un * (static_cast<std::size_t>(k) + 1));
+  a_int info2 = 0;
+  if (iparam[4] > 0)
+    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), z.data(), n, 0.0, 0.0,
+                  workev.data(), arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol,
+                  resid.data(), ncv, v.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl, info2);
+  if (iparam[4] <= 0 || (info2 != 0 && info != 0)) return;
+  if (info2 != 0) {
+    out.run.status.merge(Outcome::numerical_issue, "ARPACK's dneupd reported an error");
+    return;
+  }
+  const int m = std::min(int(iparam[4]), k + 1);
+  Eigen::Map<const Eigen::MatrixXd> zr(z.data(), n, k + 1);
+  vectors.resize(n, m);
+  nus.clear();
+  for (int j = 0; j < m; ++j) {
+    const cplx nu(dr[std::size_t(j)], di[std::size_t(j)]);
+    if (nu.imag() == 0.0) {
+      vectors.col(j) = zr.col(j).cast<cplx>();
+    } else if (nu.imag() > 0.0 && j + 1 < k + 1) {
+      // (j, j + 1): Re and Im of the vector of the value with Im > 0; its conjugate next.
+      vectors.col(j) = zr.col(j).cast<cplx>() + cplx(0.0, 1.0) * zr.col(j + 1).cast<cplx>();
+      if (j + 1 < m) vectors.col(j + 1) = vectors.col(j).conjugate();
+    } else if (nu.imag() < 0.0 && j > 0 && di[std::size_t(j - 1)] > 0.0) {
+      // second member of a pair: set above
+    } else {
+      break;  // a pair split at the end of ARPACK's list: its vector is not stored
+    }
+    nus.push_back(nu);
+  }
+  vectors.conservativeResize(n, int(nus.size()));
+}
+
+// One shift: factorize (or reuse) A - sigma B, run the Arnoldi iteration on OP, extract and
+// check the pairs. A real shift takes the real path.
 ShiftResult run_shift(const Pencil& p, cplx sigma, int k, const SparseSpectrumOptions& o,
                       ShiftFactorizations* cache, bool need_vectors) {
   ShiftResult out;
   out.run.shift = sigma;
   out.run.requested = k;
-  const int n = int(p.n);
+  const bool real_shift = sigma.imag() == 0.0;
 
   // The factorization: from the cache, or new.
-  std::unique_ptr<ComplexLU> owned;
-  ComplexLU* lu = nullptr;
+  ShiftFactorizations::Impl::Entry* entry = nullptr;
+  ShiftFactorizations::Impl::Entry owned;
   if (cache) {
     auto& c = *cache->impl;
     if (c.rows != p.n || c.nonzeros != p.a.nonZeros() + p.b.nonZeros()) {
@@ -153,114 +351,45 @@ ShiftResult run_shift(const Pencil& p, cplx sigma, int k, const SparseSpectrumOp
     }
     auto it = c.lu.find(key_of(sigma));
     if (it != c.lu.end()) {
-      lu = it->second.get();
+      entry = &it->second;
       out.run.reused_factorization = true;
     }
   }
-  if (!lu) {
-    SparseComplexMatrix shifted = p.a - sigma * p.b;
-    shifted.makeCompressed();
-    owned = std::make_unique<ComplexLU>();
-    owned->analyzePattern(shifted);
-    owned->factorize(shifted);
+  if (!entry) {
+    bool ok = false;
+    if (real_shift) {
+      SparseRealMatrix shifted = *p.a_real - sigma.real() * (p.identity_b ? p.identity_real : *p.b_real);
+      shifted.makeCompressed();
+      owned.real = std::make_unique<RealLU>();
+      owned.real->analyzePattern(shifted);
+      owned.real->factorize(shifted);
+      ok = owned.real->info() == Eigen::Success;
+    } else {
+      SparseComplexMatrix shifted = p.a - sigma * p.b;
+      shifted.makeCompressed();
+      owned.complex = std::make_unique<ComplexLU>();
+      owned.complex->analyzePattern(shifted);
+      owned.complex->factorize(shifted);
+      ok = owned.complex->info() == Eigen::Success;
+    }
     out.factorized = true;
-    if (owned->info() != Eigen::Success) {
+    if (!ok) {
       out.run.status.merge(Outcome::numerical_issue,
                            "the sparse LU of A - sigma B failed: the shift is an eigenvalue or the pencil is singular");
       return out;
     }
-    lu = owned.get();
+    entry = &owned;
   }
 
-  const int ncv = std::min(n, o.ncv > 0 ? std::max(o.ncv, k + 2) : std::max(2 * k + 1, 20));
-  const int lworkl = 3 * ncv * ncv + 5 * ncv;
-  const auto un = static_cast<std::size_t>(n), uncv = static_cast<std::size_t>(ncv);
-  std::vector<cplx> resid(un), v(un * uncv), workd(3 * un), workl(static_cast<std::size_t>(lworkl)),
-      workev(2 * uncv);
-  std::vector<double> rwork(uncv);
-  start_vector(resid);
-  a_int iparam[11] = {}, ipntr[14] = {};
-  iparam[0] = 1;                   // exact shifts
-  iparam[2] = o.max_iterations;    // restarts
-  iparam[6] = 1;                   // mode 1: we apply OP ourselves (bmat 'I', see header)
-  a_int ido = 0, info = 1;         // info = 1: use resid as the start vector
-  Eigen::VectorXcd bx(n);
-  int nconv = 0;
-  {
-    std::lock_guard<std::mutex> hold(arpack_mutex());
-    for (;;) {
-      arpack::naupd(ido, arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv,
-                    v.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info);
-      if (ido != -1 && ido != 1) break;
-      Eigen::Map<const Eigen::VectorXcd> x(workd.data() + ipntr[0] - 1, n);
-      Eigen::Map<Eigen::VectorXcd> y(workd.data() + ipntr[1] - 1, n);
-      if (p.identity_b)
-        y = lu->solve(x);
-      else {
-        bx.noalias() = p.b * x;
-        y = lu->solve(bx);
-      }
-    }
-    out.run.iterations = int(iparam[2]);
-    out.run.operator_applications = int(iparam[8]);
-    if (info < 0 || info == 3) {
-      out.run.status.merge(Outcome::numerical_issue,
-                           info == 3 ? "ARPACK could not apply shifts during a restart (znaupd info = 3): raise ncv"
-                                     : "ARPACK's znaupd reported an error");
-      return out;
-    }
-    if (info == 1)
-      out.run.status.merge(Outcome::not_converged,
-                           "ARPACK reached max_iterations with fewer eigenvalues converged than asked");
-    std::vector<a_int> select(uncv, 0);
-    std::vector<cplx> d(static_cast<std::size_t>(k) + 1), z(un * static_cast<std::size_t>(k));
-    a_int info2 = 0;
-    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), z.data(), n, cplx(0.0), workev.data(),
-                  arpack::bmat::identity, n, arpack::which::largest_magnitude, k, o.tol, resid.data(), ncv, v.data(),
-                  n, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
-    if (info2 != 0) {
-      out.run.status.merge(Outcome::numerical_issue, "ARPACK's zneupd reported an error");
-      return out;
-    }
-    nconv = std::min(int(iparam[4]), k);
-
-    // The converged Ritz pairs, largest |nu| first (the nearest lambda).
-    std::vector<int> order(static_cast<std::size_t>(nconv));
-    for (int i = 0; i < nconv; ++i) order[std::size_t(i)] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int l, int r) { return std::abs(d[std::size_t(l)]) > std::abs(d[std::size_t(r)]); });
-    Eigen::VectorXcd av(n), bv(n), r(n);
-    for (int i : order) {
-      const cplx nu = d[std::size_t(i)];
-      if (nu == cplx(0.0)) continue;  // an infinite eigenvalue (singular B): never nearest
-      SparseEigenpair e;
-      e.value = sigma + 1.0 / nu;
-      e.shift = sigma;
-      Eigen::Map<const Eigen::VectorXcd> vec(z.data() + std::size_t(i) * std::size_t(n), n);
-      av.noalias() = p.a * vec;
-      if (p.identity_b)
-        bv = vec;
-      else
-        bv.noalias() = p.b * vec;
-      r = av - e.value * bv;
-      const double rn = r.norm(), vn = vec.norm(), bn = bv.norm();
-      const double lam = std::abs(e.value);
-      e.residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
-      e.backward_error = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
-      if (need_vectors) e.vector = vec / vn;
-      out.pairs.push_back(std::move(e));
-    }
-  }
-  out.run.converged = nconv;
-  if (nconv < k) {
-    out.run.status.merge(Outcome::not_converged, "fewer eigenvalues converged than asked at a shift");
-    out.run.radius = 0.0;
-  } else {
-    double r = 0.0;
-    for (const auto& e : out.pairs) r = std::max(r, std::abs(e.value - sigma));
-    out.run.radius = r;
-  }
-  if (cache && owned) cache->impl->lu.emplace(key_of(sigma), std::move(owned));
+  std::vector<cplx> nus;
+  Eigen::MatrixXcd vectors;
+  if (real_shift)
+    arnoldi_real(out, p, *entry->real, k, o, nus, vectors);
+  else
+    arnoldi_complex(out, p, *entry->complex, k, o, nus, vectors);
+  if (out.run.status.outcome == Outcome::numerical_issue) return out;
+  finish_shift(out, p, sigma, k, nus, vectors, need_vectors);
+  if (cache && entry == &owned) cache->impl->lu.emplace(key_of(sigma), std::move(owned));
   return out;
 }
 
@@ -362,10 +491,11 @@ SparseSpectrum rightmost_eigenvalues(const SparseRealMatrix& A, const SparseReal
       from_lower.push_back(lower);
     }
     // One-to-one merge with the values of earlier shifts: keep the smaller residual.
-    std::vector<bool> used(upper.size(), false);
+    const std::size_t earlier = upper.size();  // only earlier shifts' values are candidates
+    std::vector<bool> used(earlier, false);
     for (auto& e : folded) {
       bool merged = false;
-      for (std::size_t i = 0; i < upper.size() && !merged; ++i) {
+      for (std::size_t i = 0; i < earlier && !merged; ++i) {
         if (used[i] || !same_value(upper[i].value, e.value)) continue;
         used[i] = merged = true;
         if (e.residual < upper[i].residual) upper[i] = std::move(e);

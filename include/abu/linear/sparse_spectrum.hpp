@@ -3,14 +3,14 @@
 // that the search has covered. Generic: any real A (nonsymmetric), any real B (default the
 // identity); the flexible rotor's Jacobian (model/shaft.hpp) is one user.
 //
-// Method (model.md §19.1): ARPACK (arpack-ng, znaupd/zneupd, the implicitly restarted
+// Method (model.md §19.1): ARPACK (arpack-ng, [zd]naupd/[zd]neupd, the implicitly restarted
 // Arnoldi method) on the shift-inverted operator
 //     OP = (A - sigma B)^-1 B,      OP v = nu v  <=>  A v = lambda B v,  nu = 1 / (lambda - sigma),
 // so the eigenvalues of largest |nu| that ARPACK finds first are the lambda nearest sigma.
 // One sparse LU (Eigen::SparseLU, complex) of A - sigma B per shift, reused by every
 // ARPACK iteration, and kept in a ShiftFactorizations cache for a shift that comes again.
-// The complex ARPACK is used for every shift, real ones included: one code path, and for a
-// real shift dnaupd's mode 3 would only halve the arithmetic of that one shift (§19.1).
+// A complex shift runs the complex ARPACK (znaupd) with a complex LU; a real shift the real
+// one (dnaupd) with a real LU: a quarter of the flops, half the memory (§19.1).
 // OP is applied with the standard inner product (bmat = 'I'), so B need not be symmetric
 // nor definite: B nonsingular is assumed for the residual's scale; a singular B (constraint
 // rows) gives infinite eigenvalues, which map to nu = 0 and are never among those returned.
