@@ -187,8 +187,8 @@ std::string pattern_text(const ShaftEquilibrium& e, int n) {
 
 std::string shaft_line(const ShaftSystem& sys) {
   const auto x = node_positions(sys.spec);
-  return fmt::format("{} nodes ({} elements, length {} m), {} shaft dofs + {} balls: {} states; balancer at node {} "
-                     "(x = {} m); shaft and discs {} kg",
+  return fmt::format("{} nodes ({} elements, length {:.9g} m), {} shaft dofs + {} balls: {} states; balancer at node "
+                     "{} (x = {:.9g} m); shaft and discs {:.9g} kg",
                      sys.nodes(), sys.spec.elements.size(), x.back(), sys.shaft_dofs(), sys.n_balls(),
                      sys.state_size(), sys.spec.balancer_node, x[std::size_t(sys.spec.balancer_node)],
                      shaft_mass(sys.spec));
