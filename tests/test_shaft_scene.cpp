@@ -168,7 +168,7 @@ TEST_CASE("a disc's polar inertia is at most twice its transverse inertia", "[sc
   CHECK_NOTHROW(abu::parse_scene(edited({{15, "transverse_inertia = 1.233e-2"}}), "shaft.toml"));
 }
 
-TEST_CASE("shaft tables without [shaft], and shaft keys of the wrong kind", "[scene][shaft]") {
+TEST_CASE("element tables with no balancer node, and shaft keys of the wrong kind", "[scene][shaft]") {
   const auto no_shaft = refused(edited({{3, ""}, {4, ""}}));
   // [shaft.element] tables then define an implicit [shaft]: the balancer_node is missing.
   CHECK(no_shaft.key() == "shaft.balancer_node");
@@ -219,7 +219,7 @@ transverse_inertia = 0.0
   CHECK_THAT(e.rule(), Catch::Contains("add [shaft]"));
 }
 
-TEST_CASE("--set refuses the rigid rotor's k, c, M_r on a shaft scene and takes omega", "[scene][shaft]") {
+TEST_CASE("a shaft scene refuses the rigid rotor's k, c, M_r as overrides and takes omega", "[scene][shaft]") {
   abu::Scene s = abu::parse_scene(kShaft, "shaft.toml");
   for (const char* a : {"k=1e6", "c=3", "M_r=2"}) {
     try {
