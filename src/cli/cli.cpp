@@ -27,6 +27,7 @@
 #include "abu/io/ranges.hpp"
 #include "abu/core/suggest.hpp"
 #include "abu/io/plausibility.hpp"
+#include "abu/io/shaft_scene.hpp"
 #include "commands.hpp"
 
 namespace abu::cli {
@@ -172,6 +173,11 @@ Scene load(const SceneOptions& options) {
     pending = std::move(refused);
   }
   for (const auto& assignment : options.overrides) apply_override(scene, in_si(options, assignment));
+  if (scene.shaft) {  // a flexible rotor: its own ranges and warnings (shaft_scene.hpp)
+    check_shaft_range(scene, options.overrides.empty() ? scene.file : "--set");
+    for (const auto& w : shaft_warnings(scene)) fmt::print(stderr, "stability-scan: warning: {}\n", w);
+    return scene;
+  }
   check_numerical_range(scene, options.overrides.empty() ? scene.file : "--set");
   for (const auto& w : implausible_values(scene)) fmt::print(stderr, "stability-scan: warning: {}\n", w);
   return scene;
@@ -216,12 +222,14 @@ void refuse_combined_extensions(const Scene& scene) {
   // The extensions are modelled one at a time (model.md §10-§12, §14): a scene that combines
   // them is refused rather than analysed with one of them silently dropped.
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
-                         int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set);
+                         int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +
+                         int(scene.shaft != nullptr);
   if (extensions > 1)
     throw NotSupportedError(fmt::format("{} combines two of an anisotropic support, an unround race, LuGre and "
-                                        "coulomb-set friction; each is analysed only on its own so far "
-                                        "(model.md §10-§12, §14)",
-                                        scene.file));
+                                        "coulomb-set friction{}; each is analysed only on its own so far "
+                                        "(model.md §10-§12, §14{})",
+                                        scene.file, scene.shaft ? ", a flexible shaft" : "",
+                                        scene.shaft ? ", §18" : ""));
 }
 
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles) {
@@ -230,6 +238,10 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);
   if (!handles.set_valued) refuse_set_valued(scene, command);
+  if (!handles.shaft && scene.shaft)
+    throw NotSupportedError(fmt::format("`{}` on a flexible shaft ([shaft] in {}, model.md §18): only `equilibria` "
+                                        "and `sweep --param omega` (its Campbell diagram) analyse it so far",
+                                        command, scene.file));
 }
 
 namespace {

@@ -54,6 +54,7 @@ struct Handles {
   bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8) or the stick set (§14.10)
   bool unround = false;     ///< an unround race (§11.10)
   bool anisotropic = false; ///< an anisotropic support, balanced states by Floquet (§10.11–§10.13)
+  bool shaft = false;       ///< a flexible shaft ([shaft], model.md §18)
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
 /// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every

@@ -25,6 +25,7 @@
 #include "abu/io/report_views.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "shaft_commands.hpp"
 #include "stick_options.hpp"
 
 namespace abu::cli {
@@ -41,6 +42,7 @@ struct EquilibriaOptions {
   std::string stick_dir;    // --stick-set DIR (coulomb-set scenes)
   StickSetOptions stick;
   bool periodic_orbits = true;  // anisotropic support: the other states' orbits (model.md §10.14)
+  ShaftSpectrumOptions shaft;   // a flexible shaft: the rightmost eigenvalues (model.md §18, §19)
 };
 
 // --at-balls "b1,b2,..": one finite angle [rad] per ball.
@@ -163,6 +165,10 @@ std::string render_unround(const Scene& scene, const EquilibriaOptions& o, std::
 
 std::string render(const Scene& scene, const EquilibriaOptions& o, std::string& warnings, OutputTransaction& out) {
   refuse_combined_extensions(scene);
+  if (scene.shaft) {  // a flexible shaft (model.md §18): its equilibria and rightmost eigenvalues
+    if (!o.mode_shapes.empty()) throw NotSupportedError("--mode-shapes on a flexible shaft ([shaft], model.md §18)");
+    return shaft_equilibria(scene, o.format, o.sampling, o.shaft, warnings);
+  }
   if (!scene.race.round()) return render_unround(scene, o, warnings);
   if (scene.support) {  // anisotropic support: Floquet verdicts of the balanced states (model.md §10)
     if (!o.mode_shapes.empty())
@@ -260,6 +266,7 @@ Action add_equilibria_command(CLI::App& app) {
                   "traced boundary curves), DIR/stick_raster.dat and DIR/stick_set.png (model.md §14)")
       ->type_name("DIR");
   add_stick_resolution_options(*sub, options->stick);
+  add_shaft_spectrum_options(*sub, options->shaft);
   return [options]() -> int {
     const Scene scene = load(options->scene);
     if (!options->output.empty()) check_output_target(options->output);  // refused before any work

@@ -17,6 +17,7 @@
 #include "abu/io/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "shaft_commands.hpp"
 #include "stick_options.hpp"
 #include "unround_commands.hpp"
 #include "floquet_commands.hpp"
@@ -35,6 +36,7 @@ struct SweepOptions {
   std::string output_dir = "out";
   BalancedSampling sampling;
   StickSetOptions stick;  // coulomb-set scenes
+  ShaftSpectrumOptions shaft;  // a flexible shaft's Campbell diagram (model.md §18)
 };
 // The grid must stay inside the parameter's physical range; it is an interval, so the
 // two ends decide. Checked before any work, with the scene's own rules.
@@ -190,8 +192,22 @@ Action add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   add_stick_resolution_options(*sub, o->stick);
+  add_shaft_spectrum_options(*sub, o->shaft);
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (scene.shaft) {  // a flexible shaft: the Campbell diagram over omega (model.md §16.1, §18)
+      refuse_unmodelled(scene, "sweep", {.shaft = true});
+      if (o->param != "omega")
+        throw InputError("--param", 0, o->param,
+                         "a flexible shaft ([shaft]) is swept over omega only so far (its Campbell diagram)");
+      if (o->steps < 1 || o->steps > 100000)
+        throw InputError("--steps", 0, "steps", fmt::format("must be in [1, 100000] (got {})", o->steps));
+      if (o->logarithmic && !(o->from > 0 && o->to > 0))
+        throw InputError("--log", 0, "omega", fmt::format("a log grid needs both ends > 0 (got {} .. {})", o->from, o->to));
+      check_output_directory(o->output_dir);
+      return shaft_campbell_sweep(scene, o->scene, omega_input(o->scene, o->from), omega_input(o->scene, o->to),
+                                  o->steps, o->logarithmic, o->shaft, o->chart, o->output_dir);
+    }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
     const bool unround = !scene.race.round() || o->param == kUnroundnessParam;  // model.md §11.10
     refuse_unmodelled(scene, "sweep", unround ? Handles{.unround = true} : Handles{.lugre = true, .set_valued = true, .anisotropic = true});

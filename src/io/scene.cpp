@@ -31,7 +31,9 @@
 #include "race_reading.hpp"
 #include "abu/core/speed_units.hpp"
 #include "abu/core/suggest.hpp"
+#include "abu/model/shaft.hpp"
 #include "scene_reading.hpp"
+#include "shaft_reading.hpp"
 #include "simulate_table.hpp"
 #include "toml_guard.hpp"
 
@@ -359,6 +361,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   const toml::array* ball_array = nullptr;
   bool balls_seen = false;
   toml::source_position balls_pos{};
+  ShaftInput shaft_in;  // [shaft], [[disc]], [[bearing]]: a flexible rotor (shaft_scene.hpp)
   for (auto&& [k, node] : root) {
     const std::string name(k.str());
     const auto pos = k.source().begin;
@@ -385,12 +388,15 @@ Scene parse_scene(std::string_view text, const std::string& file) {
         p.add(pos, name, fmt::format("must be an array of tables ([[ball]], one per ball), got {}", got));
         ball_array = nullptr;
       }
+    } else if (take_shaft_key(shaft_in, name, node, pos)) {
     } else {
       p.add(pos, name,
             unknown_name_rule(node.is_table() ? "unknown table" : "unknown key",
-                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate", "race"}),
+                              closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate",
+                                                  "race", "shaft", "disc", "bearing"}),
                               "the top level has",
-                              "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate], [race]"));
+                              "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate], [race], [shaft], "
+                              "[[disc]], [[bearing]]"));
     }
   }
   for (auto [part, name] : {std::pair{&rotor, "rotor"}, {&friction, "friction"}, {&speed, "speed"}})
@@ -412,7 +418,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                                 {"stiffness", Quantity::stiffness, false},
                                 {"damping", Quantity::damping, false},
                                 {"unbalance", Quantity::unbalance, true}};
-  const std::optional<AnisotropicSupport> support = rotor.table ? read_support(p, *rotor.table, rotor_slots) : std::nullopt;
+  // A shaft scene's [rotor] gives the unbalance only (shaft_scene.hpp).
+  if (rotor.table && shaft_in.present()) read_shaft_rotor(p, *rotor.table, rotor_slots);
+  const std::optional<AnisotropicSupport> support =
+      rotor.table && !shaft_in.present() ? read_support(p, *rotor.table, rotor_slots) : std::nullopt;
   // [speed] gives omega [rad/s] or rpm [1/min] (docs/views.md), exactly one of them.
   std::vector<Slot> speed_slots{{"omega", Quantity::omega, false}, {"rpm", Quantity::omega, false}};
   if (speed.table) {
@@ -550,6 +559,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   std::optional<SimulateSettings> simulate_settings;
   if (simulate.table) simulate_settings = read_simulate_table(p, *simulate.table, file, int(balls.size()));
 
+  // --- [shaft], [[disc]], [[bearing]]: a flexible rotor (shaft_scene.hpp).
+  std::optional<ShaftSpec> shaft_spec;
+  if (shaft_in.present() || shaft_in.discs || shaft_in.bearings) shaft_spec = read_shaft(p, shaft_in);
+
   p.throw_first();
 
   // --- Everything is valid: assemble. Per-ball coefficients override [friction]'s.
@@ -569,6 +582,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   scene.kappa = value(friction_slots, "kappa");
   scene.simulate = std::move(simulate_settings);
   scene.race = std::move(race_spec);
+  if (shaft_spec) scene.shaft = std::make_shared<const ShaftSpec>(std::move(*shaft_spec));
   if (ring_in) {
     scene.ring = make_ring(*ring_in, friction_slots, *law, rolling, file);
     scene.balls = ring_balls(*scene.ring);
@@ -615,6 +629,11 @@ void set_checked(Scene& scene, ParamRef ref, double value, const std::string& or
     throw InputError(origin, 0, key,
                      "the scene's support is anisotropic (stiffness_x, ... in [rotor], docs/model.md §10): k and c are "
                      "its means and cannot be set alone; edit the matrix keys in the scene");
+  if (scene.shaft && (ref.quantity == Quantity::stiffness || ref.quantity == Quantity::damping ||
+                      ref.quantity == Quantity::rotor_mass))
+    throw InputError(origin, 0, key,
+                     "the scene is a flexible shaft ([shaft], model.md §18.10): its mass is the discs' and the shaft's "
+                     "and its support the bearings'; edit [[disc]], [[shaft.element]] or [[bearing]] in the scene");
   if (is_per_ball(ref.quantity) && ref.ball >= int(n)) throw InputError(origin, 0, key, index_out_of_range(key, n));
   if (!law_uses(scene.law, ref.quantity)) throw InputError(origin, 0, key, law_mismatch(scene.law, ref.quantity));
   if (auto bad = range_violation(ref.quantity, value)) throw InputError(origin, 0, key, *bad);

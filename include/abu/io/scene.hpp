@@ -86,6 +86,7 @@
 //   abu::set_ball_count(ring, 6, "--n");   // ring.balls.size() == 6
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -98,6 +99,8 @@
 #include "abu/model/anisotropic_support.hpp"
 
 namespace abu {
+
+struct ShaftSpec;  // model/shaft.hpp; the [shaft] tables are io/shaft_scene.hpp's
 
 /// The optional [simulate] table: run-up and integration settings of `simulate` and
 /// `basin` (docs/guide.md, model.md §15). Command-line flags override each key.
@@ -126,6 +129,10 @@ struct Scene {
   /// Set iff [rotor] gives the fixed-frame matrices (docs/model.md §10); rotor.stiffness
   /// and rotor.damping are then their means.
   std::optional<AnisotropicSupport> support;
+  /// Set iff the file has [shaft]: a flexible rotor (io/shaft_scene.hpp, model.md §18.10);
+  /// rotor.unbalance is then its only [rotor] value (mass, stiffness, damping are 0: the
+  /// discs, shaft and bearings replace them). Shared and immutable: copies of a scene share it.
+  std::shared_ptr<const ShaftSpec> shaft;
 };
 
 /// Reads and validates a scene file. Throws InputError (also for an unreadable file).

@@ -15,8 +15,11 @@
 //   abu::ShaftMatrices m = abu::assemble_shaft(spec);               // fixed-frame M, G, K, C
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
 
 namespace abu {
@@ -69,5 +72,28 @@ struct ShaftMatrices {
 };
 
 ShaftMatrices assemble_shaft(const ShaftSpec& spec);
+
+/// The matrices of one element in ONE bending plane (model.md §18.1), dofs
+/// (w_k, theta_k, w_{k+1}, theta_{k+1}): deflection and section rotation, theta = w' for
+/// Euler–Bernoulli. Plane 1 is (u1, psi2), plane 2 is (u2, -psi1) (model.md §18.4). The
+/// element's gyroscopic matrix is 2 x rotary_mass placed between the planes (§18.4).
+struct BeamElementMatrices {
+  Eigen::Matrix4d translational_mass;  ///< int rho A N_w^T N_w dz
+  Eigen::Matrix4d rotary_mass;         ///< int rho I N_theta^T N_theta dz
+  Eigen::Matrix4d stiffness;           ///< bending (+ shear for Timoshenko)
+  double shear_parameter = 0;          ///< Phi = 12 E I / (kappa_s G A L^2); 0 for Euler–Bernoulli
+};
+BeamElementMatrices beam_element_matrices(const ShaftElement& e);
+
+/// Cowper's (1966) shear coefficient of a hollow circular section, with Poisson's ratio
+/// nu = E / (2 G) - 1 (model.md §18.1). 0 when shear_modulus is 0.
+double shear_coefficient(const ShaftElement& e);
+
+/// The first rule `spec` breaks, as a sentence naming the element, disc, bearing or node
+/// (node index out of range, non-positive length or diameter, inner >= outer diameter,
+/// negative modulus, density, mass, inertia, stiffness or damping, E = 0, a dof without
+/// mass: model.md §18.9), or nullopt. The scene reader checks these with file and line;
+/// this is the model's own guard (make_shaft_system throws on it).
+std::optional<std::string> shaft_spec_violation(const ShaftSpec& spec);
 
 }  // namespace abu

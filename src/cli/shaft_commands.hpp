@@ -1,0 +1,35 @@
+// The commands on a flexible-shaft scene ([shaft], docs/model.md §18): `equilibria` (each
+// equilibrium's state and its rightmost eigenvalues by ARPACK shift-invert, §19) and
+// `sweep --param omega` (the Campbell diagram: the rightmost eigenvalues of the balanced
+// state over speed, fixed-frame whirl frequencies forward and backward, §16.1).
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "abu/equilibria/equilibria_n.hpp"
+#include "cli.hpp"
+
+namespace abu::cli {
+
+/// The spectrum options of a shaft command (--eigenvalues, --band).
+struct ShaftSpectrumOptions {
+  int eigenvalues = 10;  ///< k rightmost asked for per equilibrium
+  double band = 0.0;     ///< |Im lambda| <= band [1/s, rotating frame]; 0: 10 omega
+};
+
+void add_shaft_spectrum_options(CLI::App& sub, ShaftSpectrumOptions& o);
+
+/// `equilibria` on a shaft scene: the text of the table, CSV or JSON; `warnings` gets
+/// what goes to stderr (an ARPACK shortfall, an unpolished equilibrium).
+std::string shaft_equilibria(const Scene& scene, const std::string& format, const BalancedSampling& sampling,
+                             const ShaftSpectrumOptions& spectrum, std::string& warnings);
+
+/// `sweep --param omega` on a shaft scene: DIR/campbell_shaft_omega.csv and its chart.
+/// Returns the exit code.
+int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double from, double to, int steps,
+                         bool logarithmic, const ShaftSpectrumOptions& spectrum, bool chart,
+                         const std::string& output_dir);
+
+}  // namespace abu::cli
