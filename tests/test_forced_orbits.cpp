@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -202,7 +203,7 @@ TEST_CASE("forced orbits: every orbit of stiff coulomb balls is found", "[forced
 
 // delta_end = 0 with stiff coulomb balls: the constant orbit, and rho = exp(lambda pi/omega)
 // for every eigenvalue of §6's J. The resolved multipliers to 1e-9 relative (the
-// discretization error target is 1e-10); the two stiff ones (|rho| = e^{-1e5}) are compared
+// discretization error target is 1e-10; near-double ones see below); the two stiff ones (|rho| = e^{-1e5}) are compared
 // through their logarithms, to 1e-9 relative: on a constant orbit the period average of the
 // fast eigenvalue that replaces them is that eigenvalue exactly.
 TEST_CASE("forced orbits: delta -> 0 with stiff coulomb balls gives exp(lambda pi/omega)", "[forced]") {
@@ -217,18 +218,41 @@ TEST_CASE("forced orbits: delta -> 0 with stiff coulomb balls gives exp(lambda p
     const double q = std::hypot(double(e.position(0)), double(e.position(1)));
     CHECK(std::abs(orbit.q_abs_max - q) <= 1e-10 * q);
     CHECK(std::abs(orbit.q_abs_mean - q) <= 1e-10 * q);
-    const Eigen::MatrixXd J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
+    // J on the scaled state (q / L, beta, q' / (L omega), beta' / omega): the SI J spans 1e-6 m
+    // against 1 rad and its stiff rows 1e9 1/s, and an unbalanced eigensolver would lose digits.
+    Eigen::MatrixXd J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
+    const double L = displacement_scale(p);
+    const Eigen::VectorXd D = (Eigen::VectorXd(8) << L, L, 1, 1, L * p.omega, L * p.omega, p.omega, p.omega).finished();
+    J = D.cwiseInverse().asDiagonal() * J * D.asDiagonal();
     Eigen::EigenSolver<Eigen::MatrixXd> es(J, false);
     std::vector<std::complex<double>> want;
     for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) want.push_back(es.eigenvalues()(k) * std::numbers::pi / p.omega);
     std::sort(want.begin(), want.end(), [](auto a, auto b) { return a.real() > b.real(); });
     REQUIRE(orbit.multipliers.size() == want.size());
     REQUIRE(orbit.unresolved_multipliers == 2);
+    // The isotropic rotor's forward and backward exponents differ by 2i omega (§10.7): at
+    // delta = 0 their multipliers nearly coincide (here within ~1e-9, split only by the balls),
+    // and the members of a near-double multiplier move by the square root of the monodromy's
+    // error (1e-10 -> 1e-5). So: the members of such a cluster (pairwise within 1e-5) to 1e-5
+    // each, and the cluster's mean to 1e-9 like every isolated multiplier.
     for (std::size_t k = 0; k < 6; ++k) {
+      const std::complex<double> wk = std::exp(want[k]);
+      std::complex<double> got_sum = 0, want_sum = 0;
+      int members = 0;
+      for (std::size_t i = 0; i < 6; ++i)
+        if (std::abs(std::exp(want[i]) - wk) <= 1e-5 * std::abs(wk)) {
+          want_sum += std::exp(want[i]);
+          ++members;
+        }
       double best = 1e300;
-      for (std::size_t i = 0; i < 6; ++i) best = std::min(best, std::abs(orbit.multipliers[k] - std::exp(want[i])) / std::abs(std::exp(want[i])));
-      INFO("rho = " << orbit.multipliers[k]);
-      CHECK(best <= 1e-9);
+      std::vector<std::pair<double, std::size_t>> near;
+      for (std::size_t i = 0; i < 6; ++i) near.emplace_back(std::abs(orbit.multipliers[i] - wk), i);
+      std::sort(near.begin(), near.end());
+      for (int m = 0; m < members; ++m) got_sum += orbit.multipliers[near[std::size_t(m)].second];
+      best = near.front().first / std::abs(wk);
+      INFO("exp(lambda pi/omega) = " << wk << ", cluster of " << members);
+      CHECK(best <= (members > 1 ? 1e-5 : 1e-9));
+      CHECK(std::abs(got_sum - want_sum) <= 1e-9 * std::abs(want_sum));
     }
     for (std::size_t k = 6; k < 8; ++k) {
       INFO("ln|rho| = " << orbit.log_moduli[k] << ", lambda pi/omega = " << want[k].real());

@@ -103,8 +103,9 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
     acc.setZero(d);
     if (phi) phi->setIdentity(d, d);
     if (z) z->setZero(d);
-    Vec y = y0;
-    Eigen::MatrixXd step_phi(d, d);
+    // per-interval buffers: no allocation per step
+    Vec y = y0, z_next(d);
+    Eigen::MatrixXd step_phi(d, d), phi_next(d, d);
     for (int k = 0; k < steps; ++k) {
       if ((k & 63) == 0) throw_if_stopped("forced orbit");
       if (!radau_.advance(ctx_, t0 + k * h, y, h, phi != nullptr, why)) return false;
@@ -113,8 +114,10 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
       if (phi) {
         step_phi = radau_.state_derivative();
         step_phi.diagonal().array() += 1.0;
-        *z = step_phi * *z + radau_.parameter_derivative();
-        *phi = step_phi * *phi;
+        z_next.noalias() = step_phi * *z;
+        *z = z_next + radau_.parameter_derivative();
+        phi_next.noalias() = step_phi * *phi;
+        phi->swap(phi_next);
       }
       at_step(y);
     }
@@ -370,10 +373,9 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
       return fail(c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
     u = c.u;
   }
-  if (out.discretization_error > o.accuracy)
-    return fail(Outcome::numerical_issue,
-                fmt::format("the multipliers' discretization error {:.2e} exceeds {:.2e} at {} steps per interval",
-                            out.discretization_error, o.accuracy, out.steps_per_interval));
+  // Still above the target at max_steps_per_interval (a near-double multiplier, whose members
+  // move by the square root of the monodromy's error, can do that): the orbit is kept, and
+  // the band, which contains the estimate, carries it into the verdict.
   return out;
 }
 
