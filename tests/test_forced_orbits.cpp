@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -148,4 +149,114 @@ TEST_CASE("forced orbits: first order in delta, periodic at full anisotropy", "[
   CHECK(full.delta == 1.0);
   CHECK(full.periodicity <= 1e-9);
   CHECK(full.multipliers.size() == 8);
+}
+
+namespace {
+
+// Stiff coulomb balls on an anisotropic support, not a scene of data/ or tests/scenes: two
+// unequal balls (one rolling, one sliding), kappa = 1e6 s/rad (ball rates ~1e9 1/s, the stuck
+// balls' slow exponents ~1e-7 1/s), omega = 1300 rad/s (supercritical).
+ParamsN stiff_coulomb() {
+  ParamsN p;
+  p.rotor = {0.2, 10500.0, 3.25, 8e-7};
+  p.omega = 1300.0;
+  p.law = FrictionLaw::coulomb;
+  p.kappa = 1e6;
+  p.balls.resize(2);
+  p.balls[0] = {4e-5, 0.02, 1e-3, 1.4, 0.003, 0, 0, 0, 0};
+  p.balls[1] = {3e-5, 0.021, 1.2e-3, 1.0, 0.003, 0, 0, 0, 0};
+  return p;
+}
+
+AnisotropicSupport stiff_support() { return {12000.0, 9000.0, -800.0, 4.0, 2.5, 0.6}; }
+
+}  // namespace
+
+// The gap this closes (model.md §10.18): with stiff coulomb balls every aligned equilibrium
+// continues to its orbit. Each closes (the uninterrupted run's periodicity to 1e-12 scaled:
+// the increments are summed apart from the state, so rounding, not a tolerance, limits it),
+// its multipliers' estimated discretization error is below the 1e-10 target, and the stiff
+// ball multipliers are flagged (2 per orbit: one fast rate per ball) with ln|rho| below -1e4
+// (rates ~1e8-1e9 1/s over pi/omega = 2.4 ms).
+TEST_CASE("forced orbits: every orbit of stiff coulomb balls is found", "[forced]") {
+  const ParamsN p = stiff_coulomb();
+  const AnisotropicSupport s = stiff_support();
+  const std::vector<EquilibriumN> eqs = aligned(p);
+  REQUIRE(eqs.size() == 4);
+  for (const EquilibriumN& e : eqs) {
+    const ForcedOrbit o = forced_orbit(p, s, e, {});
+    INFO(o.kind << ": " << o.reason);
+    REQUIRE(o.status.ok());
+    CHECK(o.delta == 1.0);
+    CHECK(o.periodicity <= 1e-12);
+    CHECK(o.discretization_error <= 1e-10);
+    CHECK(o.unresolved_multipliers == 2);
+    REQUIRE(o.log_moduli.size() == 8);
+    CHECK(o.log_moduli[6] < -1e4);
+    CHECK(o.log_moduli[7] < -1e4);
+    // |q| moves off the equilibrium's at first order: by a fraction of |kappa|/k_bar ~ 0.16 at most
+    const double q = std::hypot(double(e.position(0)), double(e.position(1)));
+    CHECK(o.q_abs_max > o.q_abs_mean);
+    CHECK(std::abs(o.q_abs_mean - q) <= 0.5 * q);
+  }
+}
+
+// delta_end = 0 with stiff coulomb balls: the constant orbit, and rho = exp(lambda pi/omega)
+// for every eigenvalue of §6's J. The resolved multipliers to 1e-9 relative (the
+// discretization error target is 1e-10; near-double ones see below); the two stiff ones (|rho| = e^{-1e5}) are compared
+// through their logarithms, to 1e-9 relative: on a constant orbit the period average of the
+// fast eigenvalue that replaces them is that eigenvalue exactly.
+TEST_CASE("forced orbits: delta -> 0 with stiff coulomb balls gives exp(lambda pi/omega)", "[forced]") {
+  const ParamsN p = stiff_coulomb();
+  const AnisotropicSupport s = stiff_support();
+  ForcedOrbitOptions o;
+  o.delta_end = 0;
+  for (const EquilibriumN& e : aligned(p)) {
+    const ForcedOrbit orbit = forced_orbit(p, s, e, o);
+    INFO(orbit.kind << ": " << orbit.reason);
+    REQUIRE(orbit.status.ok());
+    const double q = std::hypot(double(e.position(0)), double(e.position(1)));
+    CHECK(std::abs(orbit.q_abs_max - q) <= 1e-10 * q);
+    CHECK(std::abs(orbit.q_abs_mean - q) <= 1e-10 * q);
+    // J on the scaled state (q / L, beta, q' / (L omega), beta' / omega): the SI J spans 1e-6 m
+    // against 1 rad and its stiff rows 1e9 1/s, and an unbalanced eigensolver would lose digits.
+    Eigen::MatrixXd J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
+    const double L = displacement_scale(p);
+    const Eigen::VectorXd D = (Eigen::VectorXd(8) << L, L, 1, 1, L * p.omega, L * p.omega, p.omega, p.omega).finished();
+    J = D.cwiseInverse().asDiagonal() * J * D.asDiagonal();
+    Eigen::EigenSolver<Eigen::MatrixXd> es(J, false);
+    std::vector<std::complex<double>> want;
+    for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k) want.push_back(es.eigenvalues()(k) * std::numbers::pi / p.omega);
+    std::sort(want.begin(), want.end(), [](auto a, auto b) { return a.real() > b.real(); });
+    REQUIRE(orbit.multipliers.size() == want.size());
+    REQUIRE(orbit.unresolved_multipliers == 2);
+    // The isotropic rotor's forward and backward exponents differ by 2i omega (§10.7): at
+    // delta = 0 their multipliers nearly coincide (here within ~1e-9, split only by the balls),
+    // and the members of a near-double multiplier move by the square root of the monodromy's
+    // error (1e-10 -> 1e-5). So: the members of such a cluster (pairwise within 1e-5) to 1e-5
+    // each, and the cluster's mean to 1e-9 like every isolated multiplier.
+    for (std::size_t k = 0; k < 6; ++k) {
+      const std::complex<double> wk = std::exp(want[k]);
+      std::complex<double> got_sum = 0, want_sum = 0;
+      int members = 0;
+      for (std::size_t i = 0; i < 6; ++i)
+        if (std::abs(std::exp(want[i]) - wk) <= 1e-5 * std::abs(wk)) {
+          want_sum += std::exp(want[i]);
+          ++members;
+        }
+      double best = 1e300;
+      std::vector<std::pair<double, std::size_t>> near;
+      for (std::size_t i = 0; i < 6; ++i) near.emplace_back(std::abs(orbit.multipliers[i] - wk), i);
+      std::sort(near.begin(), near.end());
+      for (int m = 0; m < members; ++m) got_sum += orbit.multipliers[near[std::size_t(m)].second];
+      best = near.front().first / std::abs(wk);
+      INFO("exp(lambda pi/omega) = " << wk << ", cluster of " << members);
+      CHECK(best <= (members > 1 ? 1e-5 : 1e-9));
+      CHECK(std::abs(got_sum - want_sum) <= 1e-9 * std::abs(want_sum));
+    }
+    for (std::size_t k = 6; k < 8; ++k) {
+      INFO("ln|rho| = " << orbit.log_moduli[k] << ", lambda pi/omega = " << want[k].real());
+      CHECK(std::abs(orbit.log_moduli[k] - want[k].real()) <= 1e-9 * std::abs(want[k].real()));
+    }
+  }
 }

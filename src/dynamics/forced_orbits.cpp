@@ -4,18 +4,18 @@
 #include "abu/dynamics/forced_orbits.hpp"
 
 #include <fmt/format.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_errno.h>  // shooting_flow.hpp
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
-#include "abu/core/gsl_errors.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/floquet.hpp"
 #include "abu/model/anisotropic_field.hpp"
+#include "forced_orbits_radau.hpp"
 #include "shooting_flow.hpp"
 
 namespace abu {
@@ -23,8 +23,8 @@ namespace {
 
 using StateX = State<double, any_balls>;
 
-// The scaled field y = D^-1 x of (10.14.1) and, with `variational`, the transition matrix
-// and the delta sensitivity: Phi' = J~ Phi, z' = J~ z + D^-1 df/ddelta * delta_end.
+// The scaled field y = D^-1 x of (10.14.1) with its Jacobian D^-1 J D and its derivative in
+// the scaled homotopy parameter u_p = delta / delta_end: D^-1 df/ddelta * delta_end.
 struct ForcedContext {
   ParamsN p;
   AnisotropicSupport support;
@@ -32,59 +32,23 @@ struct ForcedContext {
   int dim = 0;            // 2 n + 4
   double delta = 0;       // the homotopy parameter of the current evaluation
   double span = 1;        // d delta / d (scaled parameter) = delta_end
-  bool variational = true;
   AnisotropicFieldValue value;  // the last evaluation (bounded storage: no allocation per step)
-  int augmented() const { return variational ? dim * (dim + 2) : dim; }
-  void evaluate(double t, const double* y, bool derivatives) {
+  void evaluate(double t, const Eigen::VectorXd& y, bool derivatives) {
     StateX x(dim);
-    for (int i = 0; i < dim; ++i) x(i) = scale(i) * y[i];
+    for (int i = 0; i < dim; ++i) x(i) = scale(i) * y(i);
     anisotropic_field(p, support, x, t, delta, value, derivatives);
   }
-};
-
-int forced_rhs(double t, const double y[], double dydt[], void* params) {
-  auto& c = *static_cast<ForcedContext*>(params);
-  const int n = c.dim;
-  c.evaluate(t, y, c.variational);
-  for (int i = 0; i < n; ++i) dydt[i] = c.value.field(i) / c.scale(i);
-  if (c.variational) {
-    // J~ = D^-1 J D applied to every column; the last column also gets D^-1 f_delta.
-    for (int k = 0; k <= n; ++k) {
-      const double* col = y + n * (1 + k);
-      double* out = dydt + n * (1 + k);
-      for (int i = 0; i < n; ++i) {
-        double sum = 0;
-        for (int j = 0; j < n; ++j) sum += c.value.jacobian(i, j) * c.scale(j) * col[j];
-        out[i] = sum / c.scale(i);
-      }
-      if (k == n)
-        for (int i = 0; i < n; ++i) out[i] += c.value.delta_derivative(i) * c.span / c.scale(i);
+  // The Radau step's field(t, y, F, J, P).
+  template <class F, class P>
+  void operator()(double t, const Eigen::VectorXd& y, F&& f, Eigen::MatrixXd& J, P&& par) {
+    evaluate(t, y, true);
+    for (int i = 0; i < dim; ++i) {
+      f(i) = value.field(i) / scale(i);
+      par(i) = value.delta_derivative(i) * span / scale(i);
+      for (int j = 0; j < dim; ++j) J(i, j) = value.jacobian(i, j) * scale(j) / scale(i);
     }
   }
-  for (int i = 0; i < c.augmented(); ++i)
-    if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
-  return GSL_SUCCESS;
-}
-
-// For the implicit stepper: J~ on the state and on every variational column (block
-// diagonal; the columns' dependence on the state is left out, as in periodic_orbits.cpp:
-// it changes the stage solves, not the solution the error control accepts), and df/dt
-// of the state.
-int forced_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
-  auto& c = *static_cast<ForcedContext*>(params);
-  const int n = c.dim, dim = c.augmented();
-  c.evaluate(t, y, true);
-  std::fill(dfdy, dfdy + std::size_t(dim) * std::size_t(dim), 0.0);
-  std::fill(dfdt, dfdt + dim, 0.0);
-  for (int b = 0; b < dim / n; ++b)
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        dfdy[std::size_t(b * n + i) * std::size_t(dim) + std::size_t(b * n + j)] =
-            c.value.jacobian(i, j) * c.scale(j) / c.scale(i);
-  for (int i = 0; i < n; ++i) dfdt[i] = c.value.time_derivative(i) / c.scale(i);
-  if (!c.value.jacobian.allFinite()) return GSL_EBADFUNC;
-  return GSL_SUCCESS;
-}
+};
 
 using Evaluated = detail::ShootingEvaluation;
 
@@ -93,10 +57,9 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
   static constexpr std::size_t test_count = 1;  // d delta / ds: a fold in delta
 
   ForcedProblem(const ParamsN& p, const AnisotropicSupport& s, const Eigen::VectorXd& scale,
-                const ForcedOrbitOptions& o, const gsl_odeiv2_step_type* type)
-      : ShootingSystem(o.rtol, 1e2), o_(o), m_(o.intervals), dim_(int(scale.size())),
-        full_(type, dim_ * (dim_ + 2), o.rtol, "forced orbit: integrating an interval"),
-        plain_(type, dim_, o.rtol, "forced orbit: sampling") {
+                const ForcedOrbitOptions& o)
+      : ShootingSystem(1e-15, 1e2), o_(o), m_(o.intervals), steps_(o.steps_per_interval), dim_(int(scale.size())),
+        radau_(int(scale.size())) {
     ctx_.p = p;
     ctx_.support = s;
     ctx_.scale = scale;
@@ -108,7 +71,58 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
   int size() const { return dim_ * m_ + 1; }
   int param_index() const { return dim_ * m_; }
   double delta(const Vec& u) const { return u(param_index()) * o_.delta_end; }
-  double step() const { return period_ / m_; }
+  double interval() const { return period_ / m_; }
+  int steps_per_interval() const { return steps_; }
+  // A finer (or coarser) discretization of the same unknowns: the cache is dropped.
+  void set_steps(int steps) {
+    steps_ = steps;
+    cache_.u.resize(0);
+  }
+
+  // Newton on the discrete shooting equations converges quadratically to rounding (the
+  // derivatives are those of the discrete map): steps down to 1e-14 of the O(1) scaled
+  // unknowns; a stall above 1e-11, or a residual above 1e-13, is a failure.
+  arclength::NewtonSettings newton() const {
+    arclength::NewtonSettings s;
+    s.max_iterations = 12;
+    s.step_tolerance = 1e-14;
+    s.stall_tolerance = 1e-11;
+    s.residual_tolerance = 1e-13;
+    return s;
+  }
+
+  // One shooting interval from (t0, y0) in `steps` Radau steps: the summed increment `acc`
+  // (x(t0 + h) - x(t0), scaled, summed apart from y0: see forced_orbits_radau.hpp), and with
+  // `phi` the transition matrix and `z` the parameter sensitivity. `at_step` sees each step's
+  // end state.
+  template <class AtStep>
+  bool run(double t0, const Vec& y0, int steps, double span, Vec& acc, Eigen::MatrixXd* phi, Vec* z, AtStep&& at_step,
+           std::string_view& why) const {
+    const int d = dim_;
+    const double h = span / steps;
+    acc.setZero(d);
+    if (phi) phi->setIdentity(d, d);
+    if (z) z->setZero(d);
+    // per-interval buffers: no allocation per step
+    Vec y = y0, z_next(d);
+    Eigen::MatrixXd step_phi(d, d), phi_next(d, d);
+    for (int k = 0; k < steps; ++k) {
+      if ((k & 63) == 0) throw_if_stopped("forced orbit");
+      if (!radau_.advance(ctx_, t0 + k * h, y, h, phi != nullptr, why)) return false;
+      acc += radau_.increment();
+      y = y0 + acc;
+      if (phi) {
+        step_phi = radau_.state_derivative();
+        step_phi.diagonal().array() += 1.0;
+        z_next.noalias() = step_phi * *z;
+        *z = z_next + radau_.parameter_derivative();
+        phi_next.noalias() = step_phi * *phi;
+        phi->swap(phi_next);
+      }
+      at_step(y);
+    }
+    return true;
+  }
 
   const Evaluated& at(const Vec& u) const {
     if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
@@ -121,32 +135,27 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
     e.residual = Vec::Zero(n - 1);
     e.jacobian = Jacobian::Zero(n - 1, n);
     e.transitions.assign(std::size_t(m_), Eigen::MatrixXd::Identity(d, d));
-    ctx_.variational = true;
     ctx_.delta = delta(u);
-    const double h = step();
-    std::vector<double> y(std::size_t(d * (d + 2)));
-    gsl_odeiv2_system sys{&forced_rhs, &forced_jacobian, std::size_t(d * (d + 2)), &ctx_};
+    Vec acc(d), z(d);
     for (int j = 0; j < m_; ++j) {
-      std::fill(y.begin(), y.end(), 0.0);
-      for (int i = 0; i < d; ++i) y[std::size_t(i)] = u(d * j + i), y[std::size_t(d * (1 + i) + i)] = 1.0;
       std::string_view why;
-      if (!full_.run(sys, j * h, y.data(), h, {h}, {}, why)) {
+      if (!run(j * interval(), u.segment(d * j, d), steps_, interval(), acc, &e.transitions[std::size_t(j)], &z,
+               [](const Vec&) {}, why)) {
         e.ok = false;
         e.why = why;
         e.residual.setConstant(1e300);
         return e;
       }
       const int next = (j + 1) % m_;
-      for (int i = 0; i < d; ++i) e.residual(d * j + i) = y[std::size_t(i)] - u(d * next + i);
-      const Eigen::Map<const Eigen::MatrixXd> phi(y.data() + d, d, d);
-      e.transitions[std::size_t(j)] = phi;
-      e.jacobian.block(d * j, d * j, d, d) = phi;
+      // (y_j - y_{j+1}) + increment: the difference of nearby values is exact, the increment
+      // carries its own relative accuracy (a stuck ball's angle: see forced_orbits_radau.hpp).
+      e.residual.segment(d * j, d) = (u.segment(d * j, d) - u.segment(d * next, d)) + acc;
+      e.jacobian.block(d * j, d * j, d, d) = e.transitions[std::size_t(j)];
       e.jacobian.block(d * j, d * next, d, d) -= Eigen::MatrixXd::Identity(d, d);
-      for (int i = 0; i < d; ++i) e.jacobian(d * j + i, param_index()) = y[std::size_t(d * (d + 1) + i)];
+      e.jacobian.block(d * j, param_index(), d, 1) = z;
     }
     return e;
   }
-
 
   arclength::Crossing crossing(const Vec&, const Vec& to) const {
     // Back below delta = 0: the family turned (a fold in delta) before reaching delta_end.
@@ -165,12 +174,27 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
   void commit(Vec&, Vec&, arclength::Stage) {}
   bool folded() const { return folded_; }
 
-  // The orbit's data at a converged u.
-  void describe(const Vec& u, ForcedOrbit& o) {
-    const Evaluated& e = at(u);
+  // The multipliers of the discrete monodromy at u with the current step count.
+  ProductEigenvalues multipliers(const Vec& u) const { return product_eigenvalues(at(u).transitions); }
+
+  // The orbit's data at a converged u; `coarse` the multipliers of the same unknowns with
+  // half the steps (their difference bounds the discretization error, §10.18).
+  void describe(const Vec& u, const ProductEigenvalues& coarse, ForcedOrbit& o) {
     o.delta = delta(u);
     o.period = period_;
-    const ProductEigenvalues f = product_eigenvalues(e.transitions);
+    o.steps_per_interval = steps_;
+    ProductEigenvalues f = multipliers(u);
+    if (!f.status.ok()) {
+      o.status.merge(f.status);
+      o.reason = fmt::format("Floquet multipliers: {}", f.status.reason);
+      return;
+    }
+    o.state0.resize(std::size_t(dim_));
+    for (int i = 0; i < dim_; ++i) o.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
+    std::vector<Eigen::VectorXd> states;
+    if (!sample(u, o, states)) return;
+    const std::size_t unresolved = stiff_multipliers(f, states);
+    o.unresolved_multipliers = int(unresolved);
     o.multipliers = f.values;
     o.log_moduli = f.log_moduli;
     o.exponents.clear();
@@ -178,46 +202,81 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
       // lambda = (omega/pi) (ln|rho| + i arg rho), Im in (-omega, omega] (model.md §10.4).
       o.exponents.emplace_back(f.log_moduli[k] / period_, f.arguments[k] / period_);
     }
-    o.band = 1e3 * o_.rtol * m_;
+    // The discretization error: the resolved multipliers against those with half the steps
+    // (a fifth-order method: the coarse error is 32 times the fine one, so the difference
+    // bounds it), relative to max(|rho|, 1e-6) as the acceptance compares them.
+    o.discretization_error = 0;
+    const std::size_t resolved = f.values.size() - unresolved;
+    for (std::size_t k = 0; k < resolved; ++k) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < coarse.values.size(); ++i)
+        best = std::min(best, std::abs(coarse.values[i] - f.values[k]));
+      o.discretization_error = std::max(o.discretization_error, best / std::max(std::abs(f.values[k]), 1e-6));
+    }
+    o.band = o.discretization_error + 64 * std::numeric_limits<double>::epsilon() * m_ * steps_;
     const double top = f.log_moduli.empty() ? 0.0 : *std::max_element(f.log_moduli.begin(), f.log_moduli.end());
     o.verdict = top < -o.band ? Stability::stable : top > o.band ? Stability::unstable : Stability::marginal;
-    if (!f.status.ok()) {
-      o.status.merge(f.status);
-      o.reason = fmt::format("Floquet multipliers: {}", f.status.reason);
-    }
-    o.state0.resize(std::size_t(dim_));
-    for (int i = 0; i < dim_; ++i) o.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
-    sample(u, o);
   }
 
  private:
-  // Uniform samples of the orbit (samples_per_interval per interval): max and mean |q|,
-  // the ball angles' extremes, and the periodicity of one run over the whole period
-  // from y_1 (the multiple-shooting residual, integrated without restarts).
-  void sample(const Vec& u, ForcedOrbit& o) {
-    const double h = step();
-    const int k = o_.samples_per_interval, n = dim_ / 2 - 2;
-    std::vector<double> targets;
-    for (int i = 1; i <= k * m_; ++i) targets.push_back(h * i / k);
+  // The stiff multipliers (coulomb balls' rates ~1e8 1/s, e^{-1e5} over the period): the
+  // Radau map damps them by its stability function, R(h lambda) ~ 1/(h lambda), not by
+  // e^{h lambda}, so their discrete values say only "below 1e-300". A multiplier that the
+  // discrete map shrinks by more than e^{-1/2} per step on average (resolved ones move by
+  // 1e-4 per step) is replaced by exp of the period average of the matching fast eigenvalue
+  // of J(x(t)) along the orbit (the frozen-coefficient rate of the slaved fast mode, to
+  // O(slow/fast) ~ 1e-5 relative); returns how many were so replaced.
+  std::size_t stiff_multipliers(ProductEigenvalues& f, const std::vector<Eigen::VectorXd>& states) {
+    const double total_steps = double(m_ * steps_);
+    std::size_t count = 0;
+    for (double l : f.log_moduli) count += (l / total_steps < -0.5) ? 1 : 0;
+    if (count == 0 || states.empty()) return count;
+    std::vector<double> mean(count, 0.0);
+    Eigen::EigenSolver<Eigen::MatrixXd> es;
+    std::vector<double> re(static_cast<std::size_t>(dim_));
+    for (std::size_t s = 0; s < states.size(); ++s) {
+      ctx_.evaluate(period_ * double(s) / double(states.size()), states[s], true);
+      es.compute(Eigen::MatrixXd(ctx_.value.jacobian), false);
+      for (int i = 0; i < dim_; ++i) re[std::size_t(i)] = es.eigenvalues()(i).real();
+      std::sort(re.begin(), re.end());  // most negative first
+      for (std::size_t k = 0; k < count; ++k) mean[k] += re[k] / double(states.size());
+    }
+    // The multipliers are sorted by modulus, descending: the last `count` are the stiff ones,
+    // the least negative of them first.
+    const std::size_t first = f.values.size() - count;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double l = mean[count - 1 - k] * period_;
+      f.log_moduli[first + k] = l;
+      f.values[first + k] = std::exp(l);
+      f.arguments[first + k] = 0;
+    }
+    return count;
+  }
+
+  // The orbit over one period from y_1 in the same steps, without restarts: |q| at every step
+  // point (M * steps uniform samples), max and mean |q|, the ball angles' extremes, and the
+  // periodicity (the shooting residual of the uninterrupted run). `states` gets the samples.
+  bool sample(const Vec& u, ForcedOrbit& o, std::vector<Eigen::VectorXd>& states) {
+    const int n = dim_ / 2 - 2;
     std::vector<double> qabs;
     std::vector<std::vector<double>> balls(static_cast<std::size_t>(n));
-    ctx_.variational = false;
     ctx_.delta = delta(u);
-    std::vector<double> y(static_cast<std::size_t>(dim_));
-    for (int i = 0; i < dim_; ++i) y[std::size_t(i)] = u(i);
-    gsl_odeiv2_system sys{&forced_rhs, &forced_jacobian, std::size_t(dim_), &ctx_};
+    Vec acc(dim_);
     std::string_view why;
-    const bool ran = plain_.run(sys, 0.0, y.data(), period_, targets, [&](const double* s) {
-      qabs.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
-      for (int b = 0; b < n; ++b) balls[std::size_t(b)].push_back(s[2 + b]);
+    const Vec y1 = u.head(dim_);
+    const bool ran = run(0.0, y1, m_ * steps_, period_, acc, nullptr, nullptr, [&](const Vec& s) {
+      states.push_back(s);
+      qabs.push_back(std::hypot(s(0) * ctx_.scale(0), s(1) * ctx_.scale(1)));
+      for (int b = 0; b < n; ++b) balls[std::size_t(b)].push_back(s(2 + b));
     }, why);
-    if (!ran || qabs.size() != targets.size()) {
+    if (!ran) {
       o.status.merge(Outcome::numerical_issue, "see reason");
       o.reason = fmt::format("sampling the orbit: {}", why);
-      return;
+      return false;
     }
-    o.periodicity = 0;
-    for (int i = 0; i < dim_; ++i) o.periodicity = std::max(o.periodicity, std::abs(y[std::size_t(i)] - u(i)));
+    // the samples at t_k = k h, k = 1..N: rotate so that the list starts at t = 0 (t_N = period)
+    std::rotate(states.rbegin(), states.rbegin() + 1, states.rend());
+    o.periodicity = acc.cwiseAbs().maxCoeff();
     o.q_abs_max = detail::periodic_max(qabs);
     double sum = 0;
     for (double v : qabs) sum += v;  // uniform samples of a periodic function: the trapezoid rule
@@ -229,14 +288,14 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
       for (double& x : v) x = -x;
       o.ball_min.push_back(-detail::periodic_max(v));
     }
+    return true;
   }
 
   ForcedOrbitOptions o_;
-  int m_, dim_;
+  int m_, steps_, dim_;
   double period_ = 0;
   mutable ForcedContext ctx_;
-  mutable detail::FlowIntegrator full_;
-  detail::FlowIntegrator plain_;
+  mutable detail::RadauStep radau_;
   mutable Evaluated cache_;
   bool folded_ = false;
 };
@@ -252,7 +311,6 @@ std::string kind_of(const EquilibriumN& e, int n) {
 
 ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const EquilibriumN& e,
                          const ForcedOrbitOptions& o) {
-  quiet_gsl_errors();
   ForcedOrbit out;
   out.family = e.family;
   out.pattern = e.pattern;
@@ -268,19 +326,15 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
   if (e.family == Family::balanced) return fail(Outcome::numerical_issue, "a balanced state is an equilibrium, not an orbit");
   if (!e.converged) return fail(Outcome::not_converged, "its equilibrium of the mean system did not converge");
   if (e.singular()) return fail(Outcome::numerical_issue, "its equilibrium of the mean system is singular (degenerate)");
-  if (!(o.intervals >= 1) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
+  if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
   // Scaling D (model.md (10.14.3)).
   const double L = displacement_scale(p), w = p.omega;
   Eigen::VectorXd D = Eigen::VectorXd::Ones(d);
   D.segment(n + 2, n + 2).setConstant(w);
   D.head(2) *= L;
   D.segment(n + 2, 2) *= L;
-  // Stiff (ball rates far above 1/h): the implicit extrapolation stepper (§17.1's choice).
   const StateX x0 = e.position_si().size() ? at_rest<double, any_balls>(e.position_si()) : StateX();
-  Eigen::EigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(jacobian(p, x0)), false);
-  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
-  const gsl_odeiv2_step_type* type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
-  ForcedProblem problem(p, s, D, o, type);
+  ForcedProblem problem(p, s, D, o);
   const int M = o.intervals;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
   for (int j = 0; j < M; ++j) u.segment(d * j, d) = x0.cwiseQuotient(D);
@@ -299,7 +353,29 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
     }
     u = r.last;
   }
-  problem.describe(u, out);
+  // The discretization's error, a posteriori (model.md §10.18): the multipliers with half the
+  // steps on the same unknowns; while their difference exceeds the target, the steps double
+  // and Newton (delta fixed by the border) corrects the orbit on the finer grid.
+  Eigen::VectorXd fix = Eigen::VectorXd::Zero(problem.size());
+  fix(problem.param_index()) = 1;
+  for (;;) {
+    const int steps = problem.steps_per_interval();
+    problem.set_steps(std::max(1, steps / 2));
+    const ProductEigenvalues coarse = problem.multipliers(u);
+    problem.set_steps(steps);
+    problem.describe(u, coarse, out);
+    if (!out.status.ok()) return out;
+    if (out.discretization_error <= o.accuracy || 2 * steps > o.max_steps_per_interval) break;
+    problem.set_steps(2 * steps);
+    const auto c = arclength::correct(problem, u, fix);
+    out.newton_iterations += c.iterations;
+    if (c.status != Outcome::converged)
+      return fail(c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
+    u = c.u;
+  }
+  // Still above the target at max_steps_per_interval (a near-double multiplier, whose members
+  // move by the square root of the monodromy's error, can do that): the orbit is kept, and
+  // the band, which contains the estimate, carries it into the verdict.
   return out;
 }
 

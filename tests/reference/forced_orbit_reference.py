@@ -20,7 +20,7 @@ the arclength engine, multipliers by periodic orthogonal iteration, analytic Jac
 The run is repeated at a 100x looser integration tolerance; the two must agree to 1e-9
 relative (else exit 2: the reference itself is not converged).
 
-Usage: forced_orbit_reference.py SCENE.toml --json CPP.json [--rtol 1e-8]
+Usage: forced_orbit_reference.py SCENE.toml --json CPP.json [--rtol 1e-8] [--orbit K ...]
 Exit 0: every orbit found by both, each within rtol (multipliers with |rho| >= 1e-6
 relative, smaller ones absolute 1e-9; q_abs_max, q_abs_mean, x(0)); 1: a mismatch;
 2: bad input or a reference that did not converge.
@@ -155,19 +155,29 @@ class Shooter:
         return np.kron(np.eye(9), Js)
 
     def flow(self, y0, samples=None):
-        z0 = np.concatenate([y0, np.eye(8).ravel()])
+        """The increment w(t) = y(t) - y0 and the transition matrix over the period.
+
+        The increment, not the state, is integrated (with an absolute tolerance 1e-8 of the
+        state's): a stuck coulomb ball's angle is nearly neutral (multiplier 1 - 1e-9), so an
+        absolute error of tol on the angle itself would move the fixed point by tol / 1e-9."""
+        z0 = np.concatenate([np.zeros(8), np.eye(8).ravel()])
+        atol = np.concatenate([np.full(8, self.tol * 1e-8), np.full(64, self.tol)])
         kw = dict(method="Radau", jac=self.rhs_jac) if self.stiff else dict(method="DOP853")
         # the samples and the end point (the monodromy is the last column)
         te = None if samples is None else np.linspace(0, self.T, samples + 1)
-        r = solve_ivp(self.rhs, (0, self.T), z0, rtol=self.tol, atol=self.tol, t_eval=te, **kw)
+        r = solve_ivp(lambda t, z: self.rhs(t, np.concatenate([y0 + z[:8], z[8:]])), (0, self.T), z0,
+                      rtol=self.tol, atol=atol, t_eval=te,
+                      **(dict(kw, jac=lambda t, z: self.rhs_jac(t, np.concatenate([y0 + z[:8], z[8:]])))
+                         if self.stiff else kw))
         if not r.success:
             raise RuntimeError(r.message)
-        return r.y[:8, -1], r.y[8:, -1].reshape(8, 8), r
+        r.y[:8] += y0[:, None]
+        return r.y[:8, -1] - y0, r.y[8:, -1].reshape(8, 8), r
 
     def newton(self, y):
         for _ in range(15):
-            yT, Phi, _ = self.flow(y)
-            dy = np.linalg.solve(Phi - np.eye(8), -(yT - y))
+            w, Phi, _ = self.flow(y)  # w = y(T) - y(0), integrated as such
+            dy = np.linalg.solve(Phi - np.eye(8), -w)
             y = y + dy
             if np.max(np.abs(dy)) < 50 * self.tol:
                 return y
@@ -213,6 +223,9 @@ def main(argv=None):
     ap.add_argument("--json", required=True)
     ap.add_argument("--rtol", type=float, default=1e-8)
     ap.add_argument("--tol", type=float, default=1e-13, help="integration tolerance of the reference")
+    ap.add_argument("--orbit", type=int, action="append",
+                    help="check only this orbit (1-based, in the order of the mean system's equilibria: "
+                         "together, then opposite); repeatable. All are still required to be reported.")
     a = ap.parse_args(argv)
     try:
         f = Field(a.scene)
@@ -226,8 +239,13 @@ def main(argv=None):
     if len(cpp) != len(eqs):
         print("forced_orbit_reference: FAILED: the orbit count differs", file=sys.stderr)
         return 1
+    if any(o["status"] != "converged" for o in cpp):
+        print("forced_orbit_reference: FAILED: the analyzer did not find every orbit", file=sys.stderr)
+        return 1
     worst = 0.0
-    for name, x_eq in eqs:
+    for index, (name, x_eq) in enumerate(eqs, start=1):
+        if a.orbit and index not in a.orbit:
+            continue
         try:
             ref = orbit(f, x_eq, a.tol)
             loose = orbit(f, x_eq, a.tol * 100)

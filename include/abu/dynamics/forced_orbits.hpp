@@ -30,9 +30,15 @@
 namespace abu {
 
 struct ForcedOrbitOptions {
-  int intervals = 8;              ///< M shooting intervals per pi/omega; default 8
-  double rtol = 1e-13;            ///< integrator tolerance (relative = absolute, scaled state); default 1e-13
-  int samples_per_interval = 16;  ///< for |q| and the ball angles; default 16
+  int intervals = 8;  ///< M shooting intervals per pi/omega; default 8
+  /// Radau IIA steps per interval (model.md §10.18); doubled while the multipliers'
+  /// discretization error exceeds `accuracy`, up to max_steps_per_interval. |q| and the ball
+  /// angles are sampled at the step points. Defaults 16, 256.
+  int steps_per_interval = 16;
+  int max_steps_per_interval = 256;
+  /// Target on the multipliers' discretization error (relative to max(|rho|, 1e-6), estimated
+  /// by halving the steps); default 1e-10.
+  double accuracy = 1e-10;
   double delta_end = 1.0;         ///< continue to this delta (1: the scene's support); default 1
   /// In delta / delta_end (the orbit moves O(|kappa| / |K|) per unit delta, scaled O(1)): a first step of 0.1,
   /// ds_min 1e-4 (a family that needs shorter steps is in trouble: stick-slip of coulomb balls), 400 attempts.
@@ -54,9 +60,14 @@ struct ForcedOrbit {
   std::vector<double> log_moduli;
   std::vector<std::complex<double>> exponents;  ///< (omega/pi) ln rho [1/s, rotating frame], Im in (-omega, omega]
   /// The verdict: stable if ln max|rho| < -band, unstable if > band, else marginal;
-  /// band = 1e3 * rtol * M (the integration's relative error carried to ln rho).
+  /// band = discretization_error + 64 eps M steps (model.md §10.18).
   Stability verdict = Stability::marginal;
   double band = 0;
+  int steps_per_interval = 0;       ///< Radau steps per interval of the final discretization
+  double discretization_error = 0;  ///< max |rho_S - rho_{S/2}| / max(|rho|, 1e-6) over the resolved multipliers
+  /// The stiff multipliers (coulomb ball rates): their ln|rho| is the period average of the
+  /// fast eigenvalues of J(x(t)) along the orbit, not the discrete map's (model.md §10.18).
+  int unresolved_multipliers = 0;
   std::vector<double> state0;     ///< x(0) SI (model.md (2.2)): the orbit at t = 0
   double periodicity = 0;         ///< max |x(pi/omega) - x(0)| / D (scaled), integrated from state0 in one run
   Status status;                  ///< converged, or the kind of failure (see reason)
