@@ -12,7 +12,7 @@
 //    against the reference orbit. AUTO-07p's figure for comparison: 7.7 ms per orbit (NTST = 50,
 //    NCOL = 4, one thread, period to 1e-11; issue 14, not rebuilt here).
 // Process CPU time (the machine is shared). Optional second argument: one configuration.
-//   build/tests/benchmarks/bench_cycles [steps] [configuration]
+//   build/tests/benchmarks/bench_cycles [steps] [configuration, -1 all] [light]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -56,15 +56,18 @@ double multiplier_error(const abu::CycleOrbit& a, const abu::CycleOrbit& ref) {
 
 int main(int argc, char** argv) {
   abu::Params p;
-  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
-  p.omega = 900.0;
+  // Third argument "light": the lightly damped support of model.md §17.10 (c = 0.05 N s/m),
+  // whose orbits are well conditioned at a fixed omega (no fold of cycles nearby).
+  const bool light = argc > 3 && std::string(argv[3]) == "light";
+  p.rotor = {0.12, 7500.0, light ? 0.05 : 2.0, 6e-7};
+  p.omega = light ? 2000.0 : 900.0;
   p.law = abu::FrictionLaw::viscous;
   p.kappa = 1e3;
   for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-4, 0.0, 0.0, 0.0};
   const abu::ParamRef omega = *abu::parse_param("omega", 2);
   abu::StartSelection sel;
   sel.family = abu::Family::balanced;
-  const abu::ContinuationRun run = abu::continue_branches(p, omega, 50.0, {}, sel);
+  const abu::ContinuationRun run = abu::continue_branches(p, omega, light ? 20.0 : 50.0, {}, sel);
   const abu::SpecialPoint* hb = nullptr;
   for (const auto& b : run.branches)
     for (const auto& s : b.specials)
