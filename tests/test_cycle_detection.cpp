@@ -11,8 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <vector>
 
+#include "abu/continuation/continuation.hpp"
+#include "abu/dynamics/periodic_orbits.hpp"
 #include "abu/linear/floquet.hpp"
 
 namespace {
@@ -102,4 +105,108 @@ TEST_CASE("multiplier_jump: how far the set moved, matched, escaping moduli clam
   // A crossing of -1 and back within one step leaves the endpoints' signs unchanged; the
   // step control sees the move instead: a step that carries mu from -0.9 to -1.3 moves 0.4.
   CHECK(abu::multiplier_jump(Set{1.0, -0.9}, Set{1.0, -1.3}) > 0.25);
+}
+
+// ---------------------------------------------------------------------------------------
+// On real scenes (model.md §17.10): the default two-ball rotor (M_r = 0.12 kg, k = 7500 N/m,
+// U = 6e-7 kg m; balls 3.3e-5 kg at l = 18 mm, viscous d = 1e-4 N s/m) on a lightly damped
+// support. With c = 0.05 N s/m (instead of 2) the balanced state loses stability at a
+// supercritical Hopf point at omega_H = 278.0985 rad/s and its stable cycles, followed down in
+// omega, lose stability at a period doubling near 277.78 rad/s (the real multiplier of the
+// rotor's lightly damped mode passes -1). With c = 0.3 N s/m the Hopf point is at
+// 272.994 rad/s and the cycles lose stability at a Neimark-Sacker point near 272.43 rad/s (a
+// complex pair leaves the unit circle). Each branch is followed down to a bound past the point
+// with the default maximum step (0.1) and with 10 and 100 times it.
+
+namespace {
+
+abu::Params light_support(double c) {
+  abu::Params p;
+  p.rotor = {0.12, 7500.0, c, 6e-7};
+  p.omega = 2000.0;
+  p.law = abu::FrictionLaw::viscous;
+  p.kappa = 1e3;
+  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-4, 0.0, 0.0, 0.0};
+  return p;
+}
+
+// PD: the real multiplier closest to -1, its distance from -1 signed (> 0 inside).
+// NS: the complex multiplier closest to the unit circle, 1 - |mu| (> 0 inside).
+double crossing_margin(const abu::CycleOrbit& o, bool pd) {
+  double best = 1e300, margin = 0;
+  for (auto m : o.multipliers) {
+    const bool complex = std::abs(m.imag()) > 1e-9;
+    if (pd && !complex && std::abs(m.real() + 1) < best) best = std::abs(m.real() + 1), margin = m.real() + 1;
+    if (!pd && complex && std::abs(std::abs(m) - 1) < best) best = std::abs(std::abs(m) - 1), margin = 1 - std::abs(m);
+  }
+  return margin;
+}
+
+// Follows the cycles of the balanced state's Hopf point down to `bound` at three maximum
+// steps: the point `label` found exactly once and no other, and its location checked on
+// orbits corrected at fixed omega.
+void crossing_at_any_step(double c, double hopf, double bound, const char* label, double near_value) {
+  const abu::Params p = light_support(c);
+  const abu::ParamRef omega = *abu::parse_param("omega", 2);
+  abu::StartSelection sel;
+  sel.family = abu::Family::balanced;
+  const abu::ContinuationRun run = abu::continue_branches(p, omega, 20.0, {}, sel);
+  const abu::SpecialPoint* hb = nullptr;
+  for (const auto& b : run.branches)
+    for (const auto& s : b.specials)
+      if (s.label == abu::Label::HB && s.converged && !hb) hb = &s;
+  REQUIRE(hb);
+  CHECK(std::abs(double(hb->parameter) - hopf) < 1e-3);
+  CHECK(hb->lyapunov < 0);  // supercritical: stable cycles below omega_H
+  const bool pd = std::string(label) == "PD";
+  for (const double ds_max : {0.1, 1.0, 10.0}) {
+    INFO(label << ", ds_max " << ds_max);
+    abu::CycleOptions o;
+    o.continuation.ds_max = ds_max;
+    o.continuation.max_steps = 1000;
+    const abu::CycleBranch br = abu::continue_cycles(p, omega, *hb, bound, 2000.0, o);
+    INFO(br.reason);
+    REQUIRE(br.end == abu::arclength::End::end_of_interval);
+    int found = 0;
+    double where = 0;
+    for (const auto& s : br.specials) {
+      CHECK(s.label == label);  // nothing else on this stretch
+      if (s.label == label) ++found, where = s.parameter;
+    }
+    REQUIRE(found == 1);
+    CHECK(std::abs(where - near_value) < 0.05);
+    // Independent of the interpolation between orbits: the orbit corrected at the located
+    // omega has its multiplier on the circle (PD: at -1) to the location's error times the
+    // multiplier's rate (~0.8 per rad/s for the PD, ~2.3 for the NS pair's modulus; the
+    // interpolation between orbits whose multipliers moved at most max_multiplier_jump = 0.25
+    // is off by about 1e-3 rad/s at the largest steps): margin < 1e-2. And 0.02 rad/s above
+    // it the multiplier is inside, 0.02 below outside: the crossing is there.
+    const abu::CycleOrbit* nearest = &br.orbits.front();
+    for (const auto& orbit : br.orbits)
+      if (std::abs(orbit.parameter - where) < std::abs(nearest->parameter - where)) nearest = &orbit;
+    abu::CycleOrbit guess = *nearest;
+    double margin[3];
+    const double at[3] = {where, where + 0.02, where - 0.02};
+    for (int k = 0; k < 3; ++k) {
+      guess.parameter = at[k];
+      const abu::CycleCorrection fixed = abu::correct_cycle(p, omega, *hb, guess, bound - 1.0, 2000.0, o);
+      INFO(fixed.reason);
+      REQUIRE(fixed.status.ok());
+      margin[k] = crossing_margin(fixed.orbit, pd);
+    }
+    INFO("at " << where << ": margin " << margin[0] << ", " << margin[1] << " above, " << margin[2] << " below");
+    CHECK(std::abs(margin[0]) < 1e-2);
+    CHECK(margin[1] > 0);
+    CHECK(margin[2] < 0);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("period doubling on a real scene: detected once and located at any maximum step", "[cycles][detection]") {
+  crossing_at_any_step(0.05, 278.0985, 277.5, "PD", 277.78);
+}
+
+TEST_CASE("Neimark-Sacker on a real scene: detected once and located at any maximum step", "[cycles][detection]") {
+  crossing_at_any_step(0.3, 272.994, 272.2, "NS", 272.43);
 }

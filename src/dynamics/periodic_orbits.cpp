@@ -97,6 +97,7 @@ class Integrator {
     gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(flow_.dimension()), &c};
     return flow_.run(sys, 0.0, y, h, targets, at_target, why);
   }
+  long steps() const { return flow_.steps(); }
 
  private:
   detail::FlowIntegrator flow_;
@@ -160,6 +161,27 @@ HopfPrediction predict_from_hopf(const Params& p0, ParamRef ref, const SpecialPo
 
 namespace {
 
+// The scaling D (model.md §17.2) and the stepper at a Hopf point: the implicit
+// extrapolation stepper when the ball modes are far faster than the orbit (stiff).
+struct ShootingSetup {
+  Eigen::Matrix<double, kDim, 1> scale;
+  const gsl_odeiv2_step_type* type;
+};
+ShootingSetup shooting_setup(const Params& p0, ParamRef ref, const SpecialPoint& hopf) {
+  Params p = p0;
+  const double w = hopf.frequency;
+  set(p, ref, double(hopf.parameter));
+  const State8 xH = at_rest<double, 2>(Coordinates<double, 2>(hopf.position.cast<double>()));
+  ShootingSetup s;
+  const double L = displacement_scale(p);
+  s.scale << L, L, 1, 1, L * w, L * w, w, w;
+  const Eigen::MatrixXd JH = jacobian(p, xH);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(JH, false);
+  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
+  s.type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
+  return s;
+}
+
 using Evaluated = detail::ShootingEvaluation;
 
 template <bool Chord>
@@ -177,7 +199,11 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
                const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
       : detail::ShootingSystem<CycleProblem<Chord>>(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h),
-        m_(o.intervals), full_(type, kAugmented, o.rtol), state_(type, kDim, o.rtol) {
+        m_(o.intervals),
+        // Full Newton takes its residuals from the variational pass: one tolerance then.
+        newton_(type, kAugmented, Chord ? std::max(o.newton_rtol, o.rtol) : o.rtol),
+        floquet_(type, kAugmented, Chord ? std::max(o.floquet_rtol, o.rtol) : o.rtol),
+        state_(type, kDim, o.rtol) {
     ctx_.p = p;
     ctx_.ref = ref;
     ctx_.scale = scale;
@@ -219,9 +245,22 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     return false;
   }
 
-  // Full evaluation at u (cached): residual, Jacobian, transition matrices.
+  // A converged orbit: the state-only residual at u is at the integration's noise (the
+  // corrector has just accepted u). Its transition matrices give the multipliers.
+  bool converged_orbit(const Vec& u) const {
+    return plain_.ok && plain_.u.size() == u.size() && plain_.u == u &&
+           plain_.residual.cwiseAbs().maxCoeff() <= 1e3 * o_.rtol;
+  }
+
+  // Full evaluation at u (cached): residual, Jacobian, transition matrices. With the chord
+  // corrector the variational equations are integrated to floquet_rtol at a converged orbit
+  // (the multipliers, the tangent) and to newton_rtol elsewhere (the predicted orbit, whose
+  // Newton matrix only sets the chord iteration's contraction: model.md §17.8).
   const Evaluated& at(const Vec& u) const {
-    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
+    const bool accurate = Chord && converged_orbit(u);
+    if (cache_.u.size() == u.size() && cache_.u == u && (cache_accurate_ || !accurate)) return cache_;
+    cache_accurate_ = accurate;
+    Integrator& full = accurate ? floquet_ : newton_;
     Evaluated& e = cache_;
     const int n = size();
     e.jacobian = Jacobian::Zero(n - 1, n);
@@ -233,7 +272,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       std::fill(y.begin(), y.end(), 0.0);
       for (int i = 0; i < kDim; ++i) y[std::size_t(i)] = u(kDim * j + i), y[std::size_t(kDim * (1 + i) + i)] = 1.0;
       std::string_view why;
-      if (!full_.run(ctx_, y.data(), h, {h}, {}, why)) {
+      if (!full.run(ctx_, y.data(), h, {h}, {}, why)) {
         e.ok = false;
         e.why = why;
         e.residual.setConstant(1e300);
@@ -259,11 +298,10 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     return e;
   }
 
-  // The residual alone: from the full evaluation if u has one, else from flows of the
-  // state only (the chord corrector's iterations).
+  // The residual alone: with the chord corrector from flows of the state only, at rtol
+  // (the full evaluation's residual is at the variational tolerance, which may be looser).
   const Evaluated& residual_at(const Vec& u) const {
     if constexpr (!Chord) return at(u);
-    if (cache_.u.size() == u.size() && cache_.u == u) return cache_;
     if (plain_.u.size() == u.size() && plain_.u == u) return plain_;
     Evaluated& e = plain_;
     if (!begin(e, u, false)) return e;
@@ -374,10 +412,35 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     set_phase(u);
   }
 
+  // The unknowns of the orbit through x(0) = state0 (SI) with period T at parameter p:
+  // its M points from a state-only integration of one period.
+  bool unknowns_from(const std::vector<double>& state0, double T, double p, Vec& u) const {
+    if (state0.size() != std::size_t(kDim) || !(T > 0)) return false;
+    u.resize(size());
+    u(period_index()) = T / period_h_;
+    u(param_index()) = (p - from_) / (to_ - from_);
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, p);
+    double y[kDim];
+    for (int i = 0; i < kDim; ++i) y[i] = state0[std::size_t(i)] / ctx_.scale(i);
+    std::vector<double> targets;
+    for (int j = 1; j <= m_; ++j) targets.push_back(T * j / m_);
+    int j = 0;
+    for (int i = 0; i < kDim; ++i) u(i) = y[i];
+    std::string_view why;
+    return state_.run(ctx_, y, T, targets, [&](const double* s) {
+      if (++j < m_)
+        for (int i = 0; i < kDim; ++i) u(kDim * j + i) = s[i];
+    }, why);
+  }
+
   std::vector<CycleOrbit> orbits_;
   std::vector<CycleSpecial> specials_;
   long flows() const { return flows_; }
   long state_flows() const { return state_flows_; }
+  long state_steps() const { return state_.steps(); }
+  long newton_steps() const { return newton_.steps(); }
+  long floquet_steps() const { return floquet_.steps(); }
   const FlowContext& context() const { return ctx_; }
 
  private:
@@ -414,9 +477,10 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   double from_, to_, period_h_;
   int m_;
   mutable FlowContext ctx_;
-  mutable Integrator full_;
+  mutable Integrator newton_, floquet_;
   mutable Integrator state_;
   mutable Evaluated cache_, plain_;
+  mutable bool cache_accurate_ = false;
   mutable long flows_ = 0, state_flows_ = 0;
   Eigen::Matrix<double, kDim, 1> y_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
   Eigen::Matrix<double, kDim, 1> f_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
@@ -456,19 +520,9 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
     return fail(Outcome::numerical_issue, fmt::format("degenerate Hopf point at {} = {:.10g}: l1 = {:g}, dRe(lambda)/dp = {:g}",
                                                       to_string(ref), out.hopf_parameter, hopf.lyapunov, pred.slope));
   Params p = p0;
-  const double pH = out.hopf_parameter, w = hopf.frequency;
-  set(p, ref, pH);
-  const Coordinates<double, 2> s = hopf.position.cast<double>();
-  const State8 xH = at_rest<double, 2>(s);
-  // Scaling D (model.md §17.2).
-  Eigen::Matrix<double, kDim, 1> D;
-  const double L = displacement_scale(p);
-  D << L, L, 1, 1, L * w, L * w, w, w;
-  // Stiff (ball modes far faster than the orbit): the implicit extrapolation stepper.
-  const Eigen::MatrixXd JH = jacobian(p, xH);
-  Eigen::EigenSolver<Eigen::MatrixXd> es(JH, false);
-  const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
-  const gsl_odeiv2_step_type* type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
+  const double w = hopf.frequency;
+  set(p, ref, out.hopf_parameter);
+  const auto [D, type] = shooting_setup(p0, ref, hopf);
 
   if (o.chord_corrector) {
     CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
@@ -476,6 +530,45 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
   }
   CycleProblem<false> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
   return trace_cycles(problem, p, ref, hopf, pred, from, to, o, D, std::move(out));
+}
+
+CycleCorrection correct_cycle(const Params& p0, ParamRef ref, const SpecialPoint& hopf, const CycleOrbit& guess,
+                              double from, double to, const CycleOptions& o) {
+  quiet_gsl_errors();
+  CycleCorrection out;
+  if (from > to) std::swap(from, to);
+  if (hopf.label != Label::HB || !(hopf.frequency > 0) || !(guess.parameter >= from && guess.parameter <= to)) {
+    out.status.merge(Outcome::numerical_issue, "see reason");
+    out.reason = "not a Hopf point with a positive frequency, or the guess outside [from, to]";
+    return out;
+  }
+  const auto [D, type] = shooting_setup(p0, ref, hopf);
+  CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / hopf.frequency, o, type, D);
+  Eigen::VectorXd u;
+  if (!problem.unknowns_from(guess.state0, guess.period, guess.parameter, u)) {
+    out.status.merge(Outcome::numerical_issue, "see reason");
+    out.reason = "the guess could not be integrated over its period";
+    return out;
+  }
+  problem.set_phase(u);
+  Eigen::VectorXd fixed = Eigen::VectorXd::Zero(u.size());
+  fixed(problem.param_index()) = 1;  // the parameter held at the guess's value
+  // The chord corrector from a guess farther than one continuation step (another
+  // parameter value) may run out of iterations while still contracting: restarted from its
+  // last iterate, with the Newton matrix there, a few times (the parameter stays fixed).
+  auto c = arclength::correct(problem, u, fixed);
+  for (int restart = 0; restart < 4 && !c.converged() && c.status == Outcome::not_converged && c.u.allFinite(); ++restart)
+    c = arclength::correct(problem, Eigen::VectorXd(c.u), fixed);
+  if (!c.converged()) {
+    out.status.merge(c.status, "see reason");
+    out.reason = std::string("the corrector did not converge: ") + std::string(c.reason);
+    return out;
+  }
+  problem.evaluate(c.u, fixed, c.jacobian, arclength::Stage::start);
+  Eigen::VectorXd uu = c.u, t = fixed;
+  problem.commit(uu, t, arclength::Stage::start);
+  out.orbit = problem.orbits_.back();
+  return out;
 }
 
 namespace {
@@ -538,6 +631,9 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
   out.newton_iterations = r.stats.newton_iterations;
   out.flow_evaluations = problem.flows();
   out.state_flow_evaluations = problem.state_flows();
+  out.state_steps = problem.state_steps();
+  out.newton_steps = problem.newton_steps();
+  out.floquet_steps = problem.floquet_steps();
   if (r.end != arclength::End::end_of_interval) {
     out.status.merge(r.status == Outcome::converged ? Outcome::converged : r.status, "see reason");
     const double last = out.orbits.empty() ? pH : out.orbits.back().parameter;

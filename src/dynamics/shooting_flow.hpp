@@ -35,6 +35,7 @@ class FlowIntegrator {
   FlowIntegrator(const FlowIntegrator&) = delete;
   FlowIntegrator& operator=(const FlowIntegrator&) = delete;
   int dimension() const { return dim_; }
+  long steps() const { return steps_; }  ///< steps taken so far (accepted and rejected)
   // Integrates y of `sys` from t0 to t0 + h, stopping at every t0 + target in between
   // (targets ascending, the last h); false with why.
   bool run(gsl_odeiv2_system& sys, double t0, double* y, double h, const std::vector<double>& targets,

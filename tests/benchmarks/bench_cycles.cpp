@@ -1,13 +1,21 @@
-// Cost per orbit of cycle continuation (docs/developers.md "Periodic orbits: benchmark"):
-// the viscous two-ball scene (the default rotor, viscous d = 1e-4), the cycle branch of its
-// Hopf point at omega_H = 281.31 rad/s, 30 steps, integrator rtol 1e-13, in four configurations
-// in one run: M = 40 with full Newton (the method before the chord corrector), then the chord
-// corrector (model.md §17.7) at M = 40, 20 and 10. Optional second argument: one configuration.
-// Prints CPU seconds per orbit (process CPU time: the machine is shared), flows, Newton
-// iterations, and the fast rotor multiplier pair of the last orbit.
-//   build/tests/benchmarks/bench_cycles [steps]
+// Cost per orbit of cycle continuation against its error (docs/developers.md "Periodic
+// orbits: benchmark", model.md §17.9): the viscous two-ball scene (the default rotor, viscous
+// d = 1e-4), the cycle branch of its Hopf point at omega_H = 281.31 rad/s.
+//
+// 1. A reference branch (M = 40, every tolerance 1e-14, chord corrector) of `steps` steps;
+//    the reference orbit is its orbit number `steps / 2` (away from the fold of cycles, where
+//    an orbit at a fixed parameter is ill-conditioned).
+// 2. Per configuration (intervals, Newton, tolerances of the state, of the Newton matrix's
+//    and of the Floquet transition matrices): CPU time per orbit over a branch of `steps`
+//    steps, and the same configuration's orbit at the reference orbit's parameter
+//    (correct_cycle from the reference orbit): its period's and its multipliers' errors
+//    against the reference orbit. AUTO-07p's figure for comparison: 7.7 ms per orbit (NTST = 50,
+//    NCOL = 4, one thread, period to 1e-11; issue 14, not rebuilt here).
+// Process CPU time (the machine is shared). Optional second argument: one configuration.
+//   build/tests/benchmarks/bench_cycles [steps] [configuration, -1 all] [light]
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <iterator>
@@ -16,54 +24,105 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/dynamics/periodic_orbits.hpp"
 
+namespace {
+
+struct Config {
+  int intervals;
+  bool chord;
+  double rtol, newton_rtol, floquet_rtol;
+};
+
+abu::CycleOptions options(const Config& cf, int steps) {
+  abu::CycleOptions o;
+  o.continuation.max_steps = steps;
+  o.intervals = cf.intervals;
+  o.chord_corrector = cf.chord;
+  o.rtol = cf.rtol;
+  o.newton_rtol = cf.newton_rtol;
+  o.floquet_rtol = cf.floquet_rtol;
+  return o;
+}
+
+// Largest relative error of the multipliers (both sorted by modulus, descending).
+double multiplier_error(const abu::CycleOrbit& a, const abu::CycleOrbit& ref) {
+  if (a.multipliers.size() != ref.multipliers.size()) return INFINITY;
+  double worst = 0;
+  for (std::size_t k = 0; k < a.multipliers.size(); ++k)
+    worst = std::max(worst, std::abs(a.multipliers[k] - ref.multipliers[k]) / std::abs(ref.multipliers[k]));
+  return worst;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   abu::Params p;
-  p.rotor = {0.12, 7500.0, 2.0, 6e-7};
-  p.omega = 900.0;
+  // Third argument "light": the lightly damped support of model.md §17.10 (c = 0.05 N s/m),
+  // whose orbits are well conditioned at a fixed omega (no fold of cycles nearby).
+  const bool light = argc > 3 && std::string(argv[3]) == "light";
+  p.rotor = {0.12, 7500.0, light ? 0.05 : 2.0, 6e-7};
+  p.omega = light ? 2000.0 : 900.0;
   p.law = abu::FrictionLaw::viscous;
   p.kappa = 1e3;
   for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-4, 0.0, 0.0, 0.0};
   const abu::ParamRef omega = *abu::parse_param("omega", 2);
   abu::StartSelection sel;
   sel.family = abu::Family::balanced;
-  const abu::ContinuationRun run = abu::continue_branches(p, omega, 50.0, {}, sel);
+  const abu::ContinuationRun run = abu::continue_branches(p, omega, light ? 20.0 : 50.0, {}, sel);
   const abu::SpecialPoint* hb = nullptr;
   for (const auto& b : run.branches)
     for (const auto& s : b.specials)
       if (s.label == abu::Label::HB && s.converged && !hb) hb = &s;
   if (!hb) return fmt::print(stderr, "no Hopf point\n"), 1;
   const int steps = argc > 1 ? std::stoi(argv[1]) : 30;
-  // Configurations: (intervals, chord corrector); the first is the method before the chord
-  // corrector (full Newton, M = 40).
-  struct Config {
-    int intervals;
-    bool chord;
-  };
-  const Config configs[] = {{40, false}, {40, true}, {20, true}, {10, true}};
   const int only = argc > 2 ? std::stoi(argv[2]) : -1;  // one configuration (for a profiler)
+
+  const Config reference{40, true, 1e-14, 1e-14, 1e-14};
+  abu::CycleOrbit ref;
+  if (only < 0) {
+    const abu::CycleBranch r = abu::continue_cycles(p, omega, *hb, 50.0, 900.0, options(reference, steps));
+    if (r.orbits.size() < 3) return fmt::print(stderr, "reference branch: {}\n", r.reason), 1;
+    ref = r.orbits[r.orbits.size() / 2];
+    fmt::print("reference orbit (M 40, tolerances 1e-14): omega {:.17g} rad/s, period {:.17g} s, amplitude {:.10g} m, "
+               "trivial |mu - 1| {:.2e}\n",
+               ref.parameter, ref.period, ref.amplitude, ref.trivial_distance);
+    for (std::size_t k = 0; k < ref.multipliers.size(); ++k)
+      fmt::print("  mu{} = {:.14g} {:+.14g} i   |mu| = {:.8g}\n", k + 1, ref.multipliers[k].real(),
+                 ref.multipliers[k].imag(), std::abs(ref.multipliers[k]));
+  }
+
+  // (intervals, chord, rtol of the state, of the Newton matrix, of the Floquet matrices)
+  const Config configs[] = {
+      {40, false, 1e-13, 1e-13, 1e-13},  // full Newton, one tolerance (before the chord corrector)
+      {40, true, 1e-13, 1e-13, 1e-13},   // chord, one tolerance (before model.md §17.8)
+      {40, true, 1e-13, 1e-6, 1e-11},    // chord, split tolerances
+      {20, true, 1e-13, 1e-6, 1e-11},
+      {10, true, 1e-13, 1e-6, 1e-11},
+      {10, true, 1e-12, 1e-6, 1e-10},
+      {10, true, 1e-11, 1e-6, 1e-10},
+  };
+  fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | x AUTO 7.7 ms | period error | "
+             "multiplier error | steps per orbit (state / Newton / Floquet) | Newton it. per orbit | orbits |\n"
+             "|---|---|---|---|---|---|---|---|---|---|\n");
   for (int ci = 0; ci < int(std::size(configs)); ++ci) {
     if (only >= 0 && ci != only) continue;
     const Config& cf = configs[ci];
-    abu::CycleOptions o;
-    o.continuation.max_steps = steps;
-    o.intervals = cf.intervals;
-    o.chord_corrector = cf.chord;
+    const abu::CycleOptions o = options(cf, steps);
     const std::clock_t c0 = std::clock();
     const abu::CycleBranch c = abu::continue_cycles(p, omega, *hb, 50.0, 900.0, o);
     const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-    const std::size_t n = c.orbits.size();
-    fmt::print("M {} {}: orbits {}, CPU {:.3f} s, {:.1f} ms per orbit; flows {} ({:.0f} per orbit) + state-only {} ({:.0f} "
-               "per orbit), Newton iterations {}\n",
-               cf.intervals, cf.chord ? "chord" : "full Newton", n, cpu, 1e3 * cpu / double(n), c.flow_evaluations,
-               double(c.flow_evaluations) / double(n), c.state_flow_evaluations, double(c.state_flow_evaluations) / double(n),
-               c.newton_iterations);
-    if (n == 0) return 1;
-    const abu::CycleOrbit& last = c.orbits.back();
-    fmt::print("  last orbit: omega {:.17g}, period {:.15g} s, amplitude {:.6g} m, trivial |mu - 1| {:.2e}\n",
-               last.parameter, last.period, last.amplitude, last.trivial_distance);
-    for (std::size_t k = 0; k < last.multipliers.size(); ++k)
-      fmt::print("    mu{} = {:.10g} {:+.10g} i   |mu| = {:.6g}\n", k + 1, last.multipliers[k].real(),
-                 last.multipliers[k].imag(), std::abs(last.multipliers[k]));
+    const double n = double(c.orbits.size());
+    if (c.orbits.empty()) return fmt::print(stderr, "configuration {}: {}\n", ci, c.reason), 1;
+    std::string period_error = "-", mult_error = "-";
+    if (only < 0) {
+      const abu::CycleCorrection at = abu::correct_cycle(p, omega, *hb, ref, 50.0, 900.0, o);
+      if (!at.status.ok()) return fmt::print(stderr, "configuration {} at the reference: {}\n", ci, at.reason), 1;
+      period_error = fmt::format("{:.1e}", std::abs(at.orbit.period / ref.period - 1));
+      mult_error = fmt::format("{:.1e}", multiplier_error(at.orbit, ref));
+    }
+    fmt::print("| {} | {} | {:.0e} / {:.0e} / {:.0e} | {:.2f} | {:.2f} | {} | {} | {:.0f} / {:.0f} / {:.0f} | {:.1f} | {} |\n",
+               cf.intervals, cf.chord ? "chord" : "full", cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
+               cf.chord ? cf.floquet_rtol : cf.rtol, 1e3 * cpu / n, 1e3 * cpu / n / 7.7, period_error, mult_error,
+               double(c.state_steps) / n, double(c.newton_steps) / n, double(c.floquet_steps) / n, double(c.newton_iterations) / n, c.orbits.size());
   }
   return 0;
 }

@@ -33,7 +33,13 @@ struct CycleOptions {
   /// Newton's matrix kept from the predicted orbit, the iterations integrating the state
   /// only (model.md §17.6); false: full Newton, the variational equations every iteration.
   bool chord_corrector = true;
-  double rtol = 1e-13;         ///< integrator tolerance on the scaled state and transition matrices
+  double rtol = 1e-13;         ///< integrator tolerance on the scaled state (the residuals: the orbit's accuracy)
+  /// Tolerances of the variational equations (model.md §17.8), never tighter than rtol:
+  /// the chord corrector's Newton matrix at the predicted orbit (it sets only the corrector's
+  /// contraction rate, not the orbit), and the transition matrices at a converged orbit (its
+  /// Floquet multipliers and the next tangent). Used by the chord corrector only.
+  double newton_rtol = 1e-6;
+  double floquet_rtol = 1e-11;
   /// Scaled amplitude |z| ||D^-1 q_H|| of the first orbit (model.md (17.3)): small enough
   /// for the normal form, large enough to stay off the Hopf point's singular Jacobian.
   double first_amplitude = 2e-3;
@@ -83,12 +89,28 @@ struct CycleBranch {
   long steps = 0, newton_iterations = 0;
   long flow_evaluations = 0;        ///< interval flows with the variational equations (8 + 72 components)
   long state_flow_evaluations = 0;  ///< interval flows of the state alone (the chord corrector's residuals)
+  /// Integrator steps (accepted and rejected) over the whole branch: the state alone, the
+  /// variational equations for the Newton matrix, for the Floquet multipliers.
+  long state_steps = 0, newton_steps = 0, floquet_steps = 0;
 };
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in
 /// `param` and follows it within [from, to] (either order).
 CycleBranch continue_cycles(const Params& p, ParamRef param, const SpecialPoint& hopf, double from, double to,
                             const CycleOptions& options);
+
+/// One orbit at the fixed parameter value guess.parameter (within [from, to]), corrected
+/// from `guess` (its state0 and period: an orbit of a branch, perhaps computed with other
+/// options) with the options' intervals and tolerances; the Hopf point of the branch gives
+/// the scaling (model.md §17.2). The orbit's multipliers as on a branch. For comparing
+/// options at one parameter (the speed against error table, model.md §17.9).
+struct CycleCorrection {
+  CycleOrbit orbit;
+  Status status;
+  std::string reason;  ///< why it did not converge
+};
+CycleCorrection correct_cycle(const Params& p, ParamRef param, const SpecialPoint& hopf, const CycleOrbit& guess,
+                              double from, double to, const CycleOptions& options);
 
 /// The normal-form prediction at a Hopf point: the orbit x_H + 2 Re(z q e^{i w t}) at
 /// p_H + dp, q the critical eigenvector with <q, q> = 1 (model.md (17.3)); false if the
