@@ -356,10 +356,16 @@ Action add_continue_command(CLI::App& app) {
     if (o->cycles && scene.balls.size() != 2)
       throw InputError("--cycles", 0, "", fmt::format("periodic orbits are followed for two balls only (the scene has {})",
                                                       scene.balls.size()));
-    if (scene.support && scene.balls.size() != 2)
-      throw NotSupportedError(fmt::format("continue: {} has an anisotropic support and {} balls: its balanced branches "
-                                          "are continued for two balls only so far (docs/model.md §10.13)",
-                                          scene.file, scene.balls.size()));
+    if (scene.support && scene.balls.size() != 2) {  // balanced samples with Floquet multipliers (model.md §10.16)
+      if (o->cycles || !o->param2.empty() || !o->state.empty() || !o->family.empty())
+        throw InputError(o->cycles ? "--cycles" : !o->param2.empty() ? "--param2" : !o->state.empty() ? "--from-state"
+                                                                                                      : "--family",
+                         0, "", "with an anisotropic support only the balanced samples are continued (model.md §10.16)");
+      const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
+      if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
+      check_moves(params_of<any_balls>(scene), param, o->to, "--to", o->param);
+      return continue_anisotropic_n(scene, o->scene, param, o->to, o->numerics, o->sampling, o->chart, o->output_dir);
+    }
     if (scene.balls.size() != 2) return continue_any_balls(scene, *o);
     const ParamRef param = checked_param(scene, "--param", o->param, "--to", o->to);
     if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);

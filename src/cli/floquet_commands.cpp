@@ -2,6 +2,8 @@
 // command's options and io's floquet_sweep.
 #include "floquet_commands.hpp"
 
+#include "campbell_aniso.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,9 +17,19 @@ namespace abu::cli {
 
 namespace {
 constexpr double kFloquetBranchStep = 0.005;  // scaled arclength: the interval is 1
+}  // namespace
 
-// The sweep's outputs: the CSVs, the chart and the crossings on stderr (`stem`: "sweep" or
-// "floquet_branch", the file names' and the chart's first word).
+ContinuationOptions floquet_branch_numerics(const ContinuationOptions& numerics) {
+  // A crossing is found where ln max|rho| changes sign between branch points, and the
+  // engine's steps follow the branch's geometry, not the multipliers: with the default
+  // step bound (0.2 of the interval) a window of instability a few % wide is stepped over.
+  // Unless --ds-max is given, points at most 1/200 of the interval apart (§10.13).
+  ContinuationOptions dense = numerics;
+  if (dense.ds_max == ContinuationOptions{}.ds_max) dense.ds_max = kFloquetBranchStep;
+  dense.ds = std::min(dense.ds, dense.ds_max);
+  return dense;
+}
+
 int write_floquet_outputs(const Scene& scene, const SceneOptions& scene_options, const FloquetSweep& s,
                           const ParamsN& base, bool logarithmic, bool chart, const std::string& output_dir,
                           const std::string& stem, const std::string& what) {
@@ -41,13 +53,16 @@ int write_floquet_outputs(const Scene& scene, const SceneOptions& scene_options,
                  {"has_crossings", s.crossings.empty() ? "0" : "1"},
                  {"title", fmt::format("{}: {} (anisotropic support: Floquet over pi/omega)", scene.file, what)},
                  {"subtitle", chart_subtitle(scene, scene_options.overrides)}});
+  // An omega sweep also gets the Campbell view of the Floquet modes (model.md §10.15).
+  const auto campbell = stem == "sweep" ? stage_floquet_campbell(out, s, base, scene, scene_options, dir, header, chart)
+                                        : std::vector<std::filesystem::path>{};
   out.commit();
   fmt::print(stderr, "{}", floquet_crossings_text(s));
   fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), crossings_path.string(),
              chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  for (const auto& f : campbell) fmt::print(stderr, "wrote {}\n", f.string());
   return exit_ok;
 }
-}  // namespace
 
 int sweep_anisotropic(const Scene& scene, const SceneOptions& scene_options, ParamRef param,
                       const std::vector<double>& values, bool logarithmic, bool chart, const std::string& output_dir,
@@ -67,14 +82,7 @@ int continue_anisotropic(const Scene& scene, const SceneOptions& scene_options, 
   const ParamsN base = params_of<any_balls>(scene);
   StartSelection start;
   start.family = Family::balanced;
-  // A crossing is found where ln max|rho| changes sign between branch points, and the
-  // engine's steps follow the branch's geometry, not the multipliers: with the default
-  // step bound (0.2 of the interval) a window of instability a few % wide is stepped over.
-  // Unless --ds-max is given, points at most 1/200 of the interval apart (§10.13).
-  ContinuationOptions dense = numerics;
-  if (dense.ds_max == ContinuationOptions{}.ds_max) dense.ds_max = kFloquetBranchStep;
-  dense.ds = std::min(dense.ds, dense.ds_max);
-  const ContinuationRun run = continue_branches(p2, param, to, dense, start);
+  const ContinuationRun run = continue_branches(p2, param, to, floquet_branch_numerics(numerics), start);
   FloquetSweepOptions options;
   FloquetSweep all;
   all.param = param;

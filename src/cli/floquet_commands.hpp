@@ -9,6 +9,7 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/params.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/io/floquet_sweep.hpp"
 #include "abu/io/scene.hpp"
 #include "cli.hpp"
 
@@ -26,5 +27,24 @@ int sweep_anisotropic(const Scene& scene, const SceneOptions& scene_options, Par
 /// floquet_crossings_NAME.csv, (chart) floquet_branch_NAME.png.
 int continue_anisotropic(const Scene& scene, const SceneOptions& scene_options, ParamRef param, double to,
                          const ContinuationOptions& numerics, bool chart, const std::string& output_dir);
+
+/// n >= 3 balls: the branches of the mean system's balanced samples (each with its free angles
+/// held, the real system's balanced states, model.md §10.16), Floquet multipliers at every
+/// point with the n - 2 unit ones deflated, and the crossings located between them; the
+/// outputs of continue_anisotropic.
+int continue_anisotropic_n(const Scene& scene, const SceneOptions& scene_options, ParamRef param, double to,
+                           const ContinuationOptions& numerics, const BalancedSampling& sampling, bool chart,
+                           const std::string& output_dir);
+
+/// The continuation options of a Floquet branch run: the step bound 0.005 unless --ds-max
+/// was given (model.md §10.13).
+ContinuationOptions floquet_branch_numerics(const ContinuationOptions& numerics);
+
+/// The Floquet outputs of a sweep or branch run: `stem`_NAME.csv, floquet_crossings_NAME.csv,
+/// (chart) `stem`_NAME.png, the crossings on stderr; for a sweep in omega also the Campbell
+/// view (campbell_aniso.hpp). `what`: the chart title's second part. Returns the exit code.
+int write_floquet_outputs(const Scene& scene, const SceneOptions& scene_options, const FloquetSweep& s,
+                          const ParamsN& base, bool logarithmic, bool chart, const std::string& output_dir,
+                          const std::string& stem, const std::string& what);
 
 }  // namespace abu::cli

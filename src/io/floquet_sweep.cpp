@@ -59,6 +59,18 @@ FloquetSweep floquet_sweep(const ParamsN& base, const AnisotropicSupport& suppor
 
 void locate_floquet_crossings(FloquetSweep& s, const ParamsN& base, const AnisotropicSupport& support,
                               const BalancedSampling& sampling, const FloquetSweepOptions& options) {
+  locate_floquet_crossings(
+      s,
+      [&](double value, int member, const FloquetOptions& o) -> std::optional<BalancedFloquet> {
+        const FloquetAnalysis a = analysis_at(base, support, s.param, value, sampling, o);
+        const int m = find_member(a, member);
+        if (m < 0) return std::nullopt;
+        return a.floquet[std::size_t(m)];
+      },
+      options);
+}
+
+void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, const FloquetSweepOptions& options) {
   // In the bisection Magnus alone (no Hill when undecided: near the root every verdict is
   // marginal); its sign of ln|rho| is followed down to the bracket tolerance, so the root is
   // as accurate as Magnus' multipliers, ~1e-11 (model.md §10.11).
@@ -84,14 +96,13 @@ void locate_floquet_crossings(FloquetSweep& s, const ParamsN& base, const Anisot
       while (c.evaluations < options.max_bisections &&
              std::abs(hi - lo) > options.bracket_tolerance * std::max(std::abs(lo), std::abs(hi))) {
         const double mid = 0.5 * (lo + hi);
-        const FloquetAnalysis a = analysis_at(base, support, s.param, mid, sampling, bisecting);
+        const std::optional<BalancedFloquet> at = floquet_at(mid, member, bisecting);
         ++c.evaluations;
-        const int m = find_member(a, member);
-        if (m < 0) {
+        if (!at) {
           lost = true;
           break;
         }
-        const BalancedFloquet& f = a.floquet[std::size_t(m)];
+        const BalancedFloquet& f = *at;
         const double g = growth(f);
         if (g == 0.0) {
           lo = hi = mid, f_lo = f_hi = f, g_lo = g_hi = 0.0;

@@ -10,21 +10,26 @@
 
 namespace abu {
 
+Eigen::MatrixXd balanced_normal_basis(const ParamsN& p, const EquilibriumN& e) {
+  // V_T = (tangent, 0): J(t) V_T = 0 for every t (no q components), so in the basis
+  // [V_T, V_N] J(t) is block upper triangular and the normal block carries the rest.
+  const TangentBasis T = balanced_tangent_basis(p, e.position);
+  const Eigen::Index d = e.position.size(), m = T.cols();
+  Eigen::MatrixXd VT = Eigen::MatrixXd::Zero(2 * d, m);
+  VT.topRows(d) = T.cast<double>();
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(VT);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(2 * d, 2 * d);
+  return Q.rightCols(2 * d - m);
+}
+
 BalancedFloquet balanced_floquet(const ParamsN& p, const AnisotropicSupport& support, const EquilibriumN& e,
                                  const FloquetOptions& options) {
   PeriodicJacobian J = balanced_periodic_jacobian(p, support, e.position);
   BalancedFloquet f;
   if (e.on_balanced_set) {
-    // V_T = (tangent, 0): J(t) V_T = 0 for every t (no q components), so in the basis
-    // [V_T, V_N] J(t) is block upper triangular and the normal block carries the rest.
-    const TangentBasis T = balanced_tangent_basis(p, e.position);
-    const Eigen::Index d = e.position.size(), m = T.cols();
-    Eigen::MatrixXd VT = Eigen::MatrixXd::Zero(2 * d, m);
-    VT.topRows(d) = T.cast<double>();
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(VT);
-    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(2 * d, 2 * d);
-    J = restricted(J, Q.rightCols(2 * d - m));
-    f.deflated = int(m);
+    const Eigen::MatrixXd VN = balanced_normal_basis(p, e);
+    f.deflated = int(VN.rows() - VN.cols());
+    J = restricted(J, VN);
   }
   // max |rho - rho_check| / max(|rho|, floor), nearest unused partner for each rho.
   auto deviation = [&](const std::vector<std::complex<double>>& primary, const std::vector<std::complex<double>>& check) {

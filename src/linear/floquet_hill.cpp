@@ -21,13 +21,16 @@ using cd = std::complex<double>;
 
 struct Selection {
   std::vector<cd> exponents;
+  std::vector<Eigen::MatrixXcd> vectors;  // with keep_vectors: dim x (2N + 1), harmonic first[i] + j
+  std::vector<int> first;
   bool ok = false;
 };
 
 template <class R>
 Selection solve_hill(const Eigen::Matrix<std::complex<R>, Eigen::Dynamic, Eigen::Dynamic>& J0,
                      const Eigen::Matrix<std::complex<R>, Eigen::Dynamic, Eigen::Dynamic>& Jp,
-                     const Eigen::Matrix<std::complex<R>, Eigen::Dynamic, Eigen::Dynamic>& Jm, double omega, int N) {
+                     const Eigen::Matrix<std::complex<R>, Eigen::Dynamic, Eigen::Dynamic>& Jm, double omega, int N,
+                     bool keep_vectors) {
   using cl = std::complex<R>;
   using MatrixXcl = Eigen::Matrix<cl, Eigen::Dynamic, Eigen::Dynamic>;
   const Eigen::Index n = J0.rows();
@@ -72,8 +75,20 @@ Selection solve_hill(const Eigen::Matrix<std::complex<R>, Eigen::Dynamic, Eigen:
   for (std::size_t i = first; i < first + std::size_t(n); ++i) {
     const cd lambda(double(es.eigenvalues()(order[i]).real()), double(es.eigenvalues()(order[i]).imag()));
     // Im lambda modulo 2 omega into (-omega, omega].
-    const double im = lambda.imag() - 2.0 * omega * std::ceil((lambda.imag() - omega) / (2.0 * omega));
+    const double shift = std::ceil((lambda.imag() - omega) / (2.0 * omega));
+    const double im = lambda.imag() - 2.0 * omega * shift;
     sel.exponents.push_back({lambda.real(), im});
+    if (keep_vectors) {
+      // lambda - 2 i omega m carries the same motion with every harmonic index raised by m.
+      Eigen::MatrixXcd x(n, blocks);
+      for (Eigen::Index b = 0; b < blocks; ++b)
+        for (Eigen::Index r = 0; r < n; ++r) {
+          const auto& c = es.eigenvectors()(b * n + r, order[i]);
+          x(r, b) = cd(double(c.real()), double(c.imag()));
+        }
+      sel.vectors.push_back(std::move(x));
+      sel.first.push_back(-N + int(shift));
+    }
   }
   sel.ok = true;
   return sel;
@@ -146,7 +161,7 @@ HillResult hill_in(const PeriodicJacobian& J, const HillOptions& options) {
   std::vector<cd> previous;
   for (int N = options.first_harmonics; N <= options.max_harmonics; N += options.harmonics_step) {
     throw_if_stopped("Hill's method (Floquet multipliers)");
-    Selection s = solve_hill<R>(J0, Jp, Jm, J.omega, N);
+    Selection s = solve_hill<R>(J0, Jp, Jm, J.omega, N, options.keep_vectors);
     r.harmonics = N;
     if (!s.ok) {
       r.status = {Outcome::numerical_issue,
@@ -161,6 +176,8 @@ HillResult hill_in(const PeriodicJacobian& J, const HillOptions& options) {
     for (std::size_t i = 0; i < rho.size(); ++i) both.push_back({rho[i], s.exponents[i]});
     floquet_order(rho);
     std::vector<cd> lam;
+    r.vectors.clear();
+    r.first_harmonic.clear();
     for (const cd& x : rho) {
       auto it = std::min_element(both.begin(), both.end(), [&](const auto& a, const auto& b) {
         return std::abs(a.first - x) < std::abs(b.first - x);
@@ -168,6 +185,12 @@ HillResult hill_in(const PeriodicJacobian& J, const HillOptions& options) {
       cd l = it->second;
       if (x.imag() == 0.0) l = {l.real(), x.real() >= 0.0 ? 0.0 : J.omega};  // a real multiplier: Im exact
       lam.push_back(l);
+      if (options.keep_vectors) {
+        const std::size_t at = std::size_t(it - both.begin());
+        r.vectors.push_back(s.vectors[at]);
+        // Im moved from it->second's to l's by 2 omega m: the harmonics move by -m.
+        r.first_harmonic.push_back(s.first[at] + int(std::lround((it->second.imag() - l.imag()) / (2.0 * J.omega))));
+      }
     }
     r.multipliers = rho;
     r.exponents = lam;

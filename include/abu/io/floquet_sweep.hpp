@@ -10,6 +10,8 @@
 #pragma once
 
 #include <complex>
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,6 +62,13 @@ FloquetSweep floquet_sweep(const ParamsN& base, const AnisotropicSupport& suppor
 /// (model.md §10.13), whose values need not be monotone.
 void locate_floquet_crossings(FloquetSweep& s, const ParamsN& base, const AnisotropicSupport& support,
                               const BalancedSampling& sampling, const FloquetSweepOptions& options = {});
+
+/// The balanced state `member` at a parameter value, judged with the options given; nullopt
+/// where it does not exist (an existence boundary inside the bracket).
+using FloquetAt = std::function<std::optional<BalancedFloquet>(double value, int member, const FloquetOptions&)>;
+/// The same search with the states at a bisection point given by `floquet_at` (the balanced
+/// samples of an n-ball branch, model.md §10.16, whose free angles the branch holds).
+void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, const FloquetSweepOptions& options = {});
 
 /// One row per balanced state per value: the parameter, member, stability, rho_abs_max,
 /// decay_rate, method, deflated, then mult_re1, mult_im1, ... (modulus descending).

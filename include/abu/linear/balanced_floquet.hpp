@@ -65,6 +65,12 @@ struct BalancedFloquet {
   Status status;                ///< Hill's (ok when Magnus decided)
 };
 
+/// For `e` on the balanced set of n >= 3 balls: orthonormal columns V_N (2d x (2d - (n - 2)),
+/// d = n + 2) completing the set's tangent directions (tangent, 0) in the state space, so
+/// that the normal system is V_N^T J(t) V_N (§10.4). The state space's coordinates are those
+/// of J (the tangent has no q component, so J's scaling does not change it).
+Eigen::MatrixXd balanced_normal_basis(const ParamsN& p, const EquilibriumN& e);
+
 /// `e` must be a balanced state of `p` (q = 0) and `p` carry k_bar, c_bar.
 BalancedFloquet balanced_floquet(const ParamsN& p, const AnisotropicSupport& support, const EquilibriumN& e,
                                  const FloquetOptions& options = {});

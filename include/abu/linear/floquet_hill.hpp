@@ -35,6 +35,9 @@ struct HillOptions {
   /// Solve in long double (default false: double). balanced_floquet switches it on when
   /// double Hill and the Magnus monodromy disagree (the stiff coulomb laws).
   bool extended = false;
+  /// Keep the selected eigenvectors (HillResult::vectors); default false. The Campbell view
+  /// of an anisotropic support reads the mode's harmonics from them (model.md §10.15).
+  bool keep_vectors = false;
 };
 
 struct HillResult {
@@ -42,6 +45,12 @@ struct HillResult {
   std::vector<std::complex<double>> exponents;    ///< lambda [1/s], Im in (-omega, omega], same order
   int harmonics = 0;            ///< N used
   double truncation_change = 0.0;  ///< max |rho_N - rho_{N-step}| / (|rho| + tol), the convergence measure
+  /// With HillOptions::keep_vectors, one per exponent (same order): the Hill eigenvector as a
+  /// dim x (2N + 1) matrix, column j the coefficient of e^{2 i omega (first_harmonic[i] + j) t}
+  /// in x(t) = e^{lambda t} sum_j x_j e^{...}, lambda = exponents[i] (the harmonic index
+  /// follows the reduction of Im lambda into (-omega, omega]); scaled coordinates of J.
+  std::vector<Eigen::MatrixXcd> vectors;
+  std::vector<int> first_harmonic;
   Status status;
 };
 
