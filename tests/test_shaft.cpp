@@ -88,7 +88,9 @@ ShaftSpec uniform(const ShaftElement& total, int n) {
 }
 
 // The default scene's rotor with n balls, every ball different (index mix-ups cannot cancel).
-ParamsN balls(int n, FrictionLaw law, double omega) {
+// Not inlined: inlined into the loops over n below, GCC 12 -O3 reports a false
+// -Wstringop-overflow in BoundedBalls::resize.
+[[gnu::noinline]] ParamsN balls(int n, FrictionLaw law, double omega) {
   ParamsN p;
   p.rotor = {0.12, 7500.0, 2.0, 6e-7};
   p.omega = omega;

@@ -69,10 +69,10 @@ ShaftRotatingMatrices rotating_matrices(const ShaftSystem& sys) {
   Sparse mass = sys.fixed.mass;
   {
     // The balls' translating mass at the balancer node: M = M_r + sum m_i of (1.1).
-    Triplets t;
+    // (Built in one initializer: GCC 12's -Wnull-dereference flags emplace_back into an
+    // empty vector here, a false positive.)
     const double m = ball_mass_sum(sys.balancer);
-    t.emplace_back(b, b, m);
-    t.emplace_back(b + 1, b + 1, m);
+    const Triplets t{{b, b, m}, {b + 1, b + 1, m}};
     mass += from_triplets(n, n, t);
   }
   const Sparse jr = quarter_turn(n);
