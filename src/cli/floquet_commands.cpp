@@ -73,6 +73,22 @@ int sweep_anisotropic(const Scene& scene, const SceneOptions& scene_options, Par
                                fmt::format("sweep of {}", to_string(param)));
 }
 
+void append_balanced_floquet(FloquetSweep& branch, const ParamsN& base, const Scene& scene, ParamRef param,
+                             double value, EquilibriumN e, const FloquetSweepOptions& options, const char* what) {
+  ParamsN p = base;
+  set(p, param, value);
+  e.family = Family::balanced;
+  e.converged = true;
+  FloquetAnalysis a;
+  a.balanced.push_back(e);
+  a.floquet.push_back(balanced_floquet(p, *scene.support, e, options.floquet));
+  if (!a.floquet.back().status.ok())
+    throw NumericalError(fmt::format("{}={}: Floquet multipliers of balanced {} {}: {}", to_string(param), value,
+                                     what, e.member, a.floquet.back().status.reason));
+  branch.values.push_back(value);
+  branch.points.push_back(std::move(a));
+}
+
 int continue_anisotropic(const Scene& scene, const SceneOptions& scene_options, ParamRef param, double to,
                          const ContinuationOptions& numerics, bool chart, const std::string& output_dir) {
   // The balanced states are equilibria of the real system (model.md §10.3) and the mean
@@ -91,21 +107,10 @@ int continue_anisotropic(const Scene& scene, const SceneOptions& scene_options, 
     branch.param = param;
     for (const BranchPoint& point : b.points) {
       if (point.family != Family::balanced) continue;
-      ParamsN p = base;
-      set(p, param, double(point.parameter));
       EquilibriumN e;
-      e.family = Family::balanced;
       e.member = b.member;
       e.position = point.position;
-      e.converged = true;
-      FloquetAnalysis a;
-      a.balanced.push_back(e);
-      a.floquet.push_back(balanced_floquet(p, *scene.support, e, options.floquet));
-      if (!a.floquet.back().status.ok())
-        throw NumericalError(fmt::format("{}={}: Floquet multipliers of balanced branch {}: {}", to_string(param),
-                                         double(point.parameter), b.member, a.floquet.back().status.reason));
-      branch.values.push_back(double(point.parameter));
-      branch.points.push_back(std::move(a));
+      append_balanced_floquet(branch, base, scene, param, double(point.parameter), e, options, "branch");
     }
     locate_floquet_crossings(branch, base, *scene.support, {}, options);
     all.values.insert(all.values.end(), branch.values.begin(), branch.values.end());

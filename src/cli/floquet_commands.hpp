@@ -36,6 +36,13 @@ int continue_anisotropic_n(const Scene& scene, const SceneOptions& scene_options
                            const ContinuationOptions& numerics, const BalancedSampling& sampling, bool chart,
                            const std::string& output_dir);
 
+/// Appends one balanced branch point to `branch`: `e` (member, position) as a converged
+/// balanced equilibrium at param = value, with its Floquet multipliers (model.md §10.13,
+/// §10.16). A failure is a NumericalError naming the value, `what` ("branch", "sample") and
+/// the member.
+void append_balanced_floquet(FloquetSweep& branch, const ParamsN& base, const Scene& scene, ParamRef param,
+                             double value, EquilibriumN e, const FloquetSweepOptions& options, const char* what);
+
 /// The continuation options of a Floquet branch run: the step bound 0.005 unless --ds-max
 /// was given (model.md §10.13).
 ContinuationOptions floquet_branch_numerics(const ContinuationOptions& numerics);

@@ -31,22 +31,11 @@ int continue_anisotropic_n(const Scene& scene, const SceneOptions& scene_options
     FloquetSweep branch;
     branch.param = param;
     for (const BranchPointN& point : b.points) {
-      ParamsN p = base;
-      set(p, param, double(point.parameter));
       EquilibriumN e;
-      e.family = Family::balanced;
       e.member = b.member;
       e.on_balanced_set = true;
       e.position = point.position;
-      e.converged = true;
-      FloquetAnalysis a;
-      a.balanced.push_back(e);
-      a.floquet.push_back(balanced_floquet(p, *scene.support, e, options.floquet));
-      if (!a.floquet.back().status.ok())
-        throw NumericalError(fmt::format("{}={}: Floquet multipliers of balanced sample {}: {}", to_string(param),
-                                         double(point.parameter), b.member, a.floquet.back().status.reason));
-      branch.values.push_back(double(point.parameter));
-      branch.points.push_back(std::move(a));
+      append_balanced_floquet(branch, base, scene, param, double(point.parameter), e, options, "sample");
     }
     // At a bisection point the sample is the branch's: its free angles held, balls 1 and 2
     // closing the balance by Newton from the branch point nearest in the parameter.
