@@ -55,6 +55,26 @@ kappa = 1.0e3
 omega = 2500.0
 )";
 
+// A rigid two-ball scene (no [shaft]), 17 lines.
+constexpr const char* kRigid = R"([rotor]
+mass = 0.12
+stiffness = 7500.0
+damping = 2.0
+unbalance = 6.0e-7
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[friction]
+law = "none"
+[speed]
+omega = 900.0
+)";
+
 // kShaft with lines replaced (1-based line -> replacement text, "" deletes the line).
 std::string edited(std::initializer_list<std::pair<int, std::string>> edits) {
   std::string out, line;
@@ -117,24 +137,7 @@ TEST_CASE("a shaft scene becomes the ShaftSpec it describes", "[scene][shaft]") 
 }
 
 TEST_CASE("a rigid scene has no shaft, and shaft_spec_of says so", "[scene][shaft]") {
-  const abu::Scene s = abu::parse_scene(R"([rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "none"
-[speed]
-omega = 900.0
-)", "rigid.toml");
+  const abu::Scene s = abu::parse_scene(kRigid, "rigid.toml");
   CHECK_FALSE(s.shaft);
   CHECK_THROWS_AS(abu::shaft_spec_of(s), abu::NotSupportedError);
 }
@@ -190,24 +193,7 @@ TEST_CASE("element tables with no balancer node, and shaft keys of the wrong kin
 }
 
 TEST_CASE("a disc or bearing in a rigid scene is refused", "[scene][shaft]") {
-  const std::string rigid = R"([rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "none"
-[speed]
-omega = 900.0
-[[disc]]
+  const std::string rigid = std::string(kRigid) + R"([[disc]]
 node = 0
 mass = 1.0
 polar_inertia = 0.0

@@ -47,8 +47,6 @@ struct ShaftPoint {
   int merged = 0;                // copies of one eigenvalue from overlapping shifts, dropped
 };
 
-int ball_count(const ShaftSystem& sys) { return sys.n_balls(); }
-
 ShaftSystem system_of(const Scene& scene) {
   const ParamsN p = params_of<any_balls>(scene);
   try {
@@ -81,31 +79,6 @@ SparseSpectrum rightmost_of(const ShaftSystem& sys, const Eigen::VectorXd& x, co
   return rightmost_eigenvalues(pencil.a, pencil.b, k, ro);
 }
 
-// The shift ladder's discs overlap, and an eigenvalue inside two discs is returned by both
-// shifts, the farther one's copy less accurate (measured: -4.038060958 1/s from sigma = 0
-// and -4.0380599 +- 1.3e-6 i from sigma = 8893 i, 1e-7 apart). Copies from different shifts
-// closer than 1e-6 of their modulus are one eigenvalue: the copy from the nearest shift is
-// kept (shift-invert is most accurate there). Returns how many copies were dropped.
-int merge_shift_duplicates(SparseSpectrum& s) {
-  std::vector<SparseEigenpair>& v = s.eigenpairs;
-  std::vector<char> drop(v.size(), 0);
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (std::size_t j = i + 1; j < v.size(); ++j) {
-      if (drop[i] || drop[j] || v[i].shift == v[j].shift) continue;
-      const double scale = std::max(std::abs(v[i].value), std::abs(v[j].value));
-      if (!(std::abs(v[i].value - v[j].value) <= 1e-6 * scale)) continue;
-      const bool i_nearer = std::abs(v[i].value - v[i].shift) <= std::abs(v[j].value - v[j].shift);
-      drop[i_nearer ? j : i] = 1;
-    }
-  int dropped = 0;
-  std::vector<SparseEigenpair> kept;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (drop[i]) ++dropped;
-    else kept.push_back(std::move(v[i]));
-  v = std::move(kept);
-  return dropped;
-}
-
 ShaftPoint analyse(const ShaftSystem& sys, const ShaftEquilibrium& e, const ShaftSpectrumOptions& o, bool vectors) {
   ShaftPoint pt;
   pt.eq = e;
@@ -117,7 +90,8 @@ ShaftPoint analyse(const ShaftSystem& sys, const ShaftEquilibrium& e, const Shaf
     if (d > pt.max_deflection) pt.max_deflection = d, pt.max_node = k;
   }
   pt.spectrum = rightmost_of(sys, e.state(), o, vectors);
-  pt.merged = merge_shift_duplicates(pt.spectrum);
+  // Copies from overlapping discs closer than 1e-6 of their modulus are one eigenvalue.
+  pt.merged = merge_shift_copies(pt.spectrum, 1e-6);
   const auto& pairs = pt.spectrum.eigenpairs;
   // Structural zeros (a set of equilibria: U = 0's circle, the balanced set of n >= 3 balls,
   // model.md §13.4) are directions along the set, not modes: the |lambda|-smallest
@@ -204,7 +178,7 @@ std::string spectrum_line(const SparseSpectrum& s) {
 
 std::string table(const ShaftSystem& sys, const std::vector<ShaftPoint>& pts, const std::string& file,
                   const ShaftSpectrumOptions& o) {
-  const int n = ball_count(sys);
+  const int n = sys.n_balls();
   std::string out = fmt::format("{}: flexible shaft (model.md §18): {}\n", file, shaft_line(sys));
   out += fmt::format("omega = {} rad/s, U = {} kg m; eigenvalues in the rotating frame [1/s], the {} rightmost with "
                      "|Im| <= {} 1/s (ARPACK shift-invert, model.md §19)\n",
@@ -243,7 +217,7 @@ std::string header_lines(const Scene& scene, const ShaftSystem& sys) {
 
 std::string csv(const Scene& scene, const ShaftSystem& sys, const std::vector<ShaftPoint>& pts,
                 const ShaftSpectrumOptions& o) {
-  const int n = ball_count(sys);
+  const int n = sys.n_balls();
   std::string out = header_lines(scene, sys);
   out += fmt::format("# eigenvalues: rotating frame [1/s]; the {} rightmost with |Im| <= {} 1/s per equilibrium "
                      "(ARPACK shift-invert); q_abs, max_deflection [m], beta [rad]\n",
@@ -279,7 +253,7 @@ std::string csv(const Scene& scene, const ShaftSystem& sys, const std::vector<Sh
 
 std::string json(const Scene& scene, const ShaftSystem& sys, const std::vector<ShaftPoint>& pts,
                  const ShaftSpectrumOptions& o) {
-  const int n = ball_count(sys);
+  const int n = sys.n_balls();
   const auto x = node_positions(sys.spec);
   std::string out = fmt::format("{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n",
                                 ABU_VERSION, json_string(command_line()), json_string(scene.file));

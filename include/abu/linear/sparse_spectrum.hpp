@@ -163,4 +163,12 @@ SparseSpectrum rightmost_eigenvalues(const SparseRealMatrix& A, const SparseReal
                                      const RightmostOptions& options = {},
                                      ShiftFactorizations* cache = nullptr);
 
+/// Merges copies of one eigenvalue found by different shifts: two values from different
+/// shifts closer than `relative` of their modulus are one, and the copy from the nearer
+/// shift is kept (shift-invert is most accurate there). rightmost_eigenvalues already merges
+/// at 1e-9 (what ARPACK resolves); an eigenvalue resolved worse than that (the slow creep
+/// modes of stiff coulomb balls: residuals 1e-8 .. 1e-6, copies 1e-7 apart) can come back
+/// once per disc that holds it. Returns how many copies were dropped.
+int merge_shift_copies(SparseSpectrum& s, double relative);
+
 }  // namespace abu
