@@ -239,8 +239,8 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   if (!handles.anisotropic) refuse_anisotropic(scene, command);
   if (!handles.set_valued) refuse_set_valued(scene, command);
   if (!handles.shaft && scene.shaft)
-    throw NotSupportedError(fmt::format("`{}` on a flexible shaft ([shaft] in {}, model.md §18): only `equilibria` "
-                                        "and `sweep --param omega` (its Campbell diagram) analyse it so far",
+    throw NotSupportedError(fmt::format("`{}` on a flexible shaft ([shaft] in {}, model.md §18): only `equilibria`, "
+                                        "`sweep --param omega` (its Campbell diagram) and `map` analyse it so far",
                                         command, scene.file));
 }
 

@@ -17,6 +17,7 @@
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "shaft_commands.hpp"
 #include "stick_options.hpp"
 #include "unround_commands.hpp"
 #include "views.hpp"
@@ -36,6 +37,7 @@ struct MapOptions {
   bool long_csv = false;
   BalancedSampling sampling;
   StickSetOptions stick;  // coulomb-set scenes
+  ShaftSpectrumOptions shaft;  // a flexible shaft (model.md §18.13)
 };
 
 // The command line that determines the output: thread count, progress, resume and the
@@ -44,6 +46,8 @@ std::string canonical_command_line(const MapOptions& o) {
   std::string line = fmt::format("stability-scan map {} --x {} --y {}", o.scene.scene, o.x, o.y);
   for (const auto& s : o.scene.overrides) line += " --set " + s;
   if (o.scene.units != "rad/s") line += " --units " + o.scene.units;  // omega is typed in that unit
+  if (o.shaft.eigenvalues != ShaftSpectrumOptions{}.eigenvalues) line += fmt::format(" --eigenvalues {}", o.shaft.eigenvalues);
+  if (o.shaft.band != ShaftSpectrumOptions{}.band) line += fmt::format(" --band {}", o.shaft.band);
   return line + " --method " + o.method;
 }
 
@@ -85,9 +89,17 @@ Action add_map_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   add_stick_resolution_options(*sub, o->stick);
+  add_shaft_spectrum_options(*sub, o->shaft);
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
+    if (scene.shaft) {  // a flexible shaft: the balanced state's stability (model.md §18.13)
+      refuse_unmodelled(scene, "map", {.shaft = true});
+      check_output_directory(o->output_dir);
+      return map_shaft(scene, {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y),
+                               canonical_command_line(*o), o->scene.overrides, o->shaft, o->sampling, o->threads,
+                               o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
+    }
     if (!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
         o->y.rfind(kUnroundnessParam + ":", 0) == 0) {  // model.md §11.10
       refuse_unmodelled(scene, "map", {.unround = true});

@@ -1,10 +1,12 @@
 // The commands on a flexible-shaft scene ([shaft], docs/model.md §18): `equilibria` (each
 // equilibrium's state and its rightmost eigenvalues by ARPACK shift-invert, §19) and
 // `sweep --param omega` (the Campbell diagram: the rightmost eigenvalues of the balanced
-// state over speed, fixed-frame whirl frequencies forward and backward, §16.1).
+// state over speed, fixed-frame whirl frequencies forward and backward, §16.1), and `map`
+// (the balanced state's stability over two parameters, §18.13).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -31,5 +33,20 @@ std::string shaft_equilibria(const Scene& scene, const std::string& format, cons
 int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double from, double to, int steps,
                          bool logarithmic, const ShaftSpectrumOptions& spectrum, bool chart,
                          const std::string& output_dir);
+
+/// `map` on a shaft scene (shaft_map.cpp, model.md §18.13): the axes, as the rigid map's
+/// NAME:FROM:TO:N[:log] (omega already in rad/s), and the run's options.
+struct ShaftMapRequest {
+  std::string x, y;
+  std::string command_line;  ///< what determines the output (provenance)
+  std::vector<std::string> overrides;
+  ShaftSpectrumOptions spectrum;
+  BalancedSampling sampling;
+  int threads = 1;
+  bool resume = false, fresh = false, progress = false, quiet = false, chart = true;
+  std::string output_dir;
+};
+/// DIR/shaft_map_X_Y.csv and its chart. Returns the exit code.
+int map_shaft(const Scene& scene, const ShaftMapRequest& request);
 
 }  // namespace abu::cli

@@ -14,7 +14,8 @@
 #    (signed: forward > 0) are the imaginary parts of the roots mu of (18.9.1), to 1e-8
 #    relative, at every speed where they are among the rightmost (this checks the frame
 #    conversion and the forward/backward choice of (16.2.1)); CSV and PNG written.
-# 4. Commands that do not handle shafts refuse them, exit 2, nothing written; --set k= too.
+# 4. Commands that do not handle shafts refuse them, exit 2, nothing written; --set k= and a
+#    map over the rigid rotor's k (a shaft scene has none) too.
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 src=$(cd "$2" && pwd)
@@ -106,7 +107,7 @@ else
   bad "Campbell sweep exit code: $(head -c 300 "$work/err")"
 fi
 
-for cmd in "continue $one --param omega --to 1000 -o $work/c" "map $one --x omega:100:1000:3 --y mu:1e-3:1e-2:3 -o $work/m" \
+for cmd in "continue $one --param omega --to 1000 -o $work/c" "map $one --x omega:100:1000:3 --y k:1e4:1e5:3 -o $work/m" \
            "simulate $one -o $work/s" "basin $one -o $work/b" "sweep $one --param mu --from 1e-3 --to 1e-2 --steps 3 -o $work/w" \
            "equilibria $one --set k=1e4"; do
   mkdir -p "$work/empty" && (cd "$work/empty" && "$bin" $cmd > "$work/out" 2> "$work/err")

@@ -1,0 +1,195 @@
+// Stability maps of a flexible rotor's balanced state (shaft_map.hpp, model.md §18.13).
+#include "abu/scan/shaft_map.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/equilibria/shaft_equilibria.hpp"
+
+namespace abu {
+
+ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
+  ShaftVerdict v;
+  const auto& pairs = s.eigenpairs;
+  // Structural zeros are directions along a set of equilibria (U = 0's circle, the balanced
+  // set of n >= 3 balls, model.md §13.4), not modes: the |lambda|-smallest are set aside.
+  v.structural.assign(pairs.size(), 0);
+  std::vector<std::size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) {
+    return std::abs(pairs[a].value) < std::abs(pairs[c].value);
+  });
+  for (int z = 0; z < structural_zeros && std::size_t(z) < order.size(); ++z) v.structural[order[std::size_t(z)]] = 1;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (v.structural[i]) continue;
+    ++v.found;
+    const auto& l = pairs[i].value;
+    // The first of equal real parts in the sorted list has Im >= 0 (sparse_spectrum.hpp's order).
+    if (l.real() > v.abscissa) v.abscissa = l.real(), v.rightmost = {l.real(), std::abs(l.imag())};
+  }
+  const SpectrumCoverage& c = s.coverage;
+  if (v.found > 0 && v.abscissa > 0)
+    v.verdict = "unstable";
+  else if (s.status.ok() && !c.empty() && c.real_max >= 0)
+    v.verdict = "stable";
+  else
+    v.verdict = "undetermined";
+  return v;
+}
+
+SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x, int eigenvalues, double band,
+                               bool vectors) {
+  const ShaftPencil pencil = shaft_pencil(linearize_shaft(sys, x));
+  RightmostOptions ro;
+  ro.max_frequency = band > 0 ? band : 10.0 * sys.balancer.omega;
+  ro.arpack.keep_vectors = vectors;
+  const int k = std::max(1, std::min(eigenvalues, int(pencil.a.rows()) - 2));  // ARPACK: k < n - 1
+  SparseSpectrum s = rightmost_eigenvalues(pencil.a, pencil.b, k, ro);
+  // Copies from overlapping discs closer than 1e-6 of their modulus are one eigenvalue
+  // (as `equilibria` on a shaft scene merges them).
+  merge_shift_copies(s, 1e-6);
+  return s;
+}
+
+std::vector<ShaftEquilibrium> shaft_balanced_states(const ShaftSystem& sys, const BalancedSampling& sampling) {
+  // W(beta) = 0 does not involve the support: any dynamic stiffness gives the same balanced
+  // states (model.md §18.8); the aligned ones (which do) are not wanted here.
+  const ParamsN rigid = equivalent_rigid_params(sys, {1.0, 0.0});
+  const EquilibriumSetN set = find_equilibria(rigid, sampling);
+  std::vector<ShaftEquilibrium> out;
+  for (const EquilibriumN& e : set.points())
+    if (e.family == Family::balanced) out.push_back(shaft_equilibrium_from_rigid(sys, e));
+  return out;
+}
+
+ShaftMapCell shaft_map_cell(const ShaftSystem& sys, const ShaftMapSpectrum& o) {
+  ShaftMapCell cell;
+  const std::vector<ShaftEquilibrium> states = shaft_balanced_states(sys, o.sampling);
+  cell.balanced = int(states.size());
+  if (states.empty()) {
+    cell.state = "no_balanced_state";
+    cell.reason = "U exceeds what the balls can balance (model.md §13.2)";
+    return cell;
+  }
+  bool any_unstable = false, all_stable = true;
+  Outcome worst = Outcome::converged;
+  double abscissa = -std::numeric_limits<double>::infinity();
+  for (const ShaftEquilibrium& e : states) {
+    const SparseSpectrum s = shaft_rightmost(sys, e.state(), o.eigenvalues, o.band);
+    const ShaftVerdict v = shaft_verdict(s, e.structural_zeros);
+    any_unstable = any_unstable || v.verdict == "unstable";
+    all_stable = all_stable && v.verdict == "stable";
+    if (!s.status.ok() && worst == Outcome::converged) worst = s.status.outcome, cell.reason = s.status.reason;
+    cell.found += v.found;
+    if (v.found > 0 && v.abscissa > abscissa) abscissa = v.abscissa, cell.frequency = v.rightmost.imag();
+    const SpectrumCoverage& c = s.coverage;
+    if (c.empty()) {
+      cell.imag_max = -1.0;
+    } else if (&e == &states.front()) {
+      cell.real_min = c.real_min, cell.real_max = c.real_max, cell.imag_max = c.imag_max;
+    } else if (cell.imag_max >= 0) {  // the rectangle every state's search covers
+      cell.real_min = std::max(cell.real_min, c.real_min);
+      cell.real_max = std::min(cell.real_max, c.real_max);
+      cell.imag_max = std::min(cell.imag_max, c.imag_max);
+    }
+    for (std::size_t i = 0; i < s.eigenpairs.size(); ++i)
+      if (!v.structural[i]) {
+        cell.residual = std::max(cell.residual, s.eigenpairs[i].residual);
+        cell.backward_error = std::max(cell.backward_error, s.eigenpairs[i].backward_error);
+      }
+    cell.shifts += int(s.shifts.size());
+    cell.factorizations += s.factorizations;
+  }
+  if (cell.found > 0) cell.abscissa = abscissa;
+  cell.verdict = any_unstable ? "unstable" : all_stable ? "stable" : "undetermined";
+  if (worst != Outcome::converged) cell.state = std::string(to_string(worst));
+  if (cell.found == 0 && cell.state == "converged") {
+    cell.state = "no_eigenvalue";
+    cell.reason = "ARPACK returned no eigenvalue";
+  }
+  return cell;
+}
+
+namespace {
+// Shortest round-trip form; a non-finite value is a numerical failure naming its cell.
+std::string number(double v, const ShaftMapJob& job, int ix, int iy, const char* what) {
+  if (!std::isfinite(v))
+    throw NumericalError(fmt::format("shaft map cell ({}={}, {}={}): {} is not finite", job.x_name,
+                                     job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)], what));
+  return fmt::format("{}", v);
+}
+}  // namespace
+
+std::string shaft_map_manifest(const ShaftMapJob& job) {
+  std::string m = shaft_map_header(job);
+  m += fmt::format("eigenvalues {} band {} samples {}\n", job.spectrum.eigenvalues, job.spectrum.band,
+                   job.spectrum.sampling.samples_per_sheet);
+  for (double x : job.xs) m += fmt::format("x {}\n", x);
+  for (double y : job.ys) m += fmt::format("y {}\n", y);
+  return m;
+}
+
+std::string shaft_map_header(const ShaftMapJob& job) {
+  return job.provenance +
+         fmt::format(
+             "# flexible-shaft stability map (model.md §18.13): x = {} [{}], {} values; y = {} [{}], {} values; per "
+             "cell the balanced states (u = 0, W(beta) = 0; balanced = how many, samples of the set for n >= 3 "
+             "balls) and their {} rightmost eigenvalues with |Im| <= {} (ARPACK shift-invert, model.md §19). "
+             "spectral_abscissa = max Re lambda found [1/s], frequency = |Im| of that eigenvalue [1/s, rotating "
+             "frame]; verdict stable (every eigenvalue in the covered rectangle found, all Re < 0), unstable (one "
+             "found with Re > 0), undetermined, none (no balanced state); covered rectangle coverage_* [1/s] (empty: "
+             "nothing covered); state = converged, no_balanced_state, or the spectrum's outcome when ARPACK fell "
+             "short (then the numbers are what it found); residual_max = largest ||A v - lambda B v|| / (|lambda| "
+             "||B v||) and backward_error_max = largest ||A v - lambda B v|| / ((||A||_1 + |lambda| ||B||_1) ||v||) over the "
+             "eigenvalues found (the relative residual of a slow ball mode near 0 is large by its small |lambda|); "
+             "cells in order ix outer, iy inner\n"
+             "{},{},balanced,state,verdict,spectral_abscissa,frequency,found,coverage_real_min,coverage_real_max,"
+             "coverage_imag_max,residual_max,backward_error_max,shifts,factorizations\n",
+             job.x_name, job.x_unit, job.xs.size(), job.y_name, job.y_unit, job.ys.size(), job.spectrum.eigenvalues,
+             job.spectrum.band > 0 ? fmt::format("{} 1/s", job.spectrum.band) : std::string("10 omega"), job.x_name,
+             job.y_name);
+}
+
+TileText compute_shaft_map_tile(const ShaftMapJob& job, int tile) {
+  TileText text;
+  const int ix = tile;
+  for (int iy = 0; iy < int(job.ys.size()); ++iy) {
+    throw_if_stopped("shaft map tile");
+    const ShaftMapCell c = shaft_map_cell(job.cell_system(ix, iy), job.spectrum);
+    const auto num = [&](double v, const char* what) { return number(v, job, ix, iy, what); };
+    const bool found = c.found > 0, covered = c.imag_max >= 0;
+    text.summary += fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(job.xs[std::size_t(ix)], "x"), num(job.ys[std::size_t(iy)], "y"),
+        c.balanced, c.state, c.verdict, found ? num(c.abscissa, "spectral abscissa") : std::string(),
+        found ? num(c.frequency, "frequency") : std::string(), c.found,
+        covered ? num(c.real_min, "coverage") : std::string(), covered ? num(c.real_max, "coverage") : std::string(),
+        covered ? num(c.imag_max, "coverage") : std::string(), found ? num(c.residual, "residual") : std::string(),
+        found ? num(c.backward_error, "backward error") : std::string(),
+        c.shifts, c.factorizations);
+    ++text.cells;
+    text.equilibria += c.balanced;
+  }
+  return text;
+}
+
+MapRunStats compute_shaft_map_tiles(const ShaftMapJob& job, const std::vector<int>& tiles,
+                                    const MapRunOptions& options, const TileSink& sink) {
+  const auto make_work = [&]() -> TileWork {
+    return [&](int tile) {
+      TileText text = compute_shaft_map_tile(job, tile);
+      MapRunStats done;
+      done.cells = text.cells;
+      done.equilibria = text.equilibria;
+      sink(tile, std::move(text));
+      return done;
+    };
+  };
+  return run_tile_pool(tiles, options, make_work);
+}
+
+}  // namespace abu

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# `map` on a flexible-shaft scene (docs/model.md §18.13, guide §15.1): the balanced state's
+# stability over two parameters.
+# 1. The same bytes on 1 and 2 threads; an interrupted run resumed equals a fresh run.
+# 2. One map cell equals `equilibria` at that cell's parameters (a scene file written with
+#    the cell's bearing stiffness and speed): the spectral abscissa over the balanced states,
+#    its frequency, the verdict and the covered rectangle, to 1e-9 relative. Both take the
+#    balanced angles from the same closed form (model.md §13.2, through rigid equivalents
+#    with different supports: rounding only) and run the same ARPACK ladder, so they agree
+#    to rounding; 1e-9 leaves room for the slow ball modes near 0 (|lambda| ~ 1e-4 1/s,
+#    resolved to ~1e-8 relative, the residual column of `equilibria`).
+# 3. A cell without a balanced state (U above the balls' capacity m l sum = 6.58e-4 kg m)
+#    says so (state no_balanced_state, verdict none, empty numbers); no NaN anywhere.
+# 4. Bad axes: the rigid rotor's k, c, M_r (a shaft scene has none), a bearing number out of
+#    range, a negative bearing stiffness, bearings that no longer hold the shaft (k = 0 on
+#    both), an unknown name: exit 2, the rule named, nothing written.
+#   check_shaft_map.sh BINARY SOURCE_DIR
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+src=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+. "$(dirname "$0")/../contract.sh"
+scene="$src/data/scenes/shaft.toml"
+csv=shaft_map_omega_bearing_k.csv
+
+# --- threads and resume ---------------------------------------------------------------------
+args=(--x omega:500:4000:6 --y bearing_k:1e6:1e8:3:log --quiet)
+"$bin" map "$scene" "${args[@]}" --threads 1 -o "$work/t1" 2>"$work/t1.err"
+check "map on shaft.toml exits 0" "[ $? -eq 0 ] && [ -s '$work/t1/$csv' ]"
+[ -n "${ABU_NO_CHART_CHECK:-}" ] || check "the chart is written" "[ -s '$work/t1/shaft_map_omega_bearing_k.png' ]"
+"$bin" map "$scene" "${args[@]}" --threads 2 --no-chart -o "$work/t2" 2>/dev/null
+check "2 threads give the same bytes as 1" "cmp -s '$work/t1/$csv' '$work/t2/$csv'"
+check "no NaN or inf in the CSV" "! grep -qiE 'nan|inf' '$work/t1/$csv'"
+check "every cell has a verdict and converged" \
+  "[ \$(grep -v '^#' '$work/t1/$csv' | tail -n +2 | grep -c ',2,converged,\(stable\|unstable\),') -eq 18 ]"
+
+big=(--x omega:500:4000:24 --y bearing_k:1e6:1e8:3:log --quiet --no-chart)
+"$bin" map "$scene" "${big[@]}" --threads 1 -o "$work/fresh" 2>/dev/null
+"$bin" map "$scene" "${big[@]}" --threads 1 -o "$work/int" 2>/dev/null &
+pid=$!
+wait_for_tiles "$work/int/.shaft_map_omega_bearing_k.tiles" 3
+kill -INT $pid
+wait $pid
+code=$?
+check "SIGINT exits 130" "[ $code -eq 130 ]"
+kept=$(tile_count "$work/int/.shaft_map_omega_bearing_k.tiles")
+check "SIGINT keeps the finished tiles ($kept of 24)" "[ $kept -ge 3 ] && [ $kept -lt 24 ]"
+check "nothing assembled after SIGINT" "[ ! -e '$work/int/$csv' ]"
+"$bin" map "$scene" "${big[@]}" --threads 2 -o "$work/int" 2>"$work/refuse.err"
+check "a second run without --resume is refused (exit 2)" "[ $? -eq 2 ] && grep -q -- '--resume' '$work/refuse.err'"
+"$bin" map "$scene" "${big[@]}" --threads 2 --resume -o "$work/int" 2>/dev/null
+check "resume exits 0" "[ $? -eq 0 ]"
+check "resumed run equals the fresh run" "cmp -s '$work/fresh/$csv' '$work/int/$csv'"
+
+# --- one cell = equilibria ------------------------------------------------------------------
+for cell in "1800 2e7" "1000 5e7"; do
+  set -- $cell
+  "$bin" map "$scene" --x omega:$1:$1:1 --y bearing_k:$2:$2:1 --quiet --no-chart -o "$work/cell" --fresh 2>/dev/null
+  sed -e "s/^stiffness = 5.0e7.*/stiffness = $2/" -e "s/^omega = 2500.0/omega = $1/" "$scene" > "$work/cell.toml"
+  "$bin" equilibria "$work/cell.toml" --format json > "$work/cell.json" 2>/dev/null
+  python3 - "$work/cell/$csv" "$work/cell.json" <<'PY'
+import csv, json, sys
+row = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))[0]
+d = json.load(open(sys.argv[2]))
+bal = [e for e in d["equilibria"] if e["family"] == "balanced"]
+assert int(row["balanced"]) == len(bal) > 0, (row["balanced"], len(bal))
+best, freq = None, None
+for e in bal:
+    for x in e["spectrum"]["eigenvalues"]:
+        if not x["structural"] and (best is None or x["re"] > best):
+            best, freq = x["re"], abs(x["im"])
+rel = lambda a, b: abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300)
+assert rel(float(row["spectral_abscissa"]), best), (row["spectral_abscissa"], best)
+assert abs(float(row["frequency"]) - freq) <= 1e-9 * max(freq, 1.0), (row["frequency"], freq)
+verdicts = {e["verdict"] for e in bal}
+want = "unstable" if "unstable" in verdicts else "stable" if verdicts == {"stable"} else "undetermined"
+assert row["verdict"] == want, (row["verdict"], verdicts)
+c = bal[0]["spectrum"]["coverage"]
+for k in ("real_min", "real_max", "imag_max"):
+    assert rel(float(row["coverage_" + k]), max(e["spectrum"]["coverage"][k] for e in bal) if k == "real_min"
+               else min(e["spectrum"]["coverage"][k] for e in bal)), k
+print("      abscissa %.12g 1/s, frequency %.12g 1/s, %s" % (best, freq, want))
+PY
+  check "cell omega=$1 bearing_k=$2 equals equilibria" "[ $? -eq 0 ]"
+done
+
+# --- no balanced state ----------------------------------------------------------------------
+"$bin" map "$scene" --x omega:2500:3000:2 --y U:1e-4:1e-3:2 --quiet --no-chart -o "$work/u" 2>/dev/null
+check "U above capacity: state no_balanced_state, verdict none, empty numbers" \
+  "grep -q '^2500,0.001,0,no_balanced_state,none,,,0,,,,,,0,0$' '$work/u/shaft_map_omega_U.csv' && ! grep -qi nan '$work/u/shaft_map_omega_U.csv'"
+
+# --- bad axes -------------------------------------------------------------------------------
+for y in "k:1e4:1e5:3" "c:1:10:3" "M_r:1:2:2" "bearing3_k:1e6:1e7:2" "bearing_k:-1:1e7:3" "stiffness:1:2:2" \
+         "bearing_c:10:10:3" "bearing_k:0:1e7:3"; do
+  mkdir -p "$work/empty"
+  (cd "$work/empty" && "$bin" map "$scene" --x omega:500:1000:2 --y "$y" -o out > /dev/null 2> "$work/err")
+  code=$?
+  check "--y $y refused (exit 2, nothing written): $(head -c 140 "$work/err" | tr '\n' ' ')" \
+    "[ $code -eq 2 ] && [ -z \"\$(ls -A '$work/empty')\" ] && grep -q -- '--y' '$work/err'"
+done
+finish
