@@ -26,6 +26,7 @@
 #include "abu/linear/sparse_spectrum.hpp"
 #include "abu/model/shaft_system.hpp"
 #include "abu/scan/scan.hpp"
+#include "abu/scan/shaft_crossings.hpp"
 
 namespace abu::cli {
 
@@ -390,6 +391,15 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
                       "[rad/s]; zeta = -Re lambda / |Re lambda + i Omega| (16.4.1)\n",
                       spectrum.eigenvalues, spectrum.band > 0 ? fmt::format("{} 1/s", spectrum.band) : "10 omega");
   head += "omega,family,q_abs,rank,re,im,whirl,direction,forward_share,zeta,residual,covered,spectrum_status,verdict\n";
+  // Per speed: the chosen state's spectral abscissa, its eigenvalue and configuration, for the
+  // stability changes of the balanced state (model.md §18.14) located after the sweep.
+  struct Abscissa {
+    bool balanced = false;
+    double re = 0.0;
+    cplx value;
+    Eigen::VectorXd position;
+  };
+  std::vector<Abscissa> abscissas(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     throw_if_stopped("sweep (shaft)");
     const ShaftSystem sys = system_of(scenes[i]);
@@ -409,6 +419,14 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
       throw NumericalError(fmt::format("omega={}: ARPACK found no eigenvalue: {}", values[i], pt.spectrum.status.reason));
     if (!pt.spectrum.status.ok())
       fmt::print(stderr, "stability-scan: warning: omega={}: ARPACK: {}\n", values[i], pt.spectrum.status.reason);
+    abscissas[i].balanced = chosen->family == Family::balanced && std::isfinite(pt.rightmost);
+    abscissas[i].re = pt.rightmost;
+    abscissas[i].position = chosen->position;
+    for (std::size_t k = 0; k < pt.spectrum.eigenpairs.size(); ++k)
+      if (!pt.structural[k] && pt.spectrum.eigenpairs[k].value.real() == pt.rightmost) {
+        abscissas[i].value = pt.spectrum.eigenpairs[k].value;
+        break;
+      }
     const ShaftLinearization lin = linearize_shaft(sys, chosen->state());
     for (std::size_t k = 0; k < pt.spectrum.eigenpairs.size(); ++k) {
       const auto& ep = pt.spectrum.eigenpairs[k];
@@ -426,11 +444,62 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
       ++count;
     }
   }
+  // Where the balanced state loses or regains stability: between speeds whose spectral
+  // abscissas have opposite signs, the crossing eigenvalue tracked and Re lambda = 0 solved.
+  const auto system_at = [&scene](double omega) {
+    Scene s = scene;
+    set_checked(s, {Quantity::omega, -1}, omega, "--from/--to");
+    return system_of(s);
+  };
+  std::string crossings = header_lines(scene, first);
+  crossings += "# Stability changes of the balanced state along omega (model.md §18.14): between two speeds of the "
+               "sweep (bracket_lo, bracket_hi) whose spectral abscissas have opposite signs, the crossing eigenvalue "
+               "tracked by ARPACK shift-invert and Re lambda(omega) = 0 solved by Brent to 1e-12 relative. change = "
+               "loses / regains (with increasing omega); im = Im lambda there [1/s, rotating frame]; whirl = the "
+               "signed fixed-frame frequency omega +- Im lambda by the forward share (model.md (16.2.1)) [rad/s]; "
+               "slope = d Re lambda / d omega over the bracket; status not_converged: the numbers are empty and the "
+               "stderr line says why\n";
+  crossings += "bracket_lo,bracket_hi,omega,change,re,im,whirl,direction,forward_share,slope,residual,evaluations,status\n";
+  std::size_t n_crossings = 0;
+  for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+    const Abscissa &a = abscissas[i], &b = abscissas[i + 1];
+    if (!a.balanced || !b.balanced || !((a.re > 0) != (b.re > 0))) continue;
+    throw_if_stopped("sweep (shaft): crossings");
+    const bool from_a = a.re > 0;  // track the eigenvalue with Re > 0: it is the one that crosses
+    const Abscissa& u = from_a ? a : b;
+    const double w_u = values[from_a ? i : i + 1], w_s = values[from_a ? i + 1 : i];
+    const ShaftCrossing c = refine_shaft_crossing(system_at, u.position, w_u, u.value, w_s);
+    ++n_crossings;
+    const double lo = std::min(w_u, w_s), hi = std::max(w_u, w_s);
+    if (!c.status.ok()) {
+      fmt::print(stderr, "stability-scan: warning: a stability change of the balanced state in omega = [{}, {}] rad/s "
+                         "not located: {}\n", lo, hi, c.status.reason);
+      crossings += fmt::format("{},{},,,,,,,,,,{},{}\n", format_number(lo), format_number(hi), c.evaluations,
+                               to_string(c.status.outcome));
+      continue;
+    }
+    const ShaftSystem sys = system_at(c.omega);
+    const ShaftLinearization lin = linearize_shaft(sys, c.state);
+    const double f = forward_share(sys, lin.mass, c.state.head(sys.configuration_size()),
+                                   c.vector.head(sys.configuration_size()));
+    const double whirl = f >= 0.5 ? c.omega + c.value.imag() : c.omega - c.value.imag();
+    crossings += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", format_number(lo), format_number(hi),
+                             format_number(c.omega), c.loses ? "loses" : "regains", format_number(c.value.real()),
+                             format_number(c.value.imag()), format_number(whirl),
+                             whirl > 0 ? "forward" : whirl < 0 ? "backward" : "none", format_number(f),
+                             format_number(c.slope), format_number(c.residual), c.evaluations,
+                             to_string(c.status.outcome));
+    fmt::print(stderr, "balanced state {} stability at omega = {:.12g} rad/s: Im lambda = {:.9g} 1/s (rotating frame), "
+                       "whirl {:.9g} rad/s (fixed frame, {})\n", c.loses ? "loses" : "regains", c.omega,
+               c.value.imag(), whirl, whirl > 0 ? "forward" : whirl < 0 ? "backward" : "none");
+  }
   const std::filesystem::path dir(output_dir);
+  const auto crossings_path = dir / "crossings_shaft_omega.csv";
   const auto csv_path = dir / "campbell_shaft_omega.csv";
   const auto png_path = dir / "campbell_shaft_omega.png";
   OutputTransaction out;
   const auto staged = out.stage(csv_path, head + rows);
+  out.stage(crossings_path, crossings);
   if (chart)
     run_gnuplot(plots_dir() / "campbell_shaft.gp",
                 {{"csv", staged.string()},
@@ -439,8 +508,8 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
                  {"scale", format_number(from_rad_per_s(1.0, unit))},
                  {"title", fmt::format("{}: Campbell diagram of the flexible shaft (fixed frame)", scene.file)}});
   out.commit();
-  fmt::print(stderr, "wrote {} ({} rows){}\n", csv_path.string(), count,
-             chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  fmt::print(stderr, "wrote {} ({} rows){}, {} ({} stability change(s))\n", csv_path.string(), count,
+             chart ? fmt::format(" and {}", png_path.string()) : std::string(), crossings_path.string(), n_crossings);
   return exit_ok;
 }
 

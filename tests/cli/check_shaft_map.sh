@@ -14,6 +14,13 @@
 # 4. Bad axes: the rigid rotor's k, c, M_r (a shaft scene has none), a bearing number out of
 #    range, a negative bearing stiffness, bearings that no longer hold the shaft (k = 0 on
 #    both), an unknown name: exit 2, the rule named, nothing written.
+# 5. Stability changes along omega (`sweep --param omega`, crossings_shaft_omega.csv, model.md
+#    §18.14): on the one-node shaft tests/scenes/shaft/one_node_viscous.toml (a disc on an
+#    isotropic bearing: the rigid rotor plus a tilt pair that is damped at every speed,
+#    (18.9.1)) the crossing speed and its rotating-frame frequency equal the Hopf point of the
+#    rigid analyzer's `continue` on the equivalent rigid scene to 1e-8 relative (the
+#    acceptance tolerance against an independent computation; both are solved to ~1e-12);
+#    two sweep grids (different brackets) give the same crossing to 1e-10 relative.
 #   check_shaft_map.sh BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -89,6 +96,55 @@ done
 "$bin" map "$scene" --x omega:2500:3000:2 --y U:1e-4:1e-3:2 --quiet --no-chart -o "$work/u" 2>/dev/null
 check "U above capacity: state no_balanced_state, verdict none, empty numbers" \
   "grep -q '^2500,0.001,0,no_balanced_state,none,,,0,,,,,,0,0$' '$work/u/shaft_map_omega_U.csv' && ! grep -qi nan '$work/u/shaft_map_omega_U.csv'"
+
+# --- stability changes along omega = the rigid Hopf point ---------------------------------
+one="$src/tests/scenes/shaft/one_node_viscous.toml"
+cat > "$work/rigid.toml" <<'TOML'
+# one_node_viscous.toml as a rigid rotor: the disc's mass, the bearing's k and c
+rolling = true
+[rotor]
+mass = 0.12
+stiffness = 7500.0
+damping = 2.0
+unbalance = 6.0e-7
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[friction]
+law = "viscous"
+d = 1.0e-3
+[speed]
+omega = 900.0
+TOML
+"$bin" continue "$work/rigid.toml" --param omega --to 50 --from-equilibrium balanced --no-chart -o "$work/rc" >/dev/null 2>&1
+"$bin" sweep "$one" --param omega --from 100 --to 1000 --steps 10 --no-chart -o "$work/x1" >/dev/null 2>&1
+"$bin" sweep "$one" --param omega --from 120 --to 900 --steps 7 --no-chart -o "$work/x2" >/dev/null 2>&1
+python3 - "$work/rc/special_omega.csv" "$work/x1/crossings_shaft_omega.csv" "$work/x2/crossings_shaft_omega.csv" <<'PY'
+import csv, sys
+rows = lambda f: list(csv.DictReader(l for l in open(f) if not l.startswith("#")))
+hopf = [r for r in rows(sys.argv[1]) if r["label"] == "HB" and r["family"] == "balanced"]
+assert hopf, "no rigid Hopf point"
+w, f = float(hopf[0]["omega"]), float(hopf[0]["frequency"])
+for name in sys.argv[2:]:
+    c = rows(name)
+    assert len(c) == 1 and c[0]["status"] == "converged" and c[0]["change"] == "regains", c
+    wc, fc = float(c[0]["omega"]), float(c[0]["im"])
+    assert abs(wc - w) <= 1e-8 * w, (wc, w)
+    assert abs(fc - f) <= 1e-8 * f, (fc, f)
+    assert abs(float(c[0]["re"])) <= 1e-9 * abs(fc), c[0]["re"]
+a, b = (float(rows(n)[0]["omega"]) for n in sys.argv[2:])
+assert abs(a - b) <= 1e-10 * a, (a, b)
+print("      crossing %.15g rad/s (rigid Hopf %.15g), Im lambda %.12g (rigid %.12g) 1/s" % (a, w, fc, f))
+PY
+check "one-node shaft: crossing = rigid Hopf point (1e-8), grid-independent (1e-10)" "[ $? -eq 0 ]"
+"$bin" sweep "$scene" --param omega --from 300 --to 4000 --steps 12 --no-chart -o "$work/x3" >/dev/null 2>&1
+check "shaft.toml: one crossing (regains, converged), no NaN" \
+  "[ \$(grep -c ',regains,.*,converged$' '$work/x3/crossings_shaft_omega.csv') -eq 1 ] && ! grep -qi nan '$work/x3/crossings_shaft_omega.csv'"
 
 # --- bad axes -------------------------------------------------------------------------------
 for y in "k:1e4:1e5:3" "c:1:10:3" "M_r:1:2:2" "bearing3_k:1e6:1e7:2" "bearing_k:-1:1e7:3" "stiffness:1:2:2" \
