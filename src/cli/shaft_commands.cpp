@@ -27,6 +27,7 @@
 #include "abu/model/shaft_system.hpp"
 #include "abu/scan/scan.hpp"
 #include "abu/scan/shaft_crossings.hpp"
+#include "abu/scan/shaft_map.hpp"
 
 namespace abu::cli {
 
@@ -68,18 +69,6 @@ const ShiftRun* run_of(const SparseSpectrum& s, cplx shift) {
   return nullptr;
 }
 
-SparseSpectrum rightmost_of(const ShaftSystem& sys, const Eigen::VectorXd& x, const ShaftSpectrumOptions& o,
-                            bool vectors) {
-  const ShaftLinearization lin = linearize_shaft(sys, x);
-  const ShaftPencil pencil = shaft_pencil(lin);
-  RightmostOptions ro;
-  ro.max_frequency = band_of(o, sys.balancer.omega);
-  ro.arpack.keep_vectors = vectors;
-  // ARPACK needs k < n - 1.
-  const int k = std::max(1, std::min(o.eigenvalues, int(pencil.a.rows()) - 2));
-  return rightmost_eigenvalues(pencil.a, pencil.b, k, ro);
-}
-
 ShaftPoint analyse(const ShaftSystem& sys, const ShaftEquilibrium& e, const ShaftSpectrumOptions& o, bool vectors) {
   ShaftPoint pt;
   pt.eq = e;
@@ -90,40 +79,27 @@ ShaftPoint analyse(const ShaftSystem& sys, const ShaftEquilibrium& e, const Shaf
     const double d = std::hypot(s[4 * k], s[4 * k + 1]);
     if (d > pt.max_deflection) pt.max_deflection = d, pt.max_node = k;
   }
-  pt.spectrum = rightmost_of(sys, e.state(), o, vectors);
-  // Copies from overlapping discs closer than 1e-6 of their modulus are one eigenvalue.
-  pt.merged = merge_shift_copies(pt.spectrum, 1e-6);
-  const auto& pairs = pt.spectrum.eigenpairs;
-  // Structural zeros (a set of equilibria: U = 0's circle, the balanced set of n >= 3 balls,
-  // model.md §13.4) are directions along the set, not modes: the |lambda|-smallest
-  // structural_zeros eigenvalues are set aside from the verdict, as in the rigid analysis.
-  pt.structural.assign(pairs.size(), 0);
-  std::vector<std::size_t> order(pairs.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t c) { return std::abs(pairs[a].value) < std::abs(pairs[c].value); });
-  for (int z = 0; z < e.structural_zeros && std::size_t(z) < order.size(); ++z) pt.structural[order[std::size_t(z)]] = 1;
-  for (std::size_t i = 0; i < pairs.size(); ++i)
-    if (!pt.structural[i]) pt.rightmost = std::max(pt.rightmost, pairs[i].value.real());
-
+  pt.spectrum = shaft_rightmost(sys, e.state(), o.eigenvalues, o.band, vectors, &pt.merged);
+  // The verdict's rule and the structural zeros set aside: scan/shaft_map.hpp (shared with `map`).
+  ShaftVerdict v = shaft_verdict(pt.spectrum, e.structural_zeros);
+  pt.structural = std::move(v.structural);
+  pt.rightmost = v.abscissa;
   const SpectrumCoverage& c = pt.spectrum.coverage;
   const std::string cover =
       c.empty() ? std::string("nothing covered")
                 : fmt::format("covered: every eigenvalue with {:.6g} <= Re <= {:.6g} and |Im| <= {:.6g} 1/s is listed "
                               "({})",
                               c.real_min, c.real_max, c.imag_max, c.how);
-  if (pt.rightmost > 0) {
-    pt.verdict = "unstable";
+  pt.verdict = v.verdict;
+  if (v.verdict == "unstable") {
     pt.verdict_text = fmt::format("unstable: an eigenvalue with Re = {:.6g} 1/s > 0 was found", pt.rightmost);
-  } else if (pt.spectrum.status.ok() && !c.empty() && c.real_max >= 0) {
-    pt.verdict = "stable";
+  } else if (v.verdict == "stable") {
     pt.verdict_text = fmt::format(
         "stable as far as covered: every listed eigenvalue has Re < 0 (rightmost {:.6g} 1/s){}; {}. Eigenvalues with "
         "|Im| above the band or Re above {:.6g} 1/s are not excluded",
         pt.rightmost, e.structural_zeros ? fmt::format(", {} structural zero(s) set aside", e.structural_zeros) : "",
         cover, c.real_max);
   } else {
-    pt.verdict = "undetermined";
     pt.verdict_text = fmt::format(
         "undetermined: {}; {}",
         pt.spectrum.status.ok() ? std::string_view("the covered region does not reach Re >= 0")

@@ -43,7 +43,7 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
 }
 
 SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x, int eigenvalues, double band,
-                               bool vectors) {
+                               bool vectors, int* merged) {
   const ShaftPencil pencil = shaft_pencil(linearize_shaft(sys, x));
   RightmostOptions ro;
   ro.max_frequency = band > 0 ? band : 10.0 * sys.balancer.omega;
@@ -52,7 +52,8 @@ SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x,
   SparseSpectrum s = rightmost_eigenvalues(pencil.a, pencil.b, k, ro);
   // Copies from overlapping discs closer than 1e-6 of their modulus are one eigenvalue
   // (as `equilibria` on a shaft scene merges them).
-  merge_shift_copies(s, 1e-6);
+  const int dropped = merge_shift_copies(s, 1e-6);
+  if (merged) *merged = dropped;
   return s;
 }
 

@@ -71,9 +71,11 @@ struct ShaftVerdict {
 };
 ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros);
 
-/// The rightmost eigenvalues of `sys` linearized at the state x (k, band as in `o`).
+/// The `eigenvalues` rightmost eigenvalues of `sys` linearized at the state x in the band
+/// |Im lambda| <= band (0: 10 omega), copies from overlapping shifts merged at 1e-6
+/// (`merged`, if given, gets how many were dropped).
 SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x, int eigenvalues, double band,
-                               bool vectors = false);
+                               bool vectors = false, int* merged = nullptr);
 
 /// The balanced states of the shaft (u = 0; every sample of the set for n >= 3 balls):
 /// they do not depend on the shaft's support (model.md §18.8), so no sparse solve is made.
