@@ -100,6 +100,10 @@ Action add_map_command(CLI::App& app) {
                                canonical_command_line(*o), o->scene.overrides, o->shaft, o->sampling, o->threads,
                                o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }
+    if (o->shaft.eigenvalues != ShaftSpectrumOptions{}.eigenvalues || o->shaft.band != ShaftSpectrumOptions{}.band)
+      throw InputError(o->shaft.band != ShaftSpectrumOptions{}.band ? "--band" : "--eigenvalues", 0, "shaft",
+                       "ARPACK's eigenvalue count and band apply to a flexible shaft ([shaft]) only; a rigid "
+                       "map computes every eigenvalue");
     if (!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
         o->y.rfind(kUnroundnessParam + ":", 0) == 0) {  // model.md §11.10
       refuse_unmodelled(scene, "map", {.unround = true});

@@ -155,4 +155,11 @@ for y in "k:1e4:1e5:3" "c:1:10:3" "M_r:1:2:2" "bearing3_k:1e6:1e7:2" "bearing_k:
   check "--y $y refused (exit 2, nothing written): $(head -c 140 "$work/err" | tr '\n' ' ')" \
     "[ $code -eq 2 ] && [ -z \"\$(ls -A '$work/empty')\" ] && grep -q -- '--y' '$work/err'"
 done
+# ARPACK's options on a rigid scene's map: refused, not silently ignored.
+mkdir -p "$work/empty2"
+(cd "$work/empty2" && "$bin" map "$src/data/scenes/default.toml" --x omega:100:200:2 --y mu:0.001:0.002:2 \
+   --eigenvalues 5 -o out > /dev/null 2> "$work/err")
+code=$?
+check "--eigenvalues on a rigid map refused (exit 2, nothing written)" \
+  "[ $code -eq 2 ] && [ -z \"\$(ls -A '$work/empty2')\" ] && grep -q -- 'shaft' '$work/err'"
 finish
