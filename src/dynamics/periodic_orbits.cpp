@@ -123,7 +123,7 @@ class Integrator {
            const std::function<void(const double*)>& at_target, std::string_view& why) {
     if (radau_) {
       RadauField field{c};
-      return detail::radau_run(step_, field, kDim, dim_ == kAugmented ? kColumns : 0, y, h, c.radau_step, targets,
+      return detail::radau_run(step_, field, kDim, dim_ == kAugmented ? kColumns : 0, y, c.radau_step, targets,
                                at_target, increment_, radau_steps_, why);
     }
     gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(flow_.dimension()), &c};

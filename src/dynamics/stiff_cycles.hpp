@@ -28,7 +28,7 @@ namespace abu::detail {
 // the default scene's coulomb Hopf point: 2e7).
 inline constexpr double kRadauStiffness = 1e6;
 
-// One run of fixed Radau IIA steps over [0, h] of the d-dimensional state y[0..d) and, when
+// One run of fixed Radau IIA steps over [0, targets.back()] of the d-dimensional state y[0..d) and, when
 // `columns` > 0, the variational columns y[d .. d + d * columns) (column-major d x columns:
 // the first d columns the transition matrix, the last the parameter sensitivity, updated as
 // C <- (I + dZ/dy) C + [0 | dZ/dp]). The steps have the nominal length `step`: each segment
@@ -36,7 +36,7 @@ inline constexpr double kRadauStiffness = 1e6;
 // shooting interval always takes the same count (no jump of the discretization as the period
 // moves). `acc` gets y(h) - y(0), summed apart from the state; at_target sees y at each target.
 template <class Field>
-bool radau_run(RadauStep& radau, Field& field, int d, int columns, double* y, double h, double step,
+bool radau_run(RadauStep& radau, Field& field, int d, int columns, double* y, double step,
                const std::vector<double>& targets, const std::function<void(const double*)>& at_target,
                Eigen::VectorXd& acc, long& steps, std::string_view& why) {
   const Eigen::Map<const Eigen::VectorXd> y0_map(y, d);
@@ -65,7 +65,6 @@ bool radau_run(RadauStep& radau, Field& field, int d, int columns, double* y, do
     Eigen::Map<Eigen::VectorXd>(y, d) = state;
     if (at_target) at_target(y);
   }
-  (void)h;
   return true;
 }
 
