@@ -150,6 +150,15 @@ std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& p
                      c + 1, name, b.hopf_parameter, b.hopf_frequency, b.lyapunov, name, b.real_part_slope,
                      b.orbits.size());
     s += b.reason.empty() ? std::string("; ended at the end of the interval\n") : "; ended: " + escaped(b.reason) + "\n";
+    if (b.stiff && !b.orbits.empty())  // model.md §17.11-§17.13
+      s += fmt::format("# cycle {}: stiff route: {} shooting intervals of {} fixed Radau IIA steps (the period and the two "
+                       "resolved multipliers changed by {:.2g} at the last doubling); {} multipliers per orbit from the "
+                       "frozen spectra along it (ln|mu| only: their moduli underflow), Liouville's check at most {:.2g}\n",
+                       c + 1, b.intervals, b.steps_per_interval, b.discretization_change,
+                       b.orbits.front().unresolved_multipliers,
+                       std::max_element(b.orbits.begin(), b.orbits.end(), [](const CycleOrbit& x, const CycleOrbit& y) {
+                         return x.liouville_error < y.liouville_error;
+                       })->liouville_error);
     const auto incomplete = std::count_if(b.orbits.begin(), b.orbits.end(), [](const CycleOrbit& o) {
       return o.multipliers.size() != 8 || o.ball_min.size() != 2;
     });

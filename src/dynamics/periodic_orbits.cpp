@@ -20,6 +20,7 @@
 #include "abu/linear/floquet.hpp"
 #include "abu/model/model.hpp"
 #include "shooting_flow.hpp"
+#include "stiff_cycles.hpp"
 
 namespace abu {
 namespace {
@@ -39,6 +40,7 @@ struct FlowContext {
   double span = 1;                       // d p / d (scaled parameter)
   bool variational = true;
   long evaluations = 0;
+  double radau_step = 0;  // the stiff route's nominal Radau step [s] (model.md §17.11)
   State8 unscale(const double* y) const {
     State8 x;
     for (int i = 0; i < kDim; ++i) x(i) = scale(i) * y[i];
@@ -87,20 +89,58 @@ int flow_jacobian(double, const double y[], double* dfdy, double dfdt[], void* p
   return GSL_SUCCESS;
 }
 
-// The flow over [0, h] of the scaled system (stopping at every target in between).
+// The Radau step's field(t, y, F, J, P) of the scaled system (model.md §17.11): F, J~ and,
+// for the variational columns, D^-1 f_p * span.
+struct RadauField {
+  FlowContext& c;
+  template <class F, class P>
+  void operator()(double, const Eigen::VectorXd& y, F&& f, Eigen::MatrixXd& J, P&& par) {
+    ++c.evaluations;
+    const State8 x = c.unscale(y.data());
+    const State8 fx = vector_field(c.p, x);
+    for (int i = 0; i < kDim; ++i) f(i) = fx(i) / c.scale(i);
+    J = c.scaled_jacobian(x);
+    if (c.variational) {
+      const State8 fp = parameter_derivative(c.p, x, c.ref);
+      for (int i = 0; i < kDim; ++i) par(i) = fp(i) * c.span / c.scale(i);
+    } else {
+      par.setZero();
+    }
+  }
+};
+
+// The flow over [0, h] of the scaled system (stopping at every target in between): GSL's
+// adaptive steppers, or on the stiff route (radau) fixed Radau IIA steps of the context's
+// radau_step, whose summed increment y(h) - y(0) is kept apart (model.md §17.11).
 class Integrator {
  public:
-  Integrator(const gsl_odeiv2_step_type* type, int dim, double rtol)
-      : flow_(type, dim, rtol, "cycle continuation: integrating an interval") {}
+  Integrator(const gsl_odeiv2_step_type* type, int dim, double rtol, bool radau = false)
+      : flow_(type, dim, rtol, "cycle continuation: integrating an interval"), dim_(dim), radau_(radau),
+        step_(kDim), increment_(kDim) {
+    step_.set_rounding_floor(1e-10);
+  }
   bool run(FlowContext& c, double* y, double h, const std::vector<double>& targets,
            const std::function<void(const double*)>& at_target, std::string_view& why) {
+    if (radau_) {
+      RadauField field{c};
+      return detail::radau_run(step_, field, kDim, dim_ == kAugmented ? kColumns : 0, y, c.radau_step, targets,
+                               at_target, increment_, radau_steps_, why);
+    }
     gsl_odeiv2_system sys{&flow_rhs, &flow_jacobian, std::size_t(flow_.dimension()), &c};
     return flow_.run(sys, 0.0, y, h, targets, at_target, why);
   }
-  long steps() const { return flow_.steps(); }
+  long steps() const { return radau_ ? radau_steps_ : flow_.steps(); }
+  bool radau() const { return radau_; }
+  /// Radau: the last run's y(h) - y(0), summed apart from the state.
+  const Eigen::VectorXd& increment() const { return increment_; }
 
  private:
   detail::FlowIntegrator flow_;
+  int dim_;
+  bool radau_;
+  detail::RadauStep step_;
+  Eigen::VectorXd increment_;
+  long radau_steps_ = 0;
 };
 
 using detail::cyclic_max;
@@ -166,6 +206,7 @@ namespace {
 struct ShootingSetup {
   Eigen::Matrix<double, kDim, 1> scale;
   const gsl_odeiv2_step_type* type;
+  bool radau = false;  // very stiff: the fixed-step Radau route (model.md §17.11)
 };
 ShootingSetup shooting_setup(const Params& p0, ParamRef ref, const SpecialPoint& hopf) {
   Params p = p0;
@@ -179,6 +220,7 @@ ShootingSetup shooting_setup(const Params& p0, ParamRef ref, const SpecialPoint&
   Eigen::EigenSolver<Eigen::MatrixXd> es(JH, false);
   const double rho = es.info() == Eigen::Success ? es.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
   s.type = rho / w > 1e3 ? gsl_odeiv2_step_bsimp : gsl_odeiv2_step_rk8pd;
+  s.radau = rho / w > detail::kRadauStiffness;
   return s;
 }
 
@@ -197,13 +239,13 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   static constexpr bool chord_corrector = Chord;
 
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
-               const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale)
+               const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale, bool radau = false)
       : detail::ShootingSystem<CycleProblem<Chord>>(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h),
-        m_(o.intervals),
+        m_(radau ? o.stiff_intervals : o.intervals),
         // Full Newton takes its residuals from the variational pass: one tolerance then.
-        newton_(type, kAugmented, Chord ? std::max(o.newton_rtol, o.rtol) : o.rtol),
-        floquet_(type, kAugmented, Chord ? std::max(o.floquet_rtol, o.rtol) : o.rtol),
-        state_(type, kDim, o.rtol) {
+        newton_(type, kAugmented, Chord ? std::max(o.newton_rtol, o.rtol) : o.rtol, radau),
+        floquet_(type, kAugmented, Chord ? std::max(o.floquet_rtol, o.rtol) : o.rtol, radau),
+        state_(type, kDim, o.rtol, radau), radau_(radau), steps_(o.stiff_steps) {
     ctx_.p = p;
     ctx_.ref = ref;
     ctx_.scale = scale;
@@ -211,6 +253,15 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   }
 
   int size() const { return kDim * m_ + 2; }
+  int intervals() const { return m_; }
+  /// The stiff route's Radau steps per shooting interval (model.md §17.11).
+  int steps_per_interval() const { return radau_ ? steps_ : 0; }
+  void set_steps_per_interval(int steps) {
+    steps_ = steps;
+    cache_.u.resize(0);
+    plain_.u.resize(0);
+  }
+  bool radau() const { return radau_; }
   int period_index() const { return kDim * m_; }
   int param_index() const { return kDim * m_ + 1; }
   double parameter(const Vec& u) const { return from_ + u(param_index()) * (to_ - from_); }
@@ -238,6 +289,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     ctx_.variational = variational;
     set(ctx_.p, ctx_.ref, parameter(u));
     const double h = period(u) / m_;
+    ctx_.radau_step = h / steps_;
     if (h > 0 && std::isfinite(h)) return true;
     e.ok = false;
     e.why = "the period is not positive";
@@ -279,7 +331,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
         return e;
       }
       const int next = (j + 1) % m_;
-      for (int i = 0; i < kDim; ++i) e.residual(kDim * j + i) = y[std::size_t(i)] - u(kDim * next + i);
+      for (int i = 0; i < kDim; ++i)
+        e.residual(kDim * j + i) = full.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + full.increment()(i)
+                                                : y[std::size_t(i)] - u(kDim * next + i);
       const Eigen::Map<const Eigen::Matrix<double, kDim, kDim>> phi(y.data() + kDim);
       e.transitions[std::size_t(j)] = phi;
       e.jacobian.block(kDim * j, kDim * j, kDim, kDim) = phi;
@@ -318,7 +372,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
         return e;
       }
       const int next = (j + 1) % m_;
-      for (int i = 0; i < kDim; ++i) e.residual(kDim * j + i) = y[i] - u(kDim * next + i);
+      for (int i = 0; i < kDim; ++i)
+        e.residual(kDim * j + i) = state_.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + state_.increment()(i)
+                                                  : y[i] - u(kDim * next + i);
     }
     e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
     state_flows_ += m_;
@@ -356,11 +412,19 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     CycleOrbit orbit;
     orbit.parameter = parameter(u);
     orbit.period = period(u);
+    const bool sampled = sample(u, orbit);
     const ProductEigenvalues f = product_eigenvalues(e.transitions);
     orbit.floquet_status = f.status;
     orbit.multipliers = f.values;
     orbit.log_moduli = f.log_moduli;
-    const CycleTestValues tv = cycle_test_values(f.values, f.log_moduli);
+    if (radau_ && sampled) {  // the multipliers no factor represents (model.md §17.13)
+      orbit.steps_per_interval = steps_;
+      orbit.unresolved_multipliers = detail::replace_unresolved_multipliers(
+          ctx_.p, samples_, orbit.period, long(m_) * steps_, orbit.multipliers, orbit.log_moduli, orbit.liouville_error);
+      if (orbit.unresolved_multipliers < 0)
+        orbit.floquet_status.merge(Outcome::numerical_issue, "the frozen spectra along the orbit failed");
+    }
+    const CycleTestValues tv = cycle_test_values(orbit.multipliers, orbit.log_moduli);
     orbit.trivial_distance = tv.trivial_distance;
     orbit.unstable = tv.unstable;
     out.tests = {t(param_index()), tv.period_doubling, tv.neimark_sacker};
@@ -373,7 +437,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
         out.reason = "a Floquet multiplier moved farther than max_multiplier_jump in one step";
       }
     }
-    if (!sample(u, orbit)) {
+    if (!sampled) {
       out.retry = true;  // (taken anyway below the retry floor: the CSV then skips the row, the note says so)
       out.reason = "the orbit could not be sampled for its amplitude (the integrator failed)";
     }
@@ -420,6 +484,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     u(period_index()) = T / period_h_;
     u(param_index()) = (p - from_) / (to_ - from_);
     ctx_.variational = false;
+    ctx_.radau_step = T / m_ / steps_;
     set(ctx_.p, ctx_.ref, p);
     double y[kDim];
     for (int i = 0; i < kDim; ++i) y[i] = state0[std::size_t(i)] / ctx_.scale(i);
@@ -453,6 +518,8 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     for (int i = 1; i <= k; ++i) targets.push_back(h * i / k);
     std::vector<double> qabs, b1, b2;
     ctx_.variational = false;
+    ctx_.radau_step = h / steps_;
+    samples_.clear();
     set(ctx_.p, ctx_.ref, parameter(u));
     for (int j = 0; j < m_; ++j) {
       double y[kDim];
@@ -460,6 +527,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       std::string_view why;
       state_.run(ctx_, y, h, targets, [&](const double* s) {
         qabs.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
+        if (radau_) samples_.push_back(ctx_.unscale(s));
         b1.push_back(s[2]);
         b2.push_back(s[3]);
       }, why);
@@ -487,6 +555,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   CycleOrbit pending_, last_;
   std::array<double, 3> pending_tests_{}, last_tests_{};
   bool pending_pair_ = false;
+  bool radau_ = false;
+  int steps_ = 1;
+  std::vector<Eigen::VectorXd> samples_;  // the stiff route: the SI states at the samples
 };
 
 static_assert(arclength::Problem<CycleProblem<true>>);
@@ -522,13 +593,16 @@ CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& 
   Params p = p0;
   const double w = hopf.frequency;
   set(p, ref, out.hopf_parameter);
-  const auto [D, type] = shooting_setup(p0, ref, hopf);
+  const auto [D, type, radau] = shooting_setup(p0, ref, hopf);
+  out.stiff = radau;
+  if (radau && !(o.stiff_steps >= 1 && o.stiff_intervals >= 2 && o.max_stiff_steps >= o.stiff_steps))
+    return fail(Outcome::numerical_issue, "the stiff route's intervals and steps are not positive");
 
   if (o.chord_corrector) {
-    CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+    CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D, radau);
     return trace_cycles(problem, p, ref, hopf, pred, from, to, o, D, std::move(out));
   }
-  CycleProblem<false> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D);
+  CycleProblem<false> problem(p0, ref, from, to, 2 * std::numbers::pi / w, o, type, D, radau);
   return trace_cycles(problem, p, ref, hopf, pred, from, to, o, D, std::move(out));
 }
 
@@ -542,8 +616,8 @@ CycleCorrection correct_cycle(const Params& p0, ParamRef ref, const SpecialPoint
     out.reason = "not a Hopf point with a positive frequency, or the guess outside [from, to]";
     return out;
   }
-  const auto [D, type] = shooting_setup(p0, ref, hopf);
-  CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / hopf.frequency, o, type, D);
+  const auto [D, type, radau] = shooting_setup(p0, ref, hopf);
+  CycleProblem<true> problem(p0, ref, from, to, 2 * std::numbers::pi / hopf.frequency, o, type, D, radau);
   Eigen::VectorXd u;
   if (!problem.unknowns_from(guess.state0, guess.period, guess.parameter, u)) {
     out.status.merge(Outcome::numerical_issue, "see reason");
@@ -573,6 +647,51 @@ CycleCorrection correct_cycle(const Params& p0, ParamRef ref, const SpecialPoint
 
 namespace {
 
+// The stiff route's discretization (model.md §17.11): the steps per interval doubled at the
+// first orbit (its parameter held) until its period and resolved multipliers (those the
+// factors represent: all but the frozen-spectra ones) change by at most stiff_accuracy; false
+// (out's status and reason set) if the corrector fails or max_stiff_steps is reached first.
+template <class Problem>
+bool refine_steps(Problem& problem, Eigen::VectorXd& u, const CycleOptions& o, CycleBranch& out) {
+  Eigen::VectorXd fixed = Eigen::VectorXd::Zero(u.size());
+  fixed(problem.param_index()) = 1;
+  const auto resolved = [&](const Eigen::VectorXd& v) {
+    std::vector<std::complex<double>> m = product_eigenvalues(problem.at(v).transitions).values;
+    m.resize(2);  // the two slow ones (the orbit's plane); the rest are the fast modes' R(h lambda)^N
+    return m;
+  };
+  double previous_period = problem.period(u);
+  std::vector<std::complex<double>> previous = resolved(u);
+  for (;;) {
+    const int steps = 2 * problem.steps_per_interval();
+    if (steps > o.max_stiff_steps) {
+      out.status.merge(Outcome::not_converged, "see reason");
+      out.reason = fmt::format("the first orbit's period and multipliers still changed by {:.3g} (relative) at {} Radau "
+                               "steps per interval, more than stiff_accuracy = {:g}",
+                               out.discretization_change, steps / 2, o.stiff_accuracy);
+      return false;
+    }
+    problem.set_steps_per_interval(steps);
+    problem.set_phase(u);
+    const auto c = arclength::correct(problem, u, fixed);
+    if (!c.converged()) {
+      out.status.merge(c.status, "see reason");
+      out.reason = fmt::format("the first orbit with {} Radau steps per interval did not converge: {}", steps, c.reason);
+      return false;
+    }
+    u = c.u;
+    const std::vector<std::complex<double>> now = resolved(u);
+    double change = std::abs(problem.period(u) - previous_period) / problem.period(u);
+    for (std::size_t k = 0; k < now.size(); ++k)
+      change = std::max(change, std::abs(now[k] - previous[k]) / std::max(std::abs(now[k]), 1e-6));
+    out.discretization_change = change;
+    out.steps_per_interval = steps;
+    previous_period = problem.period(u);
+    previous = now;
+    if (change <= o.stiff_accuracy) return true;
+  }
+}
+
 // The first orbit from the normal form, then the branch (continue_cycles).
 template <class Problem>
 CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const SpecialPoint& hopf,
@@ -598,7 +717,7 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
     dp = -z * z * w * hopf.lyapunov / pred.slope;
   }
   const State8 dxdp = -jacobian(p, xH).partialPivLu().solve(parameter_derivative(p, xH, ref));
-  const int M = o.intervals;
+  const int M = problem.intervals();
   Eigen::VectorXd u(problem.size()), hopf_u(problem.size());
   for (int j = 0; j < M; ++j) {
     const double phase = 2 * std::numbers::pi * j / M;
@@ -620,9 +739,13 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
   if (!first.converged())
     return fail(first.status, fmt::format("the first orbit near {} = {:.10g} (from the normal form) did not converge: {}",
                                           to_string(ref), pH + dp, first.reason));
-  problem.set_phase(first.u);
+  Eigen::VectorXd first_u = first.u;
+  out.intervals = M;
+  if (problem.radau() && !refine_steps(problem, first_u, o, out))
+    return out;
+  problem.set_phase(first_u);
   const arclength::Start<Problem> st =
-      arclength::start(problem, first.u, Eigen::VectorXd(first.u - hopf_u), false);
+      arclength::start(problem, first_u, Eigen::VectorXd(first_u - hopf_u), false);
   const auto r = arclength::trace(problem, st.u, st.tangent, st.jacobian, o.continuation);
   out.orbits = std::move(problem.orbits_);
   out.specials = std::move(problem.specials_);

@@ -50,6 +50,15 @@ struct CycleOptions {
   /// step would leave the test functions' signs unchanged (model.md §17.5). 0: no check.
   double max_multiplier_jump = 0.25;
   ContinuationOptions continuation{0.02, 1e-7, 0.1, 300, 1};
+  /// The stiff route (model.md §17.11), taken where the fastest mode at the Hopf point is
+  /// over 1e6 times its frequency (coulomb balls): fixed Radau IIA steps, stiff_steps per
+  /// interval at first, doubled at the first orbit until its period and resolved multipliers
+  /// change by at most stiff_accuracy (relative; multipliers relative to max(|mu|, 1e-6)),
+  /// at most max_stiff_steps; then kept along the branch.
+  int stiff_intervals = 16;
+  int stiff_steps = 32;
+  int max_stiff_steps = 1024;
+  double stiff_accuracy = 1e-9;
 };
 
 /// One converged orbit.
@@ -65,6 +74,12 @@ struct CycleOrbit {
   int unstable = 0;             ///< nontrivial multipliers with |mu| > 1
   bool stable() const { return unstable == 0; }
   Status floquet_status;
+  /// The stiff route (model.md §17.11-§17.13): Radau steps per interval, how many multipliers
+  /// came from the frozen spectra along the orbit (not represented by the discrete map), and
+  /// Liouville's check |sum ln|mu| - integral of trace J| / |integral| of all of them.
+  int steps_per_interval = 0;
+  int unresolved_multipliers = 0;
+  double liouville_error = 0;
   std::vector<double> state0;   ///< x(0) in SI (model.md (2.2)), the orbit's phase origin
 };
 
@@ -89,6 +104,12 @@ struct CycleBranch {
   long steps = 0, newton_iterations = 0;
   long flow_evaluations = 0;        ///< interval flows with the variational equations (8 + 72 components)
   long state_flow_evaluations = 0;  ///< interval flows of the state alone (the chord corrector's residuals)
+  /// The stiff route (model.md §17.11): fixed Radau steps; intervals and steps per interval
+  /// chosen at the first orbit, with the relative change of its period and resolved
+  /// multipliers at the last doubling (the discretization error's estimate).
+  bool stiff = false;
+  int intervals = 0, steps_per_interval = 0;
+  double discretization_change = 0;
   /// Integrator steps (accepted and rejected) over the whole branch: the state alone, the
   /// variational equations for the Newton matrix, for the Floquet multipliers.
   long state_steps = 0, newton_steps = 0, floquet_steps = 0;
