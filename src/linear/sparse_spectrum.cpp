@@ -145,6 +145,8 @@ struct ShiftResult {
 // relative to its modulus but a backward error at rounding.
 constexpr double kUnsoundResidual = 1e-6;
 constexpr double kUnsoundBackwardError = 1e-12;
+// A pair with residual (19.6) above this is refined even near its shift (§19.5).
+constexpr double kRefineResidual = 1e-10;
 
 // Residual (19.6) and backward error (19.7) of (value, vec), computed afresh from A and B.
 void pair_errors(const Pencil& p, cplx value, const Eigen::VectorXcd& vec, double& residual, double& backward) {
@@ -164,29 +166,34 @@ void pair_errors(const Pencil& p, cplx value, const Eigen::VectorXcd& vec, doubl
 // is no obstacle (its eigenspace is amplified as a whole), unlike Newton on a bordered system.
 // false: A - s B is singular to the last bit (ARPACK's value is then exact) or a step failed.
 bool refine_pair(const Pencil& p, cplx& value, Eigen::VectorXcd& x) {
-  const cplx s = value;
-  SparseComplexMatrix shifted = p.a - s * p.b;
-  shifted.makeCompressed();
-  ComplexLU lu;
-  lu.analyzePattern(shifted);
-  lu.factorize(shifted);
-  if (lu.info() != Eigen::Success) return false;
+  constexpr double eps = std::numeric_limits<double>::epsilon();
   x /= x.norm();
   Eigen::VectorXcd y(p.n);
   cplx lam = value;
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  for (int it = 0; it < 4; ++it) {
-    if (p.identity_b)
-      y = lu.solve(x);
-    else
-      y = lu.solve((p.b * x).eval());
-    const cplx theta = x.dot(y);  // x^H y
-    const double yn = y.norm();
-    if (!std::isfinite(yn) || !(yn > 0.0) || theta == cplx(0.0)) return false;
-    const cplx next = s + 1.0 / theta;
-    x = y / yn;
-    const bool settled = it > 0 && std::abs(next - lam) <= 4.0 * eps * std::abs(next);
-    lam = next;
+  // A value far off (a run flagged unsound and retried, §19.5: 2e-2 measured) converges
+  // slowly at a fixed s: then s moves to the new value (a new LU), at most six times.
+  for (int factorization = 0; factorization < 6; ++factorization) {
+    const cplx s = lam;
+    SparseComplexMatrix shifted = p.a - s * p.b;
+    shifted.makeCompressed();
+    ComplexLU lu;
+    lu.analyzePattern(shifted);
+    lu.factorize(shifted);
+    if (lu.info() != Eigen::Success) break;  // s is an eigenvalue to the last bit
+    bool settled = false;
+    for (int it = 0; it < 4 && !settled; ++it) {
+      if (p.identity_b)
+        y = lu.solve(x);
+      else
+        y = lu.solve((p.b * x).eval());
+      const cplx theta = x.dot(y);  // x^H y
+      const double yn = y.norm();
+      if (!std::isfinite(yn) || !(yn > 0.0) || theta == cplx(0.0)) return false;
+      const cplx next = s + 1.0 / theta;
+      x = y / yn;
+      settled = it > 0 && std::abs(next - lam) <= 4.0 * eps * std::abs(next);
+      lam = next;
+    }
     if (settled) break;
   }
   if (!std::isfinite(lam.real()) || !std::isfinite(lam.imag())) return false;
@@ -215,7 +222,8 @@ void finish_shift(ShiftResult& out, const Pencil& p, cplx sigma, int k, const st
     e.shift = sigma;
     vec = vectors.col(i);
     pair_errors(p, e.value, vec, e.residual, e.backward_error);
-    if (refine && std::isfinite(std::abs(e.value)) && std::abs(e.value - sigma) > std::abs(e.value)) {
+    if (refine && std::isfinite(std::abs(e.value)) &&
+        (std::abs(e.value - sigma) > std::abs(e.value) || e.residual > kRefineResidual)) {
       cplx value = e.value;
       Eigen::VectorXcd x = vec;
       if (refine_pair(p, value, x)) {
@@ -552,12 +560,21 @@ SparseSpectrum rightmost_eigenvalues(const SparseRealMatrix& A, const SparseReal
     out.factorizations += s.factorized ? 1 : 0;
     if (s.run.status.outcome == Outcome::numerical_issue) {
       // The shift lies on an eigenvalue (model.md §19.5: a structural zero at sigma = 0):
-      // listed, then moved up the line Re = alpha by 1e-6 of the pencil's scale
-      // ||A||_1 / ||B||_1, once. The disc stays centred on the line, so (19.5) holds.
-      out.shifts.push_back(s.run);
-      omega += 1e-6 * p.norm1_a / p.norm1_b;
-      s = run_shift(p, cplx(alpha, omega), per, options.arpack, cache, true);
-      out.factorizations += s.factorized ? 1 : 0;
+      // listed, then moved up the line Re = alpha by delta = 1e-6 of the pencil's scale
+      // ||A||_1 / ||B||_1 (~1e10 times the zero's rounding). If that disc is too small to
+      // reach back to the old shift (r < 2 delta: stiff structures, whose scale is far above
+      // the spectrum near the axis), once more from the old shift by 1e-3 r. The disc stays
+      // centred on the line, so (19.5) holds.
+      const double base = omega;
+      double delta = 1e-6 * p.norm1_a / p.norm1_b;
+      for (int retry = 0; retry < 2; ++retry) {
+        out.shifts.push_back(s.run);
+        omega = base + delta;
+        s = run_shift(p, cplx(alpha, omega), per, options.arpack, cache, true);
+        out.factorizations += s.factorized ? 1 : 0;
+        if (s.run.status.outcome == Outcome::numerical_issue || s.run.radius >= 2.0 * delta) break;
+        delta = 1e-3 * s.run.radius;
+      }
     }
     out.status.merge(s.run.status);
     out.shifts.push_back(s.run);

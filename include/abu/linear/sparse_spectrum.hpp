@@ -58,7 +58,8 @@ struct SparseSpectrumOptions {
   /// Keep each eigenvector (unit 2-norm) in SparseEigenpair::vector. Default false.
   bool keep_vectors = false;
   /// Refine an eigenpair whose shift is farther from it than its own modulus
-  /// (|lambda - sigma| > |lambda|) by inverse iteration at the eigenvalue itself (model.md
+  /// (|lambda - sigma| > |lambda|), or whose residual is above 1e-10, by inverse iteration
+  /// at the eigenvalue itself (model.md
   /// §19.5): ARPACK's tol acts on nu = 1 / (lambda - sigma), so its lambda is good to about
   /// tol |lambda - sigma|, which for a small eigenvalue found from a far shift (the slow
   /// ball modes from sigma = 1442 i: 1.3e-9 of |lambda|) is far above tol |lambda|. The
