@@ -17,6 +17,7 @@
 
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
+#include "abu/linear/sparse_spectrum.hpp"
 #include "abu/model/shaft.hpp"
 #include "abu/model/shaft_system.hpp"
 #include "abu/scan/scan.hpp"
@@ -117,10 +118,21 @@ ShaftSpec small_rotor(bool timoshenko) {
   return s;
 }
 
-/// Eigenvalues of the linearization in long double (dense, small systems): absolute error
-/// ~ 1e-19 ||J||, far below the 1e-10 relative the reduction asserts.
+/// Eigenvalues of the linearization in long double (dense, small systems), each refined
+/// on the pencil a v = lambda b v itself (18.7.3). The QR of the explicit J alone is not
+/// enough: its absolute error ~2^-63 ||J||, with ||J|| up to 1e4 times the spectral radius
+/// in the rigid reduction (the ball rows of A^-1 K), left the slow ball eigenvalues
+/// (|lambda| ~ 1e-4 1/s) only 1e-9 of themselves (measured: 9.6e-10 at worst). Inverse
+/// iteration at the QR value s, x <- (a - s b)^-1 b x, lambda = s + 1 / (x^H y), in long
+/// double on the unscaled pencil brings every eigenvalue to ~1e-14 of itself (measured
+/// 6e-14 at worst against the rigid analyzer's refined spectra), the pencil's entries
+/// being the model's doubles exactly. (Inverse iteration, not Newton on a bordered system:
+/// a semisimple double eigenvalue does not stall it.)
 std::vector<std::complex<long double>> spectrum_long(const ShaftLinearization& lin) {
   using MatL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  using cl = std::complex<long double>;
+  using MatCL = Eigen::Matrix<cl, Eigen::Dynamic, Eigen::Dynamic>;
+  using VecCL = Eigen::Matrix<cl, Eigen::Dynamic, 1>;
   const MatL a = Eigen::MatrixXd(lin.mass).cast<long double>();
   const Eigen::Index n = a.rows();
   MatL j = MatL::Zero(2 * n, 2 * n);
@@ -130,8 +142,24 @@ std::vector<std::complex<long double>> spectrum_long(const ShaftLinearization& l
   j.bottomRightCorner(n, n) = -lu.solve(MatL(Eigen::MatrixXd(lin.damping).cast<long double>()));
   Eigen::EigenSolver<MatL> es(j, false);
   REQUIRE(es.info() == Eigen::Success);
+  const ShaftPencil pen = shaft_pencil(lin);
+  const MatCL pa = Eigen::MatrixXd(pen.a).cast<long double>().cast<cl>();
+  const MatCL pb = Eigen::MatrixXd(pen.b).cast<long double>().cast<cl>();
   std::vector<std::complex<long double>> out;
-  for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) out.push_back(es.eigenvalues()(i));
+  for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
+    const cl s = es.eigenvalues()(i);
+    const Eigen::PartialPivLU<MatCL> plu(pa - s * pb);
+    VecCL x = VecCL::Ones(2 * n) / std::sqrt(static_cast<long double>(2 * n));
+    cl lam = s;
+    for (int it = 0; it < 6; ++it) {
+      const VecCL y = plu.solve(pb * x);
+      const cl theta = x.dot(y);
+      if (!(std::abs(theta) > 0) || !std::isfinite(double(y.norm()))) break;
+      lam = s + cl(1) / theta;
+      x = y / y.norm();
+    }
+    out.push_back(lam);
+  }
   return out;
 }
 
@@ -412,8 +440,10 @@ TEST_CASE("shaft Jacobian agrees with central differences of the field, and the 
 // rigid (2n + 4) spectrum plus the four tilt eigenvalues, the roots of
 //   I_d mu^2 + (c_t - i omega I_p) mu + k_t = 0 shifted to the rotating frame,
 //   lambda = mu - i omega, and their conjugates.
-// Asserted to 1e-10 relative: the rigid spectra are the analyzer's refined ones
-// (equilibrium_spectrum: error estimates ~1e-15), the shaft's a long-double dense QR.
+// Asserted to 1e-10 of each eigenvalue's modulus (issue 11): the rigid spectra are the
+// analyzer's refined ones (equilibrium_spectrum: error estimates ~1e-15), the shaft's a
+// long-double dense QR refined on the pencil, and the library's sparse ladder (ARPACK with
+// the refinement of model.md §19.5).
 TEST_CASE("shaft rigid reduction: one disc on one bearing reproduces the rigid equilibria and every eigenvalue",
           "[shaft]") {
   for (int nb : {2, 3})
@@ -449,14 +479,9 @@ TEST_CASE("shaft rigid reduction: one disc on one bearing reproduces the rigid e
           const auto ss = spectrum_long(linearize_shaft(sys, se.state()));
           REQUIRE(int(ss.size()) == rs.count + 4);
           std::vector<bool> used(ss.size(), false);
-          // The shaft side is a dense long-double QR of the unbalanced J: absolute error
-          // ~2^-63 ||J||, with ||J|| up to 1e4 times the spectral radius here. So eigenvalues
-          // below ~1e-5 |lambda_max| are checked to that floor, 1e-15 of the radius, instead
-          // of 1e-10 of themselves (measured: at most 1.2e-9 of themselves, 2.5e-12 absolute);
-          // the relative tolerance is 2e-9: the QR, not the model, limits it (model.md §18.9).
-          long double radius_ss = 0;
-          for (const auto& l : ss) radius_ss = std::max(radius_ss, std::abs(l));
-          const double qr_floor = 1e-15 * double(radius_ss);
+          // The shaft side: long-double QR refined on the pencil (spectrum_long: ~1e-14 of
+          // each eigenvalue). Asserted: 1e-10 of each eigenvalue's modulus, issue 11's
+          // tolerance; measured at most 6e-14, the rest is room for conditioning.
           auto match = [&](std::complex<long double> target, double tol_rel) {
             std::size_t best = 0;
             long double bd = 1e300L;
@@ -465,11 +490,11 @@ TEST_CASE("shaft rigid reduction: one disc on one bearing reproduces the rigid e
             used[best] = true;
             INFO("eigenvalue " << double(target.real()) << " + " << double(target.imag()) << "i, distance "
                                << double(bd));
-            CHECK(double(bd) <= tol_rel * double(std::abs(target)) + qr_floor);
+            CHECK(double(bd) <= tol_rel * double(std::abs(target)));
           };
           for (int k = 0; k < rs.count; ++k) {
             if (rs.structural[std::size_t(k)]) continue;  // exactly 0 on the balanced set: matched below
-            match(rs.eigenvalues[std::size_t(k)], 2e-9);
+            match(rs.eigenvalues[std::size_t(k)], 1e-10);
           }
           // Tilt eigenvalues: mu = (-(c_t - i w I_p) +- sqrt((c_t - i w I_p)^2 - 4 I_d k_t)) / (2 I_d).
           const std::complex<long double> bq(ct, -omega * Ip);
@@ -477,8 +502,46 @@ TEST_CASE("shaft rigid reduction: one disc on one bearing reproduces the rigid e
           for (int s : {-1, 1}) {
             const std::complex<long double> mu = (-bq + static_cast<long double>(s) * disc) / (2.0L * Id);
             const std::complex<long double> lam = mu - std::complex<long double>(0, omega);
-            match(lam, 2e-9);
-            match(std::conj(lam), 2e-9);
+            match(lam, 1e-10);
+            match(std::conj(lam), 1e-10);
+          }
+          // The library's path (what `equilibria` prints): the rightmost ladder of ARPACK
+          // shifts on the sparse pencil, 10 eigenvalues, band 10 omega, each refined at its
+          // own eigenvalue where its shift is far (model.md §19.5). Every returned value is a
+          // rigid or tilt eigenvalue to 1e-10 of its modulus (before the refinement the slow
+          // ball modes from a far shift were 1.3e-9 .. 5e-9 off, measured on one_node.toml).
+          {
+            const ShaftPencil pen = shaft_pencil(linearize_shaft(sys, se.state()));
+            RightmostOptions ro;
+            ro.max_frequency = 10 * omega;
+            const SparseSpectrum sp = rightmost_eigenvalues(pen.a, pen.b, 10, ro);
+            INFO("status " << sp.status.reason);
+            CHECK(sp.status.ok());
+            std::vector<std::complex<long double>> refs;
+            for (int k = 0; k < rs.count; ++k) refs.push_back(rs.eigenvalues[std::size_t(k)]);
+            for (int sg : {-1, 1}) {
+              const std::complex<long double> mu = (-bq + static_cast<long double>(sg) * disc) / (2.0L * Id);
+              refs.push_back(mu - std::complex<long double>(0, omega));
+              refs.push_back(std::conj(mu - std::complex<long double>(0, omega)));
+            }
+            double spectral_radius = 0;
+            for (const auto& r : refs) spectral_radius = std::max(spectral_radius, double(std::abs(r)));
+            for (const auto& pair : sp.eigenpairs) {
+              long double best = 1e300L;
+              for (const auto& r : refs) best = std::min(best, std::abs(std::complex<long double>(pair.value) - r));
+              INFO("ARPACK eigenvalue " << pair.value << " residual " << pair.residual << " backward " << pair.backward_error << " refined " << pair.refined);
+              // A structural zero (exactly 0 in the rigid spectrum; for three balls a defective
+              // double zero, the set's direction and its velocity, which rounding splits by
+              // ~sqrt(eta) times the radius, eta ~ 1e-16) is checked to 1e-6 of the radius.
+              const bool has_zero = std::any_of(rs.structural.begin(), rs.structural.end(), [](auto z) { return bool(z); });
+              const bool zero = std::abs(pair.value) <= 1e-6 * spectral_radius && has_zero;
+              // Known limit (model.md §19.7): with a defective structural zero (three balls)
+              // the shift at 0 is retried and the slow ball modes near the zero (|lambda| ~
+              // 1e-2) refine only to residuals ~1e-8 (3 of ~9000 values measured 2.4e-8 off):
+              // 1e-7 there, 1e-10 everywhere else.
+              const bool near_zero = has_zero && std::abs(pair.value) <= 1e-4 * spectral_radius;
+              CHECK(double(best) <= (zero ? 1e-6 * spectral_radius : (near_zero ? 1e-7 : 1e-10) * std::abs(pair.value)));
+            }
           }
           // The structural zeros of a balanced set's sample (exactly 0 in the rigid spectrum):
           // the shaft's leftovers are zero to the long-double QR's 1e-19 ||J||; 1e-12 of the
@@ -547,3 +610,4 @@ TEST_CASE("shaft system refuses massless dofs, bad nodes and LuGre, naming the r
   CHECK_THROWS_WITH(make_shaft_system(small_rotor(false), balls(2, FrictionLaw::lugre, 500)),
                     Catch::Contains("smooth friction"));
 }
+

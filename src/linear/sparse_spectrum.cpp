@@ -140,47 +140,129 @@ struct ShiftResult {
   bool factorized = false;
 };
 
+// A pair with residual (19.6) and backward error (19.7) above these says the shift's run is
+// unsound (finish_shift). Both: a structural zero (|lambda| ~ 1e-16) has a large residual
+// relative to its modulus but a backward error at rounding.
+constexpr double kUnsoundResidual = 1e-6;
+constexpr double kUnsoundBackwardError = 1e-12;
+// A pair with residual (19.6) above this is refined even near its shift (§19.5).
+constexpr double kRefineResidual = 1e-10;
+
+// Residual (19.6) and backward error (19.7) of (value, vec), computed afresh from A and B.
+void pair_errors(const Pencil& p, cplx value, const Eigen::VectorXcd& vec, double& residual, double& backward) {
+  const Eigen::VectorXcd bv = p.identity_b ? vec : (p.b * vec).eval();
+  const double rn = (p.a * vec - value * bv).norm(), vn = vec.norm(), bn = bv.norm();
+  const double lam = std::abs(value);
+  residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
+  backward = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
+}
+
+// Inverse iteration at the eigenvalue itself (model.md §19.5). With s = ARPACK's value,
+// (A - s B)^-1 B has 1/(lambda - s) as its dominant eigenvalue by the factor
+// |lambda_j - s| / |lambda - s| over every other (>= 1e3 when ARPACK's value is within 1e-9
+// of |lambda| and the next eigenvalue 1e-6 away), so two or three steps give the vector to
+// rounding, and lambda = s + 1 / (x^H y) (x unit, y = (A - s B)^-1 B x) carries an error of
+// |lambda - s| times the vector's, far below eps |lambda|. A semisimple multiple eigenvalue
+// is no obstacle (its eigenspace is amplified as a whole), unlike Newton on a bordered system.
+// false: A - s B is singular to the last bit (ARPACK's value is then exact) or a step failed.
+bool refine_pair(const Pencil& p, cplx& value, Eigen::VectorXcd& x) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  x /= x.norm();
+  Eigen::VectorXcd y(p.n);
+  cplx lam = value;
+  // A value far off (a run flagged unsound and retried, §19.5: 2e-2 measured) converges
+  // slowly at a fixed s: then s moves to the new value (a new LU), at most six times.
+  for (int factorization = 0; factorization < 6; ++factorization) {
+    const cplx s = lam;
+    SparseComplexMatrix shifted = p.a - s * p.b;
+    shifted.makeCompressed();
+    ComplexLU lu;
+    lu.analyzePattern(shifted);
+    lu.factorize(shifted);
+    if (lu.info() != Eigen::Success) break;  // s is an eigenvalue to the last bit
+    bool settled = false;
+    for (int it = 0; it < 4 && !settled; ++it) {
+      if (p.identity_b)
+        y = lu.solve(x);
+      else
+        y = lu.solve((p.b * x).eval());
+      const cplx theta = x.dot(y);  // x^H y
+      const double yn = y.norm();
+      if (!std::isfinite(yn) || !(yn > 0.0) || theta == cplx(0.0)) return false;
+      const cplx next = s + 1.0 / theta;
+      x = y / yn;
+      settled = it > 0 && std::abs(next - lam) <= 4.0 * eps * std::abs(next);
+      lam = next;
+    }
+    if (settled) break;
+  }
+  if (!std::isfinite(lam.real()) || !std::isfinite(lam.imag())) return false;
+  value = lam;
+  return true;
+}
+
 // The pairs of one shift from ARPACK's converged Ritz values nu (of OP) and vectors
-// (columns of `vectors`): lambda = sigma + 1/nu, the residuals (19.6)-(19.7) from A and B,
-// the k of largest |nu| (a real run may return k + 1 to keep a pair whole), the disc (19.3).
+// (columns of `vectors`): lambda = sigma + 1/nu, refined where the shift is far (§19.5),
+// the residuals (19.6)-(19.7) from A and B, the k of largest |nu| (a real run may return
+// k + 1 to keep a pair whole), the disc (19.3).
 void finish_shift(ShiftResult& out, const Pencil& p, cplx sigma, int k, const std::vector<cplx>& nus,
-                  const Eigen::MatrixXcd& vectors, bool need_vectors) {
-  const auto n = p.n;
+                  const Eigen::MatrixXcd& vectors, bool need_vectors, bool refine) {
   const int m = int(nus.size());
   std::vector<int> order(static_cast<std::size_t>(m));
   for (int i = 0; i < m; ++i) order[std::size_t(i)] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](int l, int r) { return std::abs(nus[std::size_t(l)]) > std::abs(nus[std::size_t(r)]); });
   if (m > k) order.resize(std::size_t(k));
-  Eigen::VectorXcd av(n), bv(n), r(n);
+  Eigen::VectorXcd vec;
   for (int i : order) {
     const cplx nu = nus[std::size_t(i)];
     if (nu == cplx(0.0)) continue;  // an infinite eigenvalue (singular B): never nearest
     SparseEigenpair e;
     e.value = sigma + 1.0 / nu;
     e.shift = sigma;
-    const auto vec = vectors.col(i);
-    av.noalias() = p.a * vec;
-    if (p.identity_b)
-      bv = vec;
-    else
-      bv.noalias() = p.b * vec;
-    r = av - e.value * bv;
-    const double rn = r.norm(), vn = vec.norm(), bn = bv.norm();
-    const double lam = std::abs(e.value);
-    e.residual = lam > 0.0 ? rn / (lam * bn) : rn / (p.norm1_a * vn);
-    e.backward_error = rn / ((p.norm1_a + lam * p.norm1_b) * vn);
+    vec = vectors.col(i);
+    pair_errors(p, e.value, vec, e.residual, e.backward_error);
+    if (refine && std::isfinite(std::abs(e.value)) &&
+        (std::abs(e.value - sigma) > std::abs(e.value) || e.residual > kRefineResidual)) {
+      cplx value = e.value;
+      Eigen::VectorXcd x = vec;
+      if (refine_pair(p, value, x)) {
+        double res = 0.0, back = 0.0;
+        pair_errors(p, value, x, res, back);
+        if (res <= e.residual) {  // never worse than ARPACK's pair
+          e.value = value;
+          e.residual = res;
+          e.backward_error = back;
+          e.refined = true;
+          vec = x;
+          ++out.run.refined;
+        }
+      }
+    }
     if (!std::isfinite(e.value.real()) || !std::isfinite(e.value.imag()) || !std::isfinite(e.residual) ||
         !std::isfinite(e.backward_error)) {
       // Never a NaN in a result: the pair is dropped and the shift says why.
       out.run.status.merge(Outcome::numerical_issue, "a non-finite eigenvalue or residual at a shift");
       continue;
     }
-    if (need_vectors) e.vector = vec / vn;
+    if (need_vectors) e.vector = vec / vec.norm();
     out.pairs.push_back(std::move(e));
   }
   const int nconv = std::min(m, k);
   out.run.converged = nconv;
+  // A shift on an eigenvalue (a structural zero of a set of equilibria sits at sigma = 0 to
+  // rounding) makes one nu ~ 1/eps dominate the Hessenberg matrix, and rounding of that
+  // size wipes out the other Ritz values, which ARPACK still reports as converged (measured
+  // on the three-ball rigid reduction: residuals 1.6e-6 .. 0.4, values off by up to 300 1/s,
+  // backward errors up to 1e-4, where every sound pair has residual <= 1e-10 after the
+  // refinement, or a backward error ~1e-16). No disc is claimed then.
+  for (const auto& e : out.pairs)
+    if (e.residual > kUnsoundResidual && e.backward_error > kUnsoundBackwardError) {
+      out.run.status.merge(Outcome::numerical_issue,
+                           "an eigenpair with residual above 1e-6 at a shift: the shift lies on an eigenvalue");
+      out.run.radius = 0.0;
+      return;
+    }
   if (nconv < k || int(out.pairs.size()) < k) {  // short, or a pair dropped: no disc claimed
     out.run.status.merge(Outcome::not_converged, "fewer eigenvalues converged than asked at a shift");
     out.run.radius = 0.0;
@@ -394,7 +476,7 @@ ShiftResult run_shift(const Pencil& p, cplx sigma, int k, const SparseSpectrumOp
   else
     arnoldi_complex(out, p, *entry->complex, k, o, nus, vectors);
   if (out.run.status.outcome == Outcome::numerical_issue) return out;
-  finish_shift(out, p, sigma, k, nus, vectors, need_vectors);
+  finish_shift(out, p, sigma, k, nus, vectors, need_vectors, o.refine);
   if (cache && entry == &owned) cache->impl->lu.emplace(key_of(sigma), std::move(owned));
   return out;
 }
@@ -474,9 +556,26 @@ SparseSpectrum rightmost_eigenvalues(const SparseRealMatrix& A, const SparseReal
   double omega = 0.0;
   bool reached = false;
   for (int j = 0; j < std::max(1, options.max_shifts); ++j) {
-    const cplx sigma(alpha, omega);
-    ShiftResult s = run_shift(p, sigma, per, options.arpack, cache, true);
+    ShiftResult s = run_shift(p, cplx(alpha, omega), per, options.arpack, cache, true);
     out.factorizations += s.factorized ? 1 : 0;
+    if (s.run.status.outcome == Outcome::numerical_issue) {
+      // The shift lies on an eigenvalue (model.md §19.5: a structural zero at sigma = 0):
+      // listed, then moved up the line Re = alpha by delta = 1e-6 of the pencil's scale
+      // ||A||_1 / ||B||_1 (~1e10 times the zero's rounding). If that disc is too small to
+      // reach back to the old shift (r < 2 delta: stiff structures, whose scale is far above
+      // the spectrum near the axis), once more from the old shift by 1e-3 r. The disc stays
+      // centred on the line, so (19.5) holds.
+      const double base = omega;
+      double delta = 1e-6 * p.norm1_a / p.norm1_b;
+      for (int retry = 0; retry < 2; ++retry) {
+        out.shifts.push_back(s.run);
+        omega = base + delta;
+        s = run_shift(p, cplx(alpha, omega), per, options.arpack, cache, true);
+        out.factorizations += s.factorized ? 1 : 0;
+        if (s.run.status.outcome == Outcome::numerical_issue || s.run.radius >= 2.0 * delta) break;
+        delta = 1e-3 * s.run.radius;
+      }
+    }
     out.status.merge(s.run.status);
     out.shifts.push_back(s.run);
     // This shift's values folded into the upper half-plane; a conjugate pair that this

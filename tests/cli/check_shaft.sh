@@ -5,10 +5,13 @@
 # 1. The rigid reduction from the command line: tests/scenes/shaft/one_node.toml is the
 #    default rigid scene as a one-node shaft (a disc on a bearing, plus a tilt pair). Its
 #    equilibria must be the rigid scene's (ball angles to 1e-10 rad: both come from the same
-#    closed forms, polished), every listed eigenvalue with residual <= 1e-9 must be a rigid
-#    eigenvalue or one of the four tilt eigenvalues of (18.9.1), computed here from the
-#    quadratic, to 1e-8 relative (the acceptance tolerance against a dense reference), and
-#    the verdicts must agree with the rigid analyzer's.
+#    closed forms, polished), every listed eigenvalue must be a rigid eigenvalue or one of
+#    the four tilt eigenvalues of (18.9.1), computed here from the quadratic, to 1e-10 of its
+#    modulus (issue 11's rigid-reduction tolerance; the rigid ones are the analyzer's refined
+#    values, good to ~1e-15, and the shaft's are refined at their own eigenvalue, model.md
+#    §19.5: measured at most 1e-15 relative, so 1e-10 leaves room for the printed digits and
+#    a condition number of 1e5), with residual <= 1e-10, and the verdicts must agree with
+#    the rigid analyzer's.
 # 2. data/scenes/shaft.toml: table, CSV and JSON, every spectrum converged, no NaN.
 # 3. sweep --param omega on the one-node scene with viscous balls (one_node_viscous.toml): the tilt modes' fixed-frame whirl frequencies
 #    (signed: forward > 0) are the imaginary parts of the roots mu of (18.9.1), to 1e-8
@@ -39,7 +42,7 @@ for sg in (1, -1):
     mu = (-b + sg * cmath.sqrt(b * b - 4 * Id * kp)) / (2 * Id)
     tilt += [mu - 1j * w, (mu - 1j * w).conjugate()]
 assert len(r["equilibria"]) == len(s["equilibria"]), "equilibrium count"
-checked = 0
+checked, worst = 0, 0.0
 for er, es in zip(r["equilibria"], s["equilibria"]):
     assert er["family"] == es["family"] and er["pattern"] == es["pattern"], (er["family"], es["family"])
     for k in range(2):
@@ -52,11 +55,12 @@ for er, es in zip(r["equilibria"], s["equilibria"]):
     for x in es["spectrum"]["eigenvalues"]:
         z = complex(x["re"], x["im"])
         dist = min(abs(z - v) for v in rigid + tilt) / abs(z)
-        if x["residual"] <= 1e-9:
-            assert dist <= 1e-8, ("eigenvalue", z, dist)
-            checked += 1
+        assert dist <= 1e-10, ("eigenvalue", z, dist)
+        assert x["residual"] <= 1e-10, ("residual", z, x["residual"])
+        worst = max(worst, dist)
+        checked += 1
 assert checked >= 6, checked
-print("      %d well-resolved eigenvalues matched (1e-8 relative)" % checked)
+print("      %d eigenvalues matched (1e-10 relative), largest difference %.2g of the modulus" % (checked, worst))
 PY
 else
   bad "one-node equilibria exit code"
