@@ -4,7 +4,6 @@
 // map's TileStore (threads, --resume, --fresh, Ctrl-C keeps finished tiles); the long CSV,
 // the fraction per attractor (CSV and JSON) and the classification map (PNG).
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
@@ -25,6 +24,7 @@
 #include "abu/io/io.hpp"
 #include "abu/scan/basin.hpp"
 #include "commands.hpp"
+#include "tiled_run.hpp"
 
 namespace abu::cli {
 
@@ -212,27 +212,14 @@ Action add_basin_command(CLI::App& app) {
     const fs::path csv_path = dir / "basin.csv", fractions_path = dir / "basin_fractions.csv",
                    json_path = dir / "basin.json", png_path = dir / "basin.png";
     const fs::path tiles_dir = dir / ".basin.tiles";
-    const TileStore store(tiles_dir, basin_manifest(job),
-                          job.cells1, b.resume ? TileStore::Mode::resume
-                                      : b.fresh ? TileStore::Mode::discard
-                                                : TileStore::Mode::fresh);
-    const std::vector<int> missing = store.missing();
-    ProgressMeter meter(job.cells1, job.cells1 - int(missing.size()), !b.quiet && (b.progress || isatty(STDERR_FILENO)));
-    MapRunOptions run;
-    run.threads = b.threads;
-    run.stop = &stop_flag();
-    run.progress = &meter;
-    set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
-                                   escaped(tiles_dir.string())));
-    const MapRunStats stats =
-        compute_basin_tiles(job, targets, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
-    meter.finish();
-    set_interrupt_note({});
-    if (stats.interrupted || stop_requested()) {
-      fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
-                 job.cells1 - int(store.missing().size()), job.cells1, tiles_dir.string());
-      return interrupted_exit_code();
-    }
+    const TiledRunFlags flags{b.resume, b.fresh, b.progress, b.quiet, b.threads};
+    const TileStore store(tiles_dir, basin_manifest(job), job.cells1, tile_store_mode(flags));
+    const std::optional<MapRunStats> counts = run_missing_tiles(store, tiles_dir, job.cells1, flags,
+                           [&job, &targets](const auto& missing, const auto& run_options, const auto& sink) {
+                             return compute_basin_tiles(job, targets, missing, run_options, sink);
+                           });
+    if (!counts) return interrupted_exit_code();
+    const MapRunStats& stats = *counts;
 
     // Assemble in tile order; count the attractors.
     std::ostringstream rows, none;

@@ -14,7 +14,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <unistd.h>
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
@@ -23,6 +22,7 @@
 #include "abu/io/shaft_scene.hpp"
 #include "abu/scan/shaft_map.hpp"
 #include "shaft_commands.hpp"
+#include "tiled_run.hpp"
 
 namespace abu::cli {
 
@@ -191,27 +191,14 @@ int map_shaft(const Scene& scene, const ShaftMapRequest& request) {
   const fs::path tiles_dir = dir / fmt::format(".shaft_map_{}_{}.tiles", x.name, y.name);
   fs::create_directories(dir);
   const int tiles = int(job.xs.size());
-  const TileStore store(tiles_dir, shaft_map_manifest(job), tiles,
-                        request.resume ? TileStore::Mode::resume
-                        : request.fresh ? TileStore::Mode::discard
-                                        : TileStore::Mode::fresh);
-  const std::vector<int> missing = store.missing();
-  ProgressMeter meter(tiles, tiles - int(missing.size()), !request.quiet && (request.progress || isatty(STDERR_FILENO)));
-  MapRunOptions run;
-  run.threads = request.threads;
-  run.stop = &stop_flag();
-  run.progress = &meter;
-  set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
-                                 tiles_dir.string()));
-  const MapRunStats stats =
-      compute_shaft_map_tiles(job, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
-  meter.finish();
-  set_interrupt_note({});
-  if (stats.interrupted || stop_requested()) {
-    fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
-               tiles - int(store.missing().size()), tiles, tiles_dir.string());
-    return interrupted_exit_code();
-  }
+  const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
+  const TileStore store(tiles_dir, shaft_map_manifest(job), tiles, tile_store_mode(flags));
+  const std::optional<MapRunStats> counts =
+      run_missing_tiles(store, tiles_dir, tiles, flags, [&job](const auto& missing, const auto& run_options, const auto& sink) {
+        return compute_shaft_map_tiles(job, missing, run_options, sink);
+      });
+  if (!counts) return interrupted_exit_code();
+  const MapRunStats& stats = *counts;
   std::ostringstream none, rows;
   for (int t = 0; t < tiles; ++t) store.append(t, none, rows);
   // The rigid chart_subtitle would print the unused rotor k, c, M_r: the shaft's own line.

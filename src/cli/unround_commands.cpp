@@ -1,8 +1,8 @@
 // `sweep` and `continue` on an unround race (unround_commands.hpp, model.md §11.10).
 #include "unround_commands.hpp"
+#include "tiled_run.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <sstream>
 
@@ -231,28 +231,14 @@ int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMa
   const auto png_path = dir / fmt::format("summary_{}_{}.png", x.name, y.name);
   const fs::path tiles_dir = dir / fmt::format(".unround_map_{}_{}.tiles", x.name, y.name);
   fs::create_directories(dir);
-  const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()),
-                        request.resume ? TileStore::Mode::resume
-                        : request.fresh ? TileStore::Mode::discard
-                                        : TileStore::Mode::fresh);
-  const std::vector<int> missing = store.missing();
-  ProgressMeter meter(int(job.xs.size()), int(job.xs.size() - missing.size()),
-                      !request.quiet && (request.progress || isatty(STDERR_FILENO)));
-  MapRunOptions run;
-  run.threads = request.threads;
-  run.stop = &stop_flag();
-  run.progress = &meter;
-  set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
-                                 tiles_dir.string()));
-  const MapRunStats stats =
-      compute_unround_map_tiles(job, missing, run, [&](int tile, TileText&& text) { store.put(tile, text); });
-  meter.finish();
-  set_interrupt_note({});
-  if (stats.interrupted || stop_requested()) {
-    fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
-               job.xs.size() - store.missing().size(), job.xs.size(), tiles_dir.string());
-    return interrupted_exit_code();
-  }
+  const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
+  const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()), tile_store_mode(flags));
+  const std::optional<MapRunStats> counts = run_missing_tiles(store, tiles_dir, int(job.xs.size()), flags,
+                         [&job](const auto& missing, const auto& run_options, const auto& sink) {
+                           return compute_unround_map_tiles(job, missing, run_options, sink);
+                         });
+  if (!counts) return interrupted_exit_code();
+  const MapRunStats& stats = *counts;
   std::ostringstream none, summary;
   for (int t = 0; t < int(job.xs.size()); ++t) store.append(t, none, summary);
   {
