@@ -20,7 +20,6 @@ code is used.
 Exit 0: every quantity within rtol; 1: a mismatch; 2: bad input or no convergence.
 """
 import argparse
-import csv
 import math
 import os
 import sys
@@ -30,7 +29,7 @@ from scipy.integrate import solve_ivp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mp_reference as ref  # noqa: E402  (the scene reader)
-from cycle_reference import Field  # noqa: E402  (the numpy field of model.md (3.10))
+from cycle_reference import Field, load_orbit, orbit_start  # noqa: E402  (the numpy field of model.md (3.10))
 
 
 def jacobian(f, x):
@@ -104,18 +103,11 @@ def main(argv=None):
     ap.add_argument("--rtol", type=float, default=1e-6)
     a = ap.parse_args(argv)
     try:
-        with open(a.cycles_csv) as fh:
-            rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-        if not rows:
-            raise ref.InputError(f"{a.cycles_csv}: no orbit rows")
-        row = rows[a.row]
-        param = next(k for k in row if k not in ("cycle", "point"))
-        p = ref.load_scene(a.scene, overrides=[f"{param}={row[param]}"])
-        f = Field(p)
+        row, param, f = load_orbit(a.scene, a.cycles_csv, a.row)
     except (ref.InputError, OSError, StopIteration, IndexError) as e:
         print(f"coulomb_cycle_reference: {e}", file=sys.stderr)
         return 2
-    guess = [float(row[c]) for c in ("q1_0", "q2_0", "beta1_0", "beta2_0", "dq1_0", "dq2_0", "dbeta1_0", "dbeta2_0")]
+    guess = orbit_start(row)
     T_cpp = float(row["period"])
     mu_cpp = [complex(float(row[f"mult_re{k}"]), float(row[f"mult_im{k}"])) for k in range(1, 3)]
     logsum_cpp = sum(float(row[f"mult_logmod{k}"]) for k in range(1, 9))

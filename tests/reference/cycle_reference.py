@@ -145,6 +145,23 @@ def orbit(f, guess, T0, steps):
     return T, cyclic_peak(qs), [mult[i] for i in order], x
 
 
+def load_orbit(scene, cycles_csv, index):
+    """Row `index` of a cycles_P.csv, its parameter's name and the scene's field at that
+    parameter. Raises ref.InputError, OSError, StopIteration or IndexError on bad input."""
+    with open(cycles_csv) as fh:
+        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    if not rows:
+        raise ref.InputError(f"{cycles_csv}: no orbit rows")
+    row = rows[index]
+    param = next(k for k in row if k not in ("cycle", "point"))
+    return row, param, Field(ref.load_scene(scene, overrides=[f"{param}={row[param]}"]))
+
+
+def orbit_start(row):
+    """The orbit's x(0) from its CSV row, in the state order of model.md (3.10)."""
+    return [float(row[c]) for c in ("q1_0", "q2_0", "beta1_0", "beta2_0", "dq1_0", "dq2_0", "dbeta1_0", "dbeta2_0")]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("scene")
@@ -154,18 +171,11 @@ def main(argv=None):
     ap.add_argument("--steps", type=int, default=3000)
     a = ap.parse_args(argv)
     try:
-        with open(a.cycles_csv) as fh:
-            rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-        if not rows:
-            raise ref.InputError(f"{a.cycles_csv}: no orbit rows")
-        row = rows[a.row]
-        param = next(k for k in row if k not in ("cycle", "point"))
-        p = ref.load_scene(a.scene, overrides=[f"{param}={row[param]}"])
-        f = Field(p)
+        row, param, f = load_orbit(a.scene, a.cycles_csv, a.row)
     except (ref.InputError, OSError, StopIteration, IndexError) as e:
         print(f"cycle_reference: {e}", file=sys.stderr)
         return 2
-    guess = [float(row[c]) for c in ("q1_0", "q2_0", "beta1_0", "beta2_0", "dq1_0", "dq2_0", "dbeta1_0", "dbeta2_0")]
+    guess = orbit_start(row)
     T_cpp, A_cpp = float(row["period"]), float(row["amplitude"])
     mu_cpp = [complex(float(row[f"mult_re{k}"]), float(row[f"mult_im{k}"])) for k in range(1, 9)]
     # RK4 at N, 2N, 4N steps; Richardson extrapolation removes the h^4 and h^5 terms of
