@@ -21,27 +21,8 @@ namespace {
 
 // data/scenes/default.toml at omega = 249 rad/s (below the Hopf point).
 abu::Params coulomb_params() {
-  const abu::Scene s = abu::parse_scene(R"(rolling = true
-[rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "coulomb"
-mu = 0.002
-kappa = 1.0e3
-[speed]
-omega = 249.0
-)", "default-at-249.toml");
+  abu::Scene s = abu::load_scene(std::string(ABU_SOURCE_DIR) + "/data/scenes/default.toml");
+  abu::apply_override(s, "omega=249");
   return abu::params_of<2>(s);
 }
 
