@@ -325,6 +325,35 @@ TEST_CASE("parameter derivatives match complex-step and central differences", "[
   }
 }
 
+TEST_CASE("field_derivatives equals vector_field, jacobian and parameter_derivative", "[model]") {
+  // The fused evaluation of the cycle shooting (model.md §17.9) only shares sin/cos and
+  // s'' = A^-1 b between the three, in the same operations: equal values (bitwise with this
+  // build; 1e-14 relative to each quantity's norm in natural units leaves room for a compiler
+  // contracting the two paths differently into FMAs). An index or sign slip would be O(1).
+  const Case c = GENERATE(from_range(kCases));
+  INFO(describe(c, true));
+  const auto p = make_params<2>(c, true);
+  const State<double, 2> w = natural_scale(p);
+  std::mt19937 rng(7u + unsigned(c.law));
+  for (int k = 0; k < 6; ++k) {
+    const State<double, 2> x = random_state(p, rng);
+    INFO("state " << k << ": " << x.transpose());
+    for (const char* symbol : {"omega", "m", "mu", "c", "U"}) {
+      const ParamRef ref = *parse_param(symbol, 2);
+      INFO("parameter " << symbol);
+      const FieldDerivatives<double, 2> d = field_derivatives(p, x, ref);
+      const State<double, 2> f = vector_field(p, x);
+      CHECK((d.field - f).cwiseQuotient(w).norm() <= 1e-14 * f.cwiseQuotient(w).norm());
+      const StateMatrix<double, 2> J = jacobian(p, x);
+      const StateMatrix<double, 2> Jw = w.cwiseInverse().asDiagonal() * J * w.asDiagonal();
+      const StateMatrix<double, 2> dJw = w.cwiseInverse().asDiagonal() * (d.jacobian - J) * w.asDiagonal();
+      CHECK(dJw.norm() <= 1e-14 * Jw.norm());
+      const State<double, 2> fp = parameter_derivative(p, x, ref);
+      CHECK((d.parameter_derivative - fp).cwiseQuotient(w).norm() <= 1e-14 * fp.cwiseQuotient(w).norm());
+    }
+  }
+}
+
 TEST_CASE("friction laws follow model.md section 4", "[model]") {
   const Case c = GENERATE(from_range(kCases));
   INFO(describe(c, true));

@@ -46,21 +46,23 @@ struct FlowContext {
     for (int i = 0; i < kDim; ++i) x(i) = scale(i) * y[i];
     return x;
   }
-  Matrix8 scaled_jacobian(const State8& x) const {
-    Matrix8 J = jacobian(p, x);
-    return scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
-  }
+  Matrix8 scaled(const Matrix8& J) const { return scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal(); }
+  Matrix8 scaled_jacobian(const State8& x) const { return scaled(jacobian(p, x)); }
 };
 
 int flow_rhs(double, const double y[], double dydt[], void* params) {
   auto& c = *static_cast<FlowContext*>(params);
   ++c.evaluations;
   const State8 x = c.unscale(y);
-  const State8 f = vector_field(c.p, x);
-  for (int i = 0; i < kDim; ++i) dydt[i] = f(i) / c.scale(i);
-  if (c.variational) {
-    const Matrix8 J = c.scaled_jacobian(x);
-    const State8 fp = parameter_derivative(c.p, x, c.ref);
+  if (!c.variational) {
+    const State8 f = vector_field(c.p, x);
+    for (int i = 0; i < kDim; ++i) dydt[i] = f(i) / c.scale(i);
+  } else {
+    // f, J and f_p in one evaluation sharing the kinematics (model.md §17.9).
+    const FieldDerivatives<double, 2> d = field_derivatives(c.p, x, c.ref);
+    for (int i = 0; i < kDim; ++i) dydt[i] = d.field(i) / c.scale(i);
+    const Matrix8 J = c.scaled(d.jacobian);
+    const State8& fp = d.parameter_derivative;
     // All 9 columns in one fixed-size, unrolled product (Eigen's general matrix-vector
     // kernel, called per column, was a fifth of a branch's instructions).
     const Eigen::Map<const Eigen::Matrix<double, kDim, kColumns>> cols(y + kDim);
@@ -68,9 +70,11 @@ int flow_rhs(double, const double y[], double dydt[], void* params) {
     out.noalias() = J.lazyProduct(cols);
     for (int i = 0; i < kDim; ++i) out(i, kColumns - 1) += fp(i) * c.span / c.scale(i);
   }
-  for (int i = 0; i < (c.variational ? kAugmented : kDim); ++i)
-    if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
-  return GSL_SUCCESS;
+  // x * 0 is 0 for every finite x and NaN for inf or NaN: one branch for all components
+  // (a test per component was a fifth of this function's own time).
+  double nonfinite = 0;
+  for (int i = 0; i < (c.variational ? kAugmented : kDim); ++i) nonfinite += dydt[i] * 0.0;
+  return nonfinite == 0 ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
 // For the implicit stepper: J~ on the state and on every variational column (the
@@ -97,12 +101,11 @@ struct RadauField {
   void operator()(double, const Eigen::VectorXd& y, F&& f, Eigen::MatrixXd& J, P&& par) {
     ++c.evaluations;
     const State8 x = c.unscale(y.data());
-    const State8 fx = vector_field(c.p, x);
-    for (int i = 0; i < kDim; ++i) f(i) = fx(i) / c.scale(i);
-    J = c.scaled_jacobian(x);
+    const FieldDerivatives<double, 2> d = field_derivatives(c.p, x, c.ref);
+    for (int i = 0; i < kDim; ++i) f(i) = d.field(i) / c.scale(i);
+    J = c.scaled(d.jacobian);
     if (c.variational) {
-      const State8 fp = parameter_derivative(c.p, x, c.ref);
-      for (int i = 0; i < kDim; ++i) par(i) = fp(i) * c.span / c.scale(i);
+      for (int i = 0; i < kDim; ++i) par(i) = d.parameter_derivative(i) * c.span / c.scale(i);
     } else {
       par.setZero();
     }
@@ -354,18 +357,27 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
 
   // The residual alone: with the chord corrector from flows of the state only, at rtol
   // (the full evaluation's residual is at the variational tolerance, which may be looser).
-  const Evaluated& residual_at(const Vec& u) const {
+  // With `sampling` the same pass also stops at samples_per_interval uniform times per
+  // interval and keeps the samples as u's orbit: the corrector's last residual is taken at
+  // the orbit it accepts, which sample() would otherwise integrate again (a sixth of the
+  // state steps per orbit, model.md §17.9).
+  const Evaluated& residual_at(const Vec& u, bool sampling = false) const {
     if constexpr (!Chord) return at(u);
-    if (plain_.u.size() == u.size() && plain_.u == u) return plain_;
+    const bool cached = plain_.u.size() == u.size() && plain_.u == u;
+    if (cached && (!sampling || sampled_for(u))) return plain_;
     Evaluated& e = plain_;
     if (!begin(e, u, false)) return e;
     const int n = size();
     const double h = period(u) / m_;
+    const std::vector<double> targets = sampling ? sample_times(h) : std::vector<double>{h};
+    if (sampling) clear_samples();
     for (int j = 0; j < m_; ++j) {
       double y[kDim];
       for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
       std::string_view why;
-      if (!state_.run(ctx_, y, h, {h}, {}, why)) {
+      const bool ran = sampling ? state_.run(ctx_, y, h, targets, [&](const double* x) { keep_sample(x); }, why)
+                                : state_.run(ctx_, y, h, targets, {}, why);
+      if (!ran) {
         e.ok = false;
         e.why = why;
         e.residual.setConstant(1e300);
@@ -378,13 +390,17 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     }
     e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
     state_flows_ += m_;
+    if (sampling) sampled_u_ = u;
     return e;
   }
 
   Vec residual(const Vec& u) const { return residual_at(u).residual; }
   Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
+  // Asked by the corrector only at the iterate it is about to accept: sampled as well,
+  // except on the stiff route, whose fixed Radau steps would be split at the sample times
+  // (another discrete map than the one the corrector solved, model.md §17.11).
   double residual_size(const Vec& u) const {
-    const Evaluated& e = residual_at(u);
+    const Evaluated& e = residual_at(u, !radau_);
     return e.ok ? e.residual.cwiseAbs().maxCoeff() : 1e300;
   }
   arclength::NewtonSettings newton() const {
@@ -394,6 +410,11 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     s.step_tolerance = 10 * o_.rtol;
     s.stall_tolerance = 1e7 * o_.rtol;
     s.residual_tolerance = 1e3 * o_.rtol;
+    // The chord's linear rate predicts the next step: stop when it is at the integration's
+    // noise (rtol) instead of taking it (about one state pass per orbit, model.md §17.9).
+    // Not on the stiff route: its orbits next to the Hopf point are so ill-determined
+    // (|mu_2 - 1| ~ 4e-7) that the skipped step still moved the amplitude by 4e-4 relative.
+    s.predicted_tolerance = radau_ ? 0.0 : o_.rtol;
     return s;
   }
 
@@ -509,31 +530,48 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   const FlowContext& context() const { return ctx_; }
 
  private:
-  // Samples the orbit uniformly (samples_per_interval per interval): max |q| and the
-  // ball angles' extremes, each refined by a parabola through its neighbours.
-  bool sample(const Vec& u, CycleOrbit& orbit) {
-    const double h = period(u) / m_;
+  // The sample times of one interval of length h: h i / k, i = 1..k, the last exactly h.
+  std::vector<double> sample_times(double h) const {
     const int k = o_.samples_per_interval;
     std::vector<double> targets;
-    for (int i = 1; i <= k; ++i) targets.push_back(h * i / k);
-    std::vector<double> qabs, b1, b2;
-    ctx_.variational = false;
-    ctx_.radau_step = h / steps_;
-    samples_.clear();
-    set(ctx_.p, ctx_.ref, parameter(u));
-    for (int j = 0; j < m_; ++j) {
-      double y[kDim];
-      for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
-      std::string_view why;
-      state_.run(ctx_, y, h, targets, [&](const double* s) {
-        qabs.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
-        if (radau_) samples_.push_back(ctx_.unscale(s));
-        b1.push_back(s[2]);
-        b2.push_back(s[3]);
-      }, why);
+    for (int i = 1; i < k; ++i) targets.push_back(h * i / k);
+    targets.push_back(h);
+    return targets;
+  }
+  void clear_samples() const {
+    sampled_u_.resize(0);
+    qabs_.clear(), b1_.clear(), b2_.clear(), samples_.clear();
+  }
+  void keep_sample(const double* s) const {
+    qabs_.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
+    if (radau_) samples_.push_back(ctx_.unscale(s));
+    b1_.push_back(s[2]);
+    b2_.push_back(s[3]);
+  }
+  bool sampled_for(const Vec& u) const { return sampled_u_.size() == u.size() && sampled_u_ == u; }
+
+  // Samples the orbit uniformly (samples_per_interval per interval): max |q| and the
+  // ball angles' extremes, each refined by a parabola through its neighbours. The samples
+  // of the corrector's last residual pass are reused when they are u's.
+  bool sample(const Vec& u, CycleOrbit& orbit) {
+    const int k = o_.samples_per_interval;
+    if (!sampled_for(u)) {
+      const double h = period(u) / m_;
+      const std::vector<double> targets = sample_times(h);
+      ctx_.variational = false;
+      ctx_.radau_step = h / steps_;
+      clear_samples();
+      set(ctx_.p, ctx_.ref, parameter(u));
+      for (int j = 0; j < m_; ++j) {
+        double y[kDim];
+        for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
+        std::string_view why;
+        state_.run(ctx_, y, h, targets, [&](const double* s) { keep_sample(s); }, why);
+      }
     }
-    if (qabs.size() != std::size_t(m_ * k)) return false;
-    orbit.amplitude = cyclic_max(qabs);
+    if (qabs_.size() != std::size_t(m_ * k)) return false;
+    std::vector<double> b1 = b1_, b2 = b2_;
+    orbit.amplitude = cyclic_max(qabs_);
     orbit.ball_max = {cyclic_max(b1), cyclic_max(b2)};
     for (auto* v : {&b1, &b2})
       for (double& x : *v) x = -x;
@@ -557,7 +595,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   bool pending_pair_ = false;
   bool radau_ = false;
   int steps_ = 1;
-  std::vector<Eigen::VectorXd> samples_;  // the stiff route: the SI states at the samples
+  mutable std::vector<Eigen::VectorXd> samples_;  // the stiff route: the SI states at the samples
+  mutable std::vector<double> qabs_, b1_, b2_;     // |q| and the ball angles at the samples
+  mutable Vec sampled_u_;                          // the orbit they belong to (empty: none)
 };
 
 static_assert(arclength::Problem<CycleProblem<true>>);

@@ -213,18 +213,18 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x) {
   return linearize(p, x, T(0));
 }
 
+namespace {
+// C and K of the linearization (model.md §6) at x, from the kinematics and the
+// accelerations s'' = A^-1 b already evaluated (shared by linearize, jacobian and
+// field_derivatives, which each used to recompute them).
 template <class T, int N>
-Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
-  const Kinematics<T, N> kin(p, x, omega_dot);
+void damping_and_stiffness(const ParamsT<T, N>& p, const State<T, N>& x, const Kinematics<T, N>& kin,
+                           const Coordinates<T, N>& accel, DofMatrix<T, N>& C, DofMatrix<T, N>& K) {
   const T M = p.total_mass();
   const T c = p.rotor.damping;
   const T k = p.rotor.stiffness;
   const T w = kin.w;
   const int n = kin.n, d = kin.dofs();
-  Linearization<T, N> lin;
-  lin.mass = mass_matrix<T, N>(p, Coordinates<T, N>(x.template head<dof_size<N>>(d)));
-  auto& C = lin.damping;
-  auto& K = lin.stiffness;
   C.setZero(d, d);
   K.setZero(d, d);
   // Rotor: support damping, Coriolis (skew), support stiffness against centrifugal
@@ -268,8 +268,17 @@ Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x, cons
     K(1, 0) += kin.wd * M;
   }
   // Off equilibrium A depends on beta while s'' != 0: K += (dA/ds) s'' (model.md §6).
-  const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
   if (!accel.isZero(0)) K += mass_derivative_times(kin, accel);
+}
+}  // namespace
+
+template <class T, int N>
+Linearization<T, N> linearize(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
+  const Kinematics<T, N> kin(p, x, omega_dot);
+  Linearization<T, N> lin;
+  lin.mass = mass_matrix<T, N>(p, Coordinates<T, N>(x.template head<dof_size<N>>(kin.dofs())));
+  damping_and_stiffness(p, x, kin, Coordinates<T, N>(solve_mass(p, kin, forces(p, x, kin))), lin.damping,
+                        lin.stiffness);
   return lin;
 }
 
@@ -296,18 +305,28 @@ StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x) {
   return jacobian(p, x, T(0));
 }
 
+namespace {
+// [[0, I], [-A^-1 K, -A^-1 C]] with A^-1 applied by solve_mass (model.md §6).
 template <class T, int N>
-StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
+StateMatrix<T, N> jacobian_from(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const DofMatrix<T, N>& C,
+                                const DofMatrix<T, N>& K) {
   constexpr int n_ = dof_size<N>;
-  const Kinematics<T, N> kin(p, x, omega_dot);
   const int d = kin.dofs();
-  const Linearization<T, N> lin = linearize(p, x, omega_dot);
   StateMatrix<T, N> J = StateMatrix<T, N>::Zero(2 * d, 2 * d);
   J.template block<n_, n_>(0, d, d, d).setIdentity();
   LowerRows<T, N> rhs(d, 2 * d);
-  rhs << -lin.stiffness, -lin.damping;
+  rhs << -K, -C;
   J.template block<n_, LowerRows<T, N>::ColsAtCompileTime>(d, 0, d, 2 * d) = solve_mass(p, kin, rhs);
   return J;
+}
+}  // namespace
+
+template <class T, int N>
+StateMatrix<T, N> jacobian(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
+  const Kinematics<T, N> kin(p, x, omega_dot);
+  DofMatrix<T, N> C, K;
+  damping_and_stiffness(p, x, kin, Coordinates<T, N>(solve_mass(p, kin, forces(p, x, kin))), C, K);
+  return jacobian_from(p, kin, C, K);
 }
 
 namespace {
@@ -437,6 +456,28 @@ State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, P
 }
 
 template <class T, int N>
+FieldDerivatives<T, N> field_derivatives(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
+  // One kinematics (the balls' sin/cos), one b and one s'' = A^-1 b for all three: f,
+  // df/dx and df/dp each recomputed them (a third of the cycle shooting's time went to
+  // sin/cos and the mass solves, model.md §17.9).
+  const Kinematics<T, N> kin(p, x);
+  const int d = kin.dofs();
+  const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
+  FieldDerivatives<T, N> out;
+  out.field.resize(2 * d);
+  out.field.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
+  out.field.template segment<dof_size<N>>(d, d) = accel;
+  DofMatrix<T, N> C, K;
+  damping_and_stiffness(p, x, kin, accel, C, K);
+  out.jacobian = jacobian_from(p, kin, C, K);
+  const ParameterPartials<T, N> dp = parameter_partials(p, x, ref, kin, accel);
+  out.parameter_derivative = State<T, N>::Zero(2 * d);
+  out.parameter_derivative.template segment<dof_size<N>>(d, d) =
+      solve_mass(p, kin, Coordinates<T, N>(dp.db - dp.dA_accel));
+  return out;
+}
+
+template <class T, int N>
 Coordinates<T, N> generalized_force_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
   const Kinematics<T, N> kin(p, x);
   // db/dp does not involve s''; the accelerations only feed the (dA/dp) s'' part.
@@ -510,6 +551,8 @@ Coordinates<T, N> static_force_scale(const ParamsT<T, N>& p, const Coordinates<T
   template Coordinates<T, N> generalized_force_derivative<T, N>(const ParamsT<T, N>&, const State<T, N>&, ParamRef); \
   template T displacement_scale<T, N>(const ParamsT<T, N>&);
 ABU_INSTANTIATE_MODEL(double, 2)
+template FieldDerivatives<double, 2> field_derivatives<double, 2>(const ParamsT<double, 2>&, const State<double, 2>&,
+                                                                  ParamRef);
 ABU_INSTANTIATE_MODEL(long double, 2)
 ABU_INSTANTIATE_MODEL(std::complex<double>, 2)
 ABU_INSTANTIATE_MODEL(double, 3)

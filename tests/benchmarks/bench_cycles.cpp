@@ -76,13 +76,14 @@ int main(int argc, char** argv) {
   const int steps = argc > 1 ? std::stoi(argv[1]) : 30;
   const int only = argc > 2 ? std::stoi(argv[2]) : -1;  // one configuration (for a profiler)
 
-  const Config reference{40, true, 1e-14, 1e-14, 1e-14};
+  // Full Newton: the reference orbit does not depend on the chord corrector's stopping rule.
+  const Config reference{40, false, 1e-14, 1e-14, 1e-14};
   abu::CycleOrbit ref;
   if (only < 0) {
     const abu::CycleBranch r = abu::continue_cycles(p, omega, *hb, 50.0, 900.0, options(reference, steps));
     if (r.orbits.size() < 3) return fmt::print(stderr, "reference branch: {}\n", r.reason), 1;
     ref = r.orbits[r.orbits.size() / 2];
-    fmt::print("reference orbit (M 40, tolerances 1e-14): omega {:.17g} rad/s, period {:.17g} s, amplitude {:.10g} m, "
+    fmt::print("reference orbit (M 40, full Newton, tolerances 1e-14): omega {:.17g} rad/s, period {:.17g} s, amplitude {:.10g} m, "
                "trivial |mu - 1| {:.2e}\n",
                ref.parameter, ref.period, ref.amplitude, ref.trivial_distance);
     for (std::size_t k = 0; k < ref.multipliers.size(); ++k)

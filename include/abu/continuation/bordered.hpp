@@ -42,6 +42,11 @@ struct NewtonSettings {
   long double stall_tolerance = 1e-12L;
   long double residual_tolerance = 1e-15L;
   long double divergence = 1;  ///< a longer step: diverging (the unknowns are O(1) scaled)
+  /// The chord corrector converges linearly, so after a step of size s that followed one of
+  /// size s' the remaining error is about s^2 / s'. With this > 0 it also stops when that
+  /// prediction is <= predicted_tolerance (saving the step that would only confirm it); the
+  /// residual_size check still decides convergence. 0: off.
+  long double predicted_tolerance = 0;
 };
 
 template <class S>
@@ -142,8 +147,10 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
     c.iterations = it + 1;
     const Scalar size = step.cwiseAbs().maxCoeff();
     const bool stalled = it >= 2 && size > last / 2;  // no longer converging quadratically
-    if (size <= rules.step_tolerance || stalled) {
-      if (size > rules.stall_tolerance) {
+    const bool predicted = chord && rules.predicted_tolerance > 0 && it >= 1 && size < last / 2 &&
+                           size * (size / last) <= rules.predicted_tolerance;
+    if (size <= rules.step_tolerance || stalled || predicted) {
+      if (!predicted && size > rules.stall_tolerance) {
         c.reason = "Newton stopped converging above the rounding level";
       } else if (s.residual_size(c.u) > rules.residual_tolerance) {
         c.reason = "the steps converged but the residual did not reach the rounding level";

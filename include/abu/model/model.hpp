@@ -122,6 +122,19 @@ State<T, N> angular_acceleration_derivative(const ParamsT<T, N>& p, const State<
 template <class T, int N>
 State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
 
+/// f, df/dx and df/dp at one state (omega' = 0), sharing the kinematics and s'' between
+/// them: equal to vector_field, jacobian and parameter_derivative up to rounding, at about
+/// half their summed cost (the variational equations of cycle shooting, model.md §17.9).
+template <class T, int N>
+struct FieldDerivatives {
+  State<T, N> field;                 ///< f(x)
+  StateMatrix<T, N> jacobian;        ///< df/dx
+  State<T, N> parameter_derivative;  ///< df/dp
+};
+/// Instantiated for double and two balls (the cycle shooting's type).
+template <class T, int N>
+FieldDerivatives<T, N> field_derivatives(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref);
+
 /// Analytic db/dp: the parameter derivative of the generalized forces, which is what
 /// the static equations b(s, 0; p) = 0 of continuation need.
 template <class T, int N>
