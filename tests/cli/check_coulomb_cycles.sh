@@ -5,7 +5,7 @@
 # six fast ones below 1e-308 with their ln|mu|, the trivial one within 1e-8 of 1, unstable
 # (subcritical Hopf point); with `reference`, the last orbit against the independent scipy
 # Radau single shooting (period, the two slow multipliers, Liouville's sum of all eight, to
-# 1e-6 relative; minutes: label "slow").
+# 1e-6 relative; ~1 min of CPU: ctest cycles_coulomb_reference, label "slow").
 #   check_coulomb_cycles.sh BINARY SOURCE_DIR [reference]
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
