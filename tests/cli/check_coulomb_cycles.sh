@@ -69,6 +69,14 @@ print(f"periodicity under bsimp: scaled |x(T) - x(0)| = {d:.2e}")
 sys.exit(0 if d <= 1e-6 else 1)
 PY
 check "... and comes back to x(0) within 1e-6 (scaled)" "[ $? -eq 0 ]"
+# The first orbit does not depend on the parameter box's scaling: with --to 252 (and 300) its
+# Newton used to stall at the stiff route's noise (~1e-6 scaled, model.md §17.9) and the branch
+# had no orbit at all, while 251 and 255 worked.
+"$bin" continue "$scene" --set omega=249 --param omega --to 252 --from-equilibrium balanced --cycles \
+  --cycle-steps 2 -o "$work/c252" >/dev/null 2>"$work/c252.err"
+check "--to 252: out of steps (exit 3), not a failed first orbit" \
+  "[ $? -eq 3 ] && grep -q 'ran out of steps' '$work/c252.err' && ! grep -q 'did not converge' '$work/c252.err'"
+check "... its orbits written" "[ \$(grep -v '^#' '$work/c252/cycles_omega.csv' | tail -n +2 | wc -l) -ge 3 ]"
 if [ "$mode" = reference ]; then
   /usr/bin/python3 "$src/tests/reference/coulomb_cycle_reference.py" "$scene" "$csv" --rtol 1e-6
   check "the last orbit against the independent Radau reference to 1e-6" "[ $? -eq 0 ]"
