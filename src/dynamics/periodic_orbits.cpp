@@ -101,14 +101,17 @@ struct RadauField {
   void operator()(double, const Eigen::VectorXd& y, F&& f, Eigen::MatrixXd& J, P&& par) {
     ++c.evaluations;
     const State8 x = c.unscale(y.data());
+    if (!c.variational) {  // the state alone: no f_p to compute
+      const State8 fx = vector_field(c.p, x);
+      for (int i = 0; i < kDim; ++i) f(i) = fx(i) / c.scale(i);
+      J = c.scaled_jacobian(x);
+      par.setZero();
+      return;
+    }
     const FieldDerivatives<double, 2> d = field_derivatives(c.p, x, c.ref);
     for (int i = 0; i < kDim; ++i) f(i) = d.field(i) / c.scale(i);
     J = c.scaled(d.jacobian);
-    if (c.variational) {
-      for (int i = 0; i < kDim; ++i) par(i) = d.parameter_derivative(i) * c.span / c.scale(i);
-    } else {
-      par.setZero();
-    }
+    for (int i = 0; i < kDim; ++i) par(i) = d.parameter_derivative(i) * c.span / c.scale(i);
   }
 };
 
@@ -370,14 +373,16 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     const int n = size();
     const double h = period(u) / m_;
     const std::vector<double> targets = sampling ? sample_times(h) : std::vector<double>{h};
-    if (sampling) clear_samples();
+    std::function<void(const double*)> keep;
+    if (sampling) {
+      clear_samples();
+      keep = [this](const double* x) { keep_sample(x); };
+    }
     for (int j = 0; j < m_; ++j) {
       double y[kDim];
       for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
       std::string_view why;
-      const bool ran = sampling ? state_.run(ctx_, y, h, targets, [&](const double* x) { keep_sample(x); }, why)
-                                : state_.run(ctx_, y, h, targets, {}, why);
-      if (!ran) {
+      if (!state_.run(ctx_, y, h, targets, keep, why)) {
         e.ok = false;
         e.why = why;
         e.residual.setConstant(1e300);

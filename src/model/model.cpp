@@ -198,14 +198,21 @@ State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x) {
   return vector_field(p, x, T(0));
 }
 
+namespace {
+// x' = (s', s'') from the accelerations s'' = A^-1 b.
+template <class T, int N>
+State<T, N> field_from(const State<T, N>& x, int d, const Coordinates<T, N>& accel) {
+  State<T, N> f(2 * d);
+  f.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
+  f.template segment<dof_size<N>>(d, d) = accel;
+  return f;
+}
+}  // namespace
+
 template <class T, int N>
 State<T, N> vector_field(const ParamsT<T, N>& p, const State<T, N>& x, const T& omega_dot) {
   const Kinematics<T, N> kin(p, x, omega_dot);
-  const int d = kin.dofs();
-  State<T, N> f(2 * d);
-  f.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
-  f.template segment<dof_size<N>>(d, d) = solve_mass(p, kin, forces(p, x, kin));
-  return f;
+  return field_from<T, N>(x, kin.dofs(), Coordinates<T, N>(solve_mass(p, kin, forces(p, x, kin))));
 }
 
 template <class T, int N>
@@ -445,14 +452,22 @@ ParameterPartials<T, N> parameter_partials(const ParamsT<T, N>& p, const State<T
 }
 }  // namespace
 
+namespace {
+// df/dp = (0, A^-1 (db/dp - (dA/dp) s'')) from the kinematics and s''.
 template <class T, int N>
-State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
-  const Kinematics<T, N> kin(p, x);
-  const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
+State<T, N> parameter_derivative_from(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref,
+                                      const Kinematics<T, N>& kin, const Coordinates<T, N>& accel) {
   const ParameterPartials<T, N> d = parameter_partials(p, x, ref, kin, accel);
   State<T, N> df = State<T, N>::Zero(2 * kin.dofs());
   df.template segment<dof_size<N>>(kin.dofs(), kin.dofs()) = solve_mass(p, kin, Coordinates<T, N>(d.db - d.dA_accel));
   return df;
+}
+}  // namespace
+
+template <class T, int N>
+State<T, N> parameter_derivative(const ParamsT<T, N>& p, const State<T, N>& x, ParamRef ref) {
+  const Kinematics<T, N> kin(p, x);
+  return parameter_derivative_from<T, N>(p, x, ref, kin, Coordinates<T, N>(solve_mass(p, kin, forces(p, x, kin))));
 }
 
 template <class T, int N>
@@ -461,20 +476,11 @@ FieldDerivatives<T, N> field_derivatives(const ParamsT<T, N>& p, const State<T, 
   // df/dx and df/dp each recomputed them (a third of the cycle shooting's time went to
   // sin/cos and the mass solves, model.md §17.9).
   const Kinematics<T, N> kin(p, x);
-  const int d = kin.dofs();
   const Coordinates<T, N> accel = solve_mass(p, kin, forces(p, x, kin));
-  FieldDerivatives<T, N> out;
-  out.field.resize(2 * d);
-  out.field.template head<dof_size<N>>(d) = x.template segment<dof_size<N>>(d, d);
-  out.field.template segment<dof_size<N>>(d, d) = accel;
   DofMatrix<T, N> C, K;
   damping_and_stiffness(p, x, kin, accel, C, K);
-  out.jacobian = jacobian_from(p, kin, C, K);
-  const ParameterPartials<T, N> dp = parameter_partials(p, x, ref, kin, accel);
-  out.parameter_derivative = State<T, N>::Zero(2 * d);
-  out.parameter_derivative.template segment<dof_size<N>>(d, d) =
-      solve_mass(p, kin, Coordinates<T, N>(dp.db - dp.dA_accel));
-  return out;
+  return {field_from<T, N>(x, kin.dofs(), accel), jacobian_from(p, kin, C, K),
+          parameter_derivative_from<T, N>(p, x, ref, kin, accel)};
 }
 
 template <class T, int N>
