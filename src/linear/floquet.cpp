@@ -66,18 +66,31 @@ ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& facto
     history.push_back(b);
     out.sweeps = sweep;
     // A boundary is kept once below the tolerance in two consecutive sweeps (a complex
-    // pair's rotation could pass close to 0 once); it is given up when its observed rate
-    // over the last four sweeps would not bring it there within the budget.
+    // pair's rotation could pass close to 0 once). It is given up, its two sides solved
+    // together from their block product, when its observed rate (the moduli ratio across
+    // it) is above merge_rate: such a product loses at most about log10(1/merge_rate)
+    // digits to the ratio, and iterating it apart would cost ln(tol)/ln(rate) sweeps (47
+    // on the viscous cycle branch, whose fast pairs differ by 0.53: a tenth of its cost per
+    // orbit, model.md §17.9). It is given up as well when the rate would not bring it to
+    // the tolerance within the budget. The rate compares the largest |W_21| of the last
+    // four sweeps with that of the four before: inside a complex pair the block rotates
+    // instead of decaying, and single sweeps four apart could catch it on its way down.
+    const auto window_max = [&](std::size_t j, std::size_t newest) {
+      double largest = 0;
+      for (std::size_t i = newest - 3; i <= newest; ++i) largest = std::max(largest, history[i][j]);
+      return largest;
+    };
     bool undecided = false;
     for (std::size_t j = 0; j < kept.size(); ++j) {
       kept[j] = sweep >= 2 && b[j] <= tol && history[history.size() - 2][j] <= tol;
       if (kept[j]) continue;
-      if (sweep < 6) {
+      if (sweep < 8) {
         undecided = true;
         continue;
       }
-      const double before = history[history.size() - 5][j];
-      const double rate = before > 0 ? std::pow(b[j] / before, 0.25) : 1.0;
+      const double before = window_max(j, history.size() - 5);
+      const double rate = before > 0 ? std::pow(window_max(j, history.size() - 1) / before, 0.25) : 1.0;
+      if (rate >= options.merge_rate) continue;
       const double needed = rate < 1 && b[j] > 0 ? std::log(tol / b[j]) / std::log(rate) + 1 : 1e300;
       if (sweep + needed <= options.max_sweeps) undecided = true;
     }

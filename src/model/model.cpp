@@ -51,6 +51,10 @@ void sin_cos<long double>(const long double& angle, long double& s, long double&
 template <class T, int N>
 struct Kinematics {
   std::array<T, ball_capacity<N>> sin_b, cos_b, ml;  // sin beta_i, cos beta_i, m_i l_i
+  // Per-ball constants of the mass solve, m_i / j_i, 1 / (j_i l_i) and j_i m_i l_i^2: once per
+  // evaluation, not once per right-hand side (the Jacobian solves 2 n + 4 of them; the
+  // same expressions, so the same values).
+  std::array<T, ball_capacity<N>> m_over_j, inv_jl, ball_inertia;
   int n;                                              // number of balls
   T w, w2;                                            // omega, omega^2
   T wd;                                               // angular acceleration omega' (model.md §9)
@@ -64,7 +68,11 @@ struct Kinematics {
     for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
       sin_cos(x(2 + i), sin_b[k], cos_b[k]);
-      ml[k] = p.balls[k].mass * p.balls[k].race_radius;
+      const auto& b = p.balls[k];
+      ml[k] = b.mass * b.race_radius;
+      m_over_j[k] = b.mass / b.inertia_factor;
+      inv_jl[k] = T(1) / (b.inertia_factor * b.race_radius);
+      ball_inertia[k] = b.inertia_factor * ml[k] * b.race_radius;
     }
     p1 = T(2) * w * x(n + 3) + w2 * x(0);
     p2 = T(-2) * w * x(n + 2) + w2 * x(1);
@@ -87,7 +95,7 @@ Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r
   const int n = kin.n;
   for (int i = 0; i < n; ++i) {
     const auto k = std::size_t(i);
-    const T mj = p.balls[k].mass / p.balls[k].inertia_factor;
+    const T mj = kin.m_over_j[k];
     s11 -= mj * kin.sin_b[k] * kin.sin_b[k];
     s22 -= mj * kin.cos_b[k] * kin.cos_b[k];
     s12 += mj * kin.sin_b[k] * kin.cos_b[k];
@@ -98,7 +106,7 @@ Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r
     T y1 = r(0, col), y2 = r(1, col);
     for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
-      const T inv_jl = T(1) / (p.balls[k].inertia_factor * p.balls[k].race_radius);
+      const T inv_jl = kin.inv_jl[k];
       y1 += kin.sin_b[k] * r(2 + i, col) * inv_jl;
       y2 -= kin.cos_b[k] * r(2 + i, col) * inv_jl;
     }
@@ -108,9 +116,7 @@ Rhs solve_mass(const ParamsT<T, N>& p, const Kinematics<T, N>& kin, const Rhs& r
     z(1, col) = z2;
     for (int i = 0; i < n; ++i) {
       const auto k = std::size_t(i);
-      const auto& b = p.balls[k];
-      z(2 + i, col) = (r(2 + i, col) + kin.ml[k] * (kin.sin_b[k] * z1 - kin.cos_b[k] * z2)) /
-                      (b.inertia_factor * kin.ml[k] * b.race_radius);
+      z(2 + i, col) = (r(2 + i, col) + kin.ml[k] * (kin.sin_b[k] * z1 - kin.cos_b[k] * z2)) / kin.ball_inertia[k];
     }
   }
   return z;

@@ -100,6 +100,14 @@ int main(int argc, char** argv) {
       {10, true, 1e-13, 1e-6, 1e-11},
       {10, true, 1e-12, 1e-6, 1e-10},
       {10, true, 1e-11, 1e-6, 1e-10},
+      {10, true, 1e-12, 1e-6, 1e-8},
+      {10, true, 1e-12, 1e-4, 1e-8},
+      {10, true, 1e-11, 1e-4, 1e-8},
+      {10, true, 1e-10, 1e-4, 1e-8},
+      {10, true, 1e-10, 1e-4, 1e-7},
+      {5, true, 1e-10, 1e-4, 1e-8},
+      {20, true, 1e-10, 1e-4, 1e-8},
+      {4, true, 1e-10, 1e-4, 1e-8},
   };
   fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | x AUTO 7.7 ms | period error | "
              "multiplier error | steps per orbit (state / Newton / Floquet) | Newton it. per orbit | orbits |\n"
