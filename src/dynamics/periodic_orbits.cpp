@@ -431,9 +431,15 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   void clear_samples() const {
     sampled_u_.resize(0);
     qabs_.clear(), b1_.clear(), b2_.clear(), samples_.clear();
+    qabs_rate_.clear(), b1_rate_.clear(), b2_rate_.clear();
   }
   void keep_sample(const double* s) const {
-    qabs_.push_back(std::hypot(s[0] * ctx_.scale(0), s[1] * ctx_.scale(1)));
+    const double q1 = s[0] * ctx_.scale(0), q2 = s[1] * ctx_.scale(1), q = std::hypot(q1, q2);
+    qabs_.push_back(q);
+    // d|q|/dt = q . q' / |q| and beta_i' from the state (the quintic peak of cyclic_max).
+    qabs_rate_.push_back(q > 0 ? (q1 * s[4] * ctx_.scale(4) + q2 * s[5] * ctx_.scale(5)) / q : 0.0);
+    b1_rate_.push_back(s[6] * ctx_.scale(6));
+    b2_rate_.push_back(s[7] * ctx_.scale(7));
     if (radau_) samples_.push_back(ctx_.unscale(s));
     b1_.push_back(s[2]);
     b2_.push_back(s[3]);
@@ -460,12 +466,13 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       }
     }
     if (qabs_.size() != std::size_t(m_ * k)) return false;
-    std::vector<double> b1 = b1_, b2 = b2_;
-    orbit.amplitude = cyclic_max(qabs_);
-    orbit.ball_max = {cyclic_max(b1), cyclic_max(b2)};
-    for (auto* v : {&b1, &b2})
+    std::vector<double> b1 = b1_, b2 = b2_, r1 = b1_rate_, r2 = b2_rate_;
+    const double dt = period(u) / (m_ * k);
+    orbit.amplitude = cyclic_max(qabs_, qabs_rate_, dt);
+    orbit.ball_max = {cyclic_max(b1, r1, dt), cyclic_max(b2, r2, dt)};
+    for (auto* v : {&b1, &b2, &r1, &r2})
       for (double& x : *v) x = -x;
-    orbit.ball_min = {-cyclic_max(b1), -cyclic_max(b2)};
+    orbit.ball_min = {-cyclic_max(b1, r1, dt), -cyclic_max(b2, r2, dt)};
     return true;
   }
 
@@ -487,6 +494,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   int steps_ = 1;
   mutable std::vector<Eigen::VectorXd> samples_;  // the stiff route: the SI states at the samples
   mutable std::vector<double> qabs_, b1_, b2_;     // |q| and the ball angles at the samples
+  mutable std::vector<double> qabs_rate_, b1_rate_, b2_rate_;  // their rates (d/dt)
   mutable Vec sampled_u_;                          // the orbit they belong to (empty: none)
 };
 
