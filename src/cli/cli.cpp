@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <mutex>
@@ -286,6 +287,19 @@ void add_scene_options(CLI::App& sub, SceneOptions& options) {
                  "hz; CSV columns named omega and JSON values stay in rad/s")
       ->check(CLI::IsMember({"rad/s", "rpm", "hz", "Hz"}))
       ->capture_default_str();
+}
+
+CLI::Validator tolerance_range(double lo, double hi) {
+  const std::string bounds = fmt::format("[{:g}, {:g}]", lo, hi);
+  return CLI::Validator(
+      [lo, hi, bounds](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return fmt::format("'{}' is not a number", text);
+        if (!(value >= lo && value <= hi)) return fmt::format("{} must be in {}", text, bounds);
+        return {};
+      },
+      "in " + bounds);
 }
 
 int run_command(int argc, char** argv);

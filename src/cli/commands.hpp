@@ -20,4 +20,8 @@ Action add_basin_command(CLI::App& app);
 struct SceneOptions;
 void add_scene_options(CLI::App& sub, SceneOptions& options);
 
+/// CLI::Range for tolerances: the bounds in %g ("must be in [1e-15, 0.01]"), where CLI11's
+/// own message prints them with six fixed decimals ("0.000000 to 0.010000").
+CLI::Validator tolerance_range(double lo, double hi);
+
 }  // namespace abu::cli

@@ -332,7 +332,7 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--cycle-rtol", o->cycle.rtol,
                   "Integrator tolerance of the cycles' flows and transition matrices (scaled state)")
-      ->check(CLI::Range(1e-15, 1e-3))
+      ->check(tolerance_range(1e-15, 1e-3))
       ->capture_default_str();
   sub->add_option("--cycle-intervals", o->cycle.intervals, "Shooting intervals per period")
       ->check(CLI::Range(4, 10000))
@@ -340,12 +340,12 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--cycle-newton-rtol", o->cycle.newton_rtol,
                   "Tolerance of the variational equations for the chord corrector's Newton matrix (its contraction "
                   "rate only; never tighter than --cycle-rtol; docs/model.md §17.8)")
-      ->check(CLI::Range(1e-15, 1e-2))
+      ->check(tolerance_range(1e-15, 1e-2))
       ->capture_default_str();
   sub->add_option("--cycle-floquet-rtol", o->cycle.floquet_rtol,
                   "Tolerance of the transition matrices at a converged orbit (its Floquet multipliers, about 10 times "
                   "this relative; never tighter than --cycle-rtol; docs/model.md §17.8)")
-      ->check(CLI::Range(1e-15, 1e-2))
+      ->check(tolerance_range(1e-15, 1e-2))
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "abu/core/errors.hpp"
+#include "commands.hpp"
 
 namespace abu::cli {
 
@@ -16,7 +17,7 @@ void add_stick_resolution_options(CLI::App& sub, StickSetOptions& options) {
   sub.add_option("--stick-area-tolerance", options.area_tolerance,
                  "coulomb-set, two balls: absolute error [rad^2] per radian of beta_1 of the adaptive Simpson rule for "
                  "the stick set's area and |q| integral")
-      ->check(CLI::Range(1e-14, 1e-2))
+      ->check(tolerance_range(1e-14, 1e-2))
       ->capture_default_str();
   sub.add_option("--stick-grid", options.grid_budget,
                  "coulomb-set, n >= 3 balls: at most this many grid points on the torus (G = floor(B^(1/n)) per angle)")

@@ -21,6 +21,10 @@ if [ "$mode" = contract ]; then
   "$bin" continue "$scene" --param omega --to 50 --cycles --cycle-steps 0 -o "$work/z" 2>"$work/z.err"
   check "--cycle-steps 0 exits 2" "[ $? -eq 2 ]"
   check "... nothing written" "[ ! -e '$work/z' ] || [ -z \"\$(ls -A '$work/z')\" ]"
+  "$bin" continue "$scene" --param omega --to 50 --cycles --cycle-floquet-rtol 0 -o "$work/t" 2>"$work/t.err"
+  check "--cycle-floquet-rtol 0 exits 2" "[ $? -eq 2 ]"
+  check "... naming the option and its range" "grep -q -- '--cycle-floquet-rtol: 0 must be in \[1e-15, 0.01\]' '$work/t.err'"
+  check "... nothing written" "[ ! -e '$work/t' ] || [ -z \"\$(ls -A '$work/t')\" ]"
 fi
 
 # 6 steps: the branch is cut short on purpose (exit 3, the orbits kept).
