@@ -44,7 +44,7 @@ struct ProductEigenvalueOptions {
   /// A boundary whose observed rate (the ratio of the moduli across it) is at least this
   /// after 8 sweeps joins its neighbours in one cluster: solved from their block product it
   /// loses at most about log10(1 / merge_rate) digits, where separating it would take
-  /// ln(tolerance) / ln(rate) sweeps. 1: only the budget decides (the behaviour before).
+  /// ln(tolerance) / ln(rate) sweeps. 1: only the budget decides.
   double merge_rate = 0.3;
 };
 
