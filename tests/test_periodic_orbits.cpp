@@ -138,3 +138,53 @@ TEST_CASE("periodic orbits: the peak of cyclic samples from values and rates (qu
   CHECK(abu::detail::cyclic_max(values, {}, 0.1) == std::max(*std::max_element(values.begin(), values.end()),
                                                               abu::detail::cyclic_max(values)));
 }
+
+TEST_CASE("periodic orbits: the extrapolated Newton matrix gives the integrated one's orbits") {
+  // The chord corrector's Newton matrix at a predicted orbit, extrapolated from the last
+  // three accepted orbits (model.md §17.6), changes only the corrector's contraction, not
+  // the orbits it converges to: the same branch (the fast configuration of model.md §17.9,
+  // M = 5, state 1e-10, Newton matrix 1e-4, Floquet 1e-8) with and without it. Each orbit is
+  // converged to Newton steps of 10 rtol = 1e-9 (scaled unknowns), so parameter and period
+  // agree to 1e-8 relative, the multipliers (integrated to 1e-8) to 1e-6 relative to
+  // max(|mu|, 1e-3); a wrong matrix (a sign, a stale phase row) would make the chord fail or
+  // stall, and the iterations per orbit are held to 1.5 times the integrated matrix's.
+  const abu::SpecialPoint hb = viscous_hopf();
+  const abu::ParamRef omega = *abu::parse_param("omega", 2);
+  abu::CycleOptions o;
+  o.intervals = 5;
+  o.rtol = 1e-10;
+  o.newton_rtol = 1e-4;
+  o.floquet_rtol = 1e-8;
+  o.first_amplitude = 2e-2;
+  o.continuation.max_steps = 20;
+  o.extrapolate_newton_matrix = false;
+  const abu::CycleBranch integrated = abu::continue_cycles(viscous_params(), omega, hb, 50.0, 900.0, o);
+  o.extrapolate_newton_matrix = true;
+  const abu::CycleBranch extrapolated = abu::continue_cycles(viscous_params(), omega, hb, 50.0, 900.0, o);
+  INFO(integrated.reason << " / " << extrapolated.reason);
+  REQUIRE(integrated.orbits.size() >= 15);
+  REQUIRE(extrapolated.orbits.size() == integrated.orbits.size());
+  CHECK(integrated.extrapolated_matrices == 0);
+  CHECK(extrapolated.extrapolated_matrices >= long(extrapolated.orbits.size()) - 3);
+  CHECK(extrapolated.newton_steps * 5 < integrated.newton_steps);
+  CHECK(double(extrapolated.newton_iterations) < 1.5 * double(integrated.newton_iterations));
+  double worst_period = 0, worst_parameter = 0, worst_multiplier = 0;
+  for (std::size_t k = 0; k < integrated.orbits.size(); ++k) {
+    const abu::CycleOrbit &a = integrated.orbits[k], &b = extrapolated.orbits[k];
+    worst_parameter = std::max(worst_parameter, std::abs(b.parameter / a.parameter - 1));
+    worst_period = std::max(worst_period, std::abs(b.period / a.period - 1));
+    REQUIRE(a.multipliers.size() == b.multipliers.size());
+    for (std::size_t i = 0; i < a.multipliers.size(); ++i)
+      worst_multiplier = std::max(worst_multiplier, std::abs(b.multipliers[i] - a.multipliers[i]) /
+                                                        std::max(std::abs(a.multipliers[i]), 1e-3));
+  }
+  INFO("parameter " << worst_parameter << ", period " << worst_period << ", multipliers " << worst_multiplier);
+  CHECK(worst_parameter < 1e-8);
+  CHECK(worst_period < 1e-8);
+  CHECK(worst_multiplier < 1e-6);
+  CHECK(extrapolated.specials.size() == integrated.specials.size());
+  // Make the figures visible in the test log.
+  WARN("extrapolated against integrated: parameter " << worst_parameter << ", period " << worst_period
+                                                      << ", multipliers " << worst_multiplier << "; iterations "
+                                                      << extrapolated.newton_iterations << " / " << integrated.newton_iterations);
+}

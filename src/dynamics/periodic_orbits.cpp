@@ -119,7 +119,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   using Jacobian = typename Base::Jacobian;
   static constexpr std::size_t test_count = 3;  // LPC, PD, NS
   static constexpr bool tangent_at_solution = true;
-  // The corrector keeps the Newton matrix of the predicted orbit (model.md §17.6): its
+  // The corrector keeps the Newton matrix of the predicted orbit (model.md §17.7): its
   // iterations then integrate the 8 states only, not the 80 variational components.
   static constexpr bool chord_corrector = Chord;
 
@@ -196,6 +196,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   const Evaluated& at(const Vec& u) const {
     const bool accurate = Chord && converged_orbit(u);
     if (cache_.u.size() == u.size() && cache_.u == u && (cache_accurate_ || !accurate)) return cache_;
+    if (!accurate && can_extrapolate()) return extrapolated(u);
     cache_accurate_ = accurate;
     Integrator& full = accurate ? floquet_ : newton_;
     Evaluated& e = cache_;
@@ -381,10 +382,61 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   }
 
   void commit(Vec& u, Vec&, arclength::Stage) {
+    // The accurate Newton matrix of the orbit just accepted (evaluate() integrated it), kept
+    // for the next predicted orbit's extrapolation.
+    if (Chord && cache_accurate_ && cache_.ok && cache_.u.size() == u.size() && cache_.u == u) {
+      std::rotate(kept_.begin(), kept_.begin() + 1, kept_.end());
+      kept_.back().u = u;
+      kept_.back().jacobian = cache_.jacobian;
+      kept_count_ = std::min(kept_count_ + 1, int(kept_.size()));
+    } else {
+      kept_count_ = 0;
+    }
+    extrapolated_since_commit_ = false;
     orbits_.push_back(pending_);
     last_ = pending_;
     last_tests_ = pending_tests_;
     set_phase(u);
+  }
+
+  // The chord corrector's Newton matrix at a predicted orbit u from the last accepted
+  // orbits' accurate ones (model.md §17.7): the Lagrange quadratic through the last three
+  // (linear through two), in the distance along the branch, u projected on the last secant.
+  // Its error, O(ds^3), sets only the chord's contraction rate, not the orbit. The first
+  // matrix since the last accepted orbit only: a correction that failed with it (or a step
+  // retried) integrates the next one.
+  bool can_extrapolate() const {
+    return Chord && o_.extrapolate_newton_matrix && !radau_ && kept_count_ >= 2 && !extrapolated_since_commit_;
+  }
+  const Evaluated& extrapolated(const Vec& u) const {
+    extrapolated_since_commit_ = true;
+    ++extrapolations_;
+    const Kept &a = kept_[0], &b = kept_[1], &c = kept_[2];
+    // Positions along the branch: the chord lengths between kept orbits, u projected on the last.
+    const Vec secant = c.u - b.u;
+    const double s0 = 0, s1 = (b.u - a.u).norm(), s2 = s1 + secant.norm();
+    const double x = s2 + (secant.norm() > 0 ? (u - c.u).dot(secant) / secant.norm() : 0.0);
+    Evaluated& e = extrapolation_;
+    const int n = size();
+    e.u = u;
+    e.ok = true;
+    e.why = {};
+    e.residual = Vec::Zero(n - 1);  // unused: the chord corrector's residuals are state passes
+    if (kept_count_ == 3 && s1 > 0 && s2 > s1) {  // quadratic (Lagrange)
+      const double w0 = (x - s1) * (x - s2) / ((s0 - s1) * (s0 - s2));
+      const double w1 = (x - s0) * (x - s2) / ((s1 - s0) * (s1 - s2));
+      const double w2 = (x - s0) * (x - s1) / ((s2 - s0) * (s2 - s1));
+      e.jacobian = w0 * a.jacobian + w1 * b.jacobian + w2 * c.jacobian;
+    } else {
+      const double theta = s2 > s1 ? (x - s2) / (s2 - s1) : 0.0;
+      e.jacobian = c.jacobian + theta * (c.jacobian - b.jacobian);
+    }
+    // The phase row is the current reference orbit's, exactly (set_phase at the last commit).
+    e.jacobian.row(n - 2).setZero();
+    e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
+    e.transitions.resize(std::size_t(m_));
+    for (int j = 0; j < m_; ++j) e.transitions[std::size_t(j)] = e.jacobian.block(kDim * j, kDim * j, kDim, kDim);
+    return e;
   }
 
   // The unknowns of the orbit through x(0) = state0 (SI) with period T at parameter p:
@@ -417,6 +469,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   long state_steps() const { return state_.steps(); }
   long newton_steps() const { return newton_.steps(); }
   long floquet_steps() const { return floquet_.steps(); }
+  long extrapolations() const { return extrapolations_; }
   const FlowContext& context() const { return ctx_; }
 
  private:
@@ -496,6 +549,16 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   mutable std::vector<double> qabs_, b1_, b2_;     // |q| and the ball angles at the samples
   mutable std::vector<double> qabs_rate_, b1_rate_, b2_rate_;  // their rates (d/dt)
   mutable Vec sampled_u_;                          // the orbit they belong to (empty: none)
+  // The last two accepted orbits' accurate Newton matrices (extrapolated()).
+  struct Kept {
+    Vec u;
+    Jacobian jacobian;
+  };
+  std::array<Kept, 3> kept_;
+  int kept_count_ = 0;
+  mutable Evaluated extrapolation_;
+  mutable bool extrapolated_since_commit_ = false;
+  mutable long extrapolations_ = 0;
 };
 
 static_assert(arclength::Problem<CycleProblem<true>>);
@@ -695,6 +758,7 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
   out.state_steps = problem.state_steps();
   out.newton_steps = problem.newton_steps();
   out.floquet_steps = problem.floquet_steps();
+  out.extrapolated_matrices = problem.extrapolations();
   if (r.end != arclength::End::end_of_interval) {
     out.status.merge(r.status == Outcome::converged ? Outcome::converged : r.status, "see reason");
     const double last = out.orbits.empty() ? pH : out.orbits.back().parameter;

@@ -30,6 +30,7 @@ struct Config {
   int intervals;
   bool chord;
   double rtol, newton_rtol, floquet_rtol;
+  bool extrapolate = true;  // the Newton matrix extrapolated from the last two orbits (model.md §17.6)
 };
 
 abu::CycleOptions options(const Config& cf, int steps) {
@@ -40,6 +41,7 @@ abu::CycleOptions options(const Config& cf, int steps) {
   o.rtol = cf.rtol;
   o.newton_rtol = cf.newton_rtol;
   o.floquet_rtol = cf.floquet_rtol;
+  o.extrapolate_newton_matrix = cf.extrapolate;
   return o;
 }
 
@@ -108,6 +110,9 @@ int main(int argc, char** argv) {
       {5, true, 1e-10, 1e-4, 1e-8},
       {20, true, 1e-10, 1e-4, 1e-8},
       {4, true, 1e-10, 1e-4, 1e-8},
+      {5, true, 1e-10, 1e-4, 1e-8, false},  // 12 without the extrapolated Newton matrix (stop 23's fast configuration)
+      {10, true, 1e-10, 1e-4, 1e-8, false},
+      {40, true, 1e-13, 1e-6, 1e-11, false},  // 2 without it (the defaults of stop 23)
   };
   fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | x AUTO 7.7 ms | period error | "
              "multiplier error | steps per orbit (state / Newton / Floquet) | Newton it. per orbit | orbits |\n"
@@ -128,8 +133,12 @@ int main(int argc, char** argv) {
       period_error = fmt::format("{:.1e}", std::abs(at.orbit.period / ref.period - 1));
       mult_error = fmt::format("{:.1e}", multiplier_error(at.orbit, ref));
     }
+    // The Newton column: full, chord, or chord with k of the orbits' Newton matrices extrapolated.
+    const std::string newton = !cf.chord ? std::string("full")
+                               : cf.extrapolate ? fmt::format("chord, {} extrap.", c.extrapolated_matrices)
+                                                : std::string("chord");
     fmt::print("| {} | {} | {:.0e} / {:.0e} / {:.0e} | {:.2f} | {:.2f} | {} | {} | {:.0f} / {:.0f} / {:.0f} | {:.1f} | {} |\n",
-               cf.intervals, cf.chord ? "chord" : "full", cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
+               cf.intervals, newton, cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
                cf.chord ? cf.floquet_rtol : cf.rtol, 1e3 * cpu / n, 1e3 * cpu / n / 7.7, period_error, mult_error,
                double(c.state_steps) / n, double(c.newton_steps) / n, double(c.floquet_steps) / n, double(c.newton_iterations) / n, c.orbits.size());
   }

@@ -31,7 +31,7 @@ namespace abu {
 struct CycleOptions {
   int intervals = 40;          ///< M shooting intervals per period
   /// Newton's matrix kept from the predicted orbit, the iterations integrating the state
-  /// only (model.md §17.6); false: full Newton, the variational equations every iteration.
+  /// only (model.md §17.7); false: full Newton, the variational equations every iteration.
   bool chord_corrector = true;
   double rtol = 1e-13;         ///< integrator tolerance on the scaled state (the residuals: the orbit's accuracy)
   /// Tolerances of the variational equations (model.md §17.8), never tighter than rtol:
@@ -40,6 +40,11 @@ struct CycleOptions {
   /// Floquet multipliers and the next tangent). Used by the chord corrector only.
   double newton_rtol = 1e-6;
   double floquet_rtol = 1e-11;
+  /// The chord corrector's Newton matrix at a predicted orbit extrapolated along the branch
+  /// (quadratic through the last three accepted orbits' accurate ones, linear through two)
+  /// instead of integrated at newton_rtol (model.md §17.7); integrated at the first two
+  /// orbits, on the stiff route, and for a retried step. False: always integrated.
+  bool extrapolate_newton_matrix = true;
   /// Scaled amplitude |z| ||D^-1 q_H|| of the first orbit (model.md (17.3)): small enough
   /// for the normal form, large enough to stay off the Hopf point's singular Jacobian.
   double first_amplitude = 2e-3;
@@ -113,6 +118,7 @@ struct CycleBranch {
   /// Integrator steps (accepted and rejected) over the whole branch: the state alone, the
   /// variational equations for the Newton matrix, for the Floquet multipliers.
   long state_steps = 0, newton_steps = 0, floquet_steps = 0;
+  long extrapolated_matrices = 0;  ///< Newton matrices extrapolated, not integrated (extrapolate_newton_matrix)
 };
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in
