@@ -44,7 +44,7 @@ set title heading noenhanced font ',9'
 set xlabel param . ' [' . unit . ']'
 set ylabel '|q| of the equilibrium, max |q| of the cycle [m]'
 set grid
-set key top left box opaque
+set key outside right top spacing 1.2
 set format x '%.10g'
 
 # The cycles' special points, if there are any (a file without rows would only draw a warning).

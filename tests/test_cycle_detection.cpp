@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <string>
+#include <iomanip>
 #include <vector>
 
 #include "abu/continuation/continuation.hpp"
@@ -159,6 +160,7 @@ void crossing_at_any_step(double c, double hopf, double bound, const char* label
   CHECK(std::abs(double(hb->parameter) - hopf) < 1e-3);
   CHECK(hb->lyapunov < 0);  // supercritical: stable cycles below omega_H
   const bool pd = std::string(label) == "PD";
+  std::vector<double> located;
   for (const double ds_max : {0.1, 1.0, 10.0}) {
     INFO(label << ", ds_max " << ds_max);
     abu::CycleOptions o;
@@ -171,16 +173,20 @@ void crossing_at_any_step(double c, double hopf, double bound, const char* label
     double where = 0;
     for (const auto& s : br.specials) {
       CHECK(s.label == label);  // nothing else on this stretch
+      CHECK(s.located);         // on the branch, not interpolated
       if (s.label == label) ++found, where = s.parameter;
     }
     REQUIRE(found == 1);
+    located.push_back(where);
     CHECK(std::abs(where - near_value) < 0.05);
-    // Independent of the interpolation between orbits: the orbit corrected at the located
+    // Independent of the location's own test function: the orbit corrected at the located
     // omega has its multiplier on the circle (PD: at -1) to the location's error times the
-    // multiplier's rate (~0.8 per rad/s for the PD, ~2.3 for the NS pair's modulus; the
-    // interpolation between orbits whose multipliers moved at most max_multiplier_jump = 0.25
-    // is off by about 1e-3 rad/s at the largest steps): margin < 1e-2. And 0.02 rad/s above
-    // it the multiplier is inside, 0.02 below outside: the crossing is there.
+    // multiplier's rate (~0.8 per rad/s for the PD, ~2.3 for the NS pair's modulus). Brent's
+    // method stops within 1e-9 of the step (scaled unknowns, < 1e-8 rad/s here) and the
+    // multipliers are integrated to floquet_rtol 1e-11 (~1e-10 relative): margin < 1e-6, where
+    // the interpolation between orbits it replaced (multipliers moving up to
+    // max_multiplier_jump = 0.25 per step) was off by ~1e-3. And 0.02 rad/s above it the
+    // multiplier is inside, 0.02 below outside: the crossing is there.
     const abu::CycleOrbit* nearest = &br.orbits.front();
     for (const auto& orbit : br.orbits)
       if (std::abs(orbit.parameter - where) < std::abs(nearest->parameter - where)) nearest = &orbit;
@@ -194,11 +200,18 @@ void crossing_at_any_step(double c, double hopf, double bound, const char* label
       REQUIRE(fixed.status.ok());
       margin[k] = crossing_margin(fixed.orbit, pd);
     }
-    INFO("at " << where << ": margin " << margin[0] << ", " << margin[1] << " above, " << margin[2] << " below");
-    CHECK(std::abs(margin[0]) < 1e-2);
+    INFO(std::setprecision(12) << "at " << where << ": margin " << margin[0] << ", " << margin[1] << " above, " << margin[2] << " below");
+    CHECK(std::abs(margin[0]) < 1e-6);
     CHECK(margin[1] > 0);
     CHECK(margin[2] < 0);
   }
+  // The same point whatever the step: the three locations agree to 1e-7 rad/s (the orbits'
+  // own accuracy, rtol 1e-13, over a test function of slope ~1 per rad/s, with room for the
+  // chord's 1e-9).
+  REQUIRE(located.size() == 3);
+  INFO(std::setprecision(15) << "located at " << located[0] << ", " << located[1] << ", " << located[2]);
+  CHECK(std::abs(located[1] - located[0]) < 1e-7);
+  CHECK(std::abs(located[2] - located[0]) < 1e-7);
 }
 
 }  // namespace

@@ -192,11 +192,12 @@ std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& p
 std::string cycle_specials_csv(const std::vector<CycleBranch>& cycles, const ParamRef& param, const std::string& header) {
   std::string s = header;
   s += "# special points of the cycle branches: LPC fold of cycles, PD period doubling, NS Neimark-Sacker (docs/model.md §17.5);\n"
-       "#   located at the zero of the test function, interpolated between the two converged orbits around it\n";
-  s += fmt::format("cycle,label,{},period,amplitude\n", to_string(param));
+       "#   the orbit where the test function is zero; located = 1: on the branch (Brent's method to 1e-9 of the step,\n"
+       "#   each value at an orbit corrected onto the branch), 0: interpolated between the two converged orbits around it\n";
+  s += fmt::format("cycle,label,{},period,amplitude,located\n", to_string(param));
   for (std::size_t c = 0; c < cycles.size(); ++c)
     for (const CycleSpecial& sp : cycles[c].specials)
-      s += fmt::format("{},{},{},{},{}\n", c + 1, sp.label, sp.parameter, sp.period, sp.amplitude);
+      s += fmt::format("{},{},{},{},{},{}\n", c + 1, sp.label, sp.parameter, sp.period, sp.amplitude, sp.located ? 1 : 0);
   return s;
 }
 

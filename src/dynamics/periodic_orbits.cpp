@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_roots.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 #include <array>
+#include <limits>
 #include <functional>
 #include <optional>
 
@@ -196,6 +198,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   const Evaluated& at(const Vec& u) const {
     const bool accurate = Chord && converged_orbit(u);
     if (cache_.u.size() == u.size() && cache_.u == u && (cache_accurate_ || !accurate)) return cache_;
+    if (!accurate && segment_ends_) return interpolated(u);
     if (!accurate && can_extrapolate()) return extrapolated(u);
     cache_accurate_ = accurate;
     Integrator& full = accurate ? floquet_ : newton_;
@@ -361,24 +364,121 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     return out;
   }
 
-  void locate(unsigned changed, const arclength::Segment<Vec>&) {
+  void locate(unsigned changed, const arclength::Segment<Vec>& seg) {
     static constexpr const char* labels[] = {"LPC", "PD", "NS"};
     for (unsigned k = 0; k < 3; ++k) {
       if (!(changed & (1u << k))) continue;
-      const double a = last_tests_[k], b = pending_tests_[k];
-      const double theta = a / (a - b);
+      // Two real multipliers with product 1 (a neutral saddle cycle), not a torus.
+      if (k == 2 && !pending_pair_) continue;
       CycleSpecial s;
       s.label = labels[k];
-      s.parameter = last_.parameter + theta * (pending_.parameter - last_.parameter);
-      s.period = last_.period + theta * (pending_.period - last_.period);
-      s.amplitude = last_.amplitude + theta * (pending_.amplitude - last_.amplitude);
-      s.note = "interpolated between two converged orbits (the test function's zero)";
-      if (k == 2 && !pending_pair_) {
-        // Two real multipliers with product 1 (a neutral saddle cycle), not a torus.
-        continue;
+      // The stiff route's PD and NS tests need the frozen spectra's multipliers (evaluate):
+      // interpolated there; its LPC (the tangent) is located like the others.
+      const bool locatable = o_.locate_specials && (!radau_ || k == 0);
+      if (!locatable || !root_on_branch(k, seg, s)) {
+        const double a = last_tests_[k], b = pending_tests_[k];
+        const double theta = a / (a - b);
+        s.parameter = last_.parameter + theta * (pending_.parameter - last_.parameter);
+        s.period = last_.period + theta * (pending_.period - last_.period);
+        s.amplitude = last_.amplitude + theta * (pending_.amplitude - last_.amplitude);
+        s.located = false;
+        s.note = locatable ? "interpolated between two converged orbits (the test function's zero): locating it on the "
+                             "branch failed"
+                           : "interpolated between two converged orbits (the test function's zero)";
       }
       specials_.push_back(s);
     }
+  }
+
+  // Test function k (LPC: the tangent's parameter component; PD, NS: of the multipliers,
+  // model.md §17.5) at a converged orbit u, the tangent oriented along `previous`.
+  double test_value(unsigned k, const Vec& u, const Vec& previous) const {
+    const Evaluated& e = at(u);
+    if (!e.ok) return std::numeric_limits<double>::quiet_NaN();
+    if (k == 0) return arclength::tangent(e.jacobian, previous)(param_index());
+    const ProductEigenvalues f = product_eigenvalues(e.transitions);
+    const CycleTestValues tv = cycle_test_values(f.values, f.log_moduli);
+    return k == 1 ? tv.period_doubling : tv.neimark_sacker;
+  }
+
+  // The orbit on the branch through from + sigma d, d the constraint direction (false: the
+  // corrector failed).
+  bool on_branch(const Vec& from, const Vec& d, double sigma, Vec& u) const {
+    const auto r = arclength::correct(*this, Vec(from + sigma * d), d);
+    if (!r.converged()) return false;
+    u = r.u;
+    return true;
+  }
+
+  // The zero of test function k on the branch between the last orbit and the pending one:
+  // each value at an orbit corrected onto the branch with the chord as the constraint
+  // direction, Brent's method (GSL) to 1e-9 of the chord (model.md §17.5). The caches are the
+  // pending orbit's again afterwards (commit keeps its Newton matrix). False if a correction
+  // failed, the ends do not bracket a zero, or the root left the step.
+  bool root_on_branch(unsigned k, const arclength::Segment<Vec>& seg, CycleSpecial& out) {
+    const Vec chord = seg.to - seg.from;
+    const double length = chord.norm();
+    if (!(length > 0)) return false;
+    const Evaluated kept_cache = cache_, kept_plain = plain_;
+    const bool kept_accurate = cache_accurate_, kept_extrapolated = extrapolated_since_commit_;
+    extrapolated_since_commit_ = true;  // no extrapolation from the orbits before the step
+    // The corrections' Newton matrices between the step's two accurate ones, where both are
+    // at hand (the last accepted orbit's kept, the pending one's cached); else integrated.
+    if (Chord && o_.extrapolate_newton_matrix && !radau_ && kept_count_ >= 1 && kept_[2].u.size() == seg.from.size() &&
+        kept_[2].u == seg.from && cache_accurate_ && cache_.u.size() == seg.to.size() && cache_.u == seg.to)
+      segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian});
+    struct Context {
+      CycleProblem* self;
+      unsigned k;
+      const Vec* from;
+      Vec d;
+      const Vec* previous;
+      bool failed = false;
+    } ctx{this, k, &seg.from, chord / length, &seg.from_tangent};
+    gsl_function fn;
+    fn.params = &ctx;
+    fn.function = [](double sigma, void* raw) -> double {
+      auto& c = *static_cast<Context*>(raw);
+      Vec u;
+      if (!c.self->on_branch(*c.from, c.d, sigma, u)) {
+        c.failed = true;
+        return 0.0;  // ends the search: the caller falls back to the interpolation
+      }
+      const double v = c.self->test_value(c.k, u, *c.previous);
+      if (!std::isfinite(v)) c.failed = true;
+      return std::isfinite(v) ? v : 0.0;
+    };
+    gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    bool ok = solver && gsl_root_fsolver_set(solver, &fn, 0.0, length) == GSL_SUCCESS;
+    double root = 0.5 * length;
+    for (int it = 0; ok && !ctx.failed && it < 60; ++it) {
+      if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) ok = false;
+      root = gsl_root_fsolver_root(solver);
+      if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 1e-9 * length,
+                                 0.0) == GSL_SUCCESS)
+        break;
+    }
+    if (solver) gsl_root_fsolver_free(solver);
+    Vec u;
+    ok = ok && !ctx.failed && on_branch(seg.from, ctx.d, root, u) && (u - seg.from).norm() <= 2 * length &&
+         (u - seg.to).norm() <= 2 * length;
+    if (ok) {
+      CycleOrbit at_root;
+      ok = sample(u, at_root);
+      out.parameter = parameter(u);
+      out.period = period(u);
+      out.amplitude = at_root.amplitude;
+      out.located = true;
+      out.note = "located on the branch: the test function's zero by Brent's method to 1e-9 of the step, each value "
+                 "at an orbit corrected onto the branch";
+    }
+    segment_ends_.reset();
+    cache_ = kept_cache;
+    plain_ = kept_plain;
+    cache_accurate_ = kept_accurate;
+    extrapolated_since_commit_ = kept_extrapolated;
+    sampled_u_.resize(0);
+    return ok;
   }
 
   void commit(Vec& u, Vec&, arclength::Stage) {
@@ -431,12 +531,32 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       const double theta = s2 > s1 ? (x - s2) / (s2 - s1) : 0.0;
       e.jacobian = c.jacobian + theta * (c.jacobian - b.jacobian);
     }
-    // The phase row is the current reference orbit's, exactly (set_phase at the last commit).
+    return finish_estimate(e);
+  }
+  // The phase row exact (the current reference orbit, set_phase at the last commit) and the
+  // transition matrices from the blocks of an estimated Newton matrix.
+  const Evaluated& finish_estimate(Evaluated& e) const {
+    const int n = size();
     e.jacobian.row(n - 2).setZero();
     e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
     e.transitions.resize(std::size_t(m_));
     for (int j = 0; j < m_; ++j) e.transitions[std::size_t(j)] = e.jacobian.block(kDim * j, kDim * j, kDim, kDim);
     return e;
+  }
+  // While a special point is located within a step: the Newton matrix at u linear between
+  // the step's two accurate ones (u projected on the chord), O(ds^2) (model.md §17.5).
+  const Evaluated& interpolated(const Vec& u) const {
+    const Kept &a = segment_ends_->first, &b = segment_ends_->second;
+    const Vec chord = b.u - a.u;
+    const double length2 = chord.squaredNorm();
+    const double theta = length2 > 0 ? (u - a.u).dot(chord) / length2 : 0.0;
+    Evaluated& e = extrapolation_;
+    e.u = u;
+    e.ok = true;
+    e.why = {};
+    e.residual = Vec::Zero(size() - 1);  // unused: the chord corrector's residuals are state passes
+    e.jacobian = a.jacobian + theta * (b.jacobian - a.jacobian);
+    return finish_estimate(e);
   }
 
   // The unknowns of the orbit through x(0) = state0 (SI) with period T at parameter p:
@@ -557,6 +677,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   std::array<Kept, 3> kept_;
   int kept_count_ = 0;
   mutable Evaluated extrapolation_;
+  std::optional<std::pair<Kept, Kept>> segment_ends_;  // while locating within a step (root_on_branch)
   mutable bool extrapolated_since_commit_ = false;
   mutable long extrapolations_ = 0;
 };

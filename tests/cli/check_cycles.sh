@@ -35,6 +35,8 @@ check "... saying where and why" "grep -q 'numerical failure: cycle 1.*ran out o
 csv=$work/c/cycles_omega.csv
 check "... the orbits computed are written" "[ \$(grep -v '^#' '$csv' | tail -n +2 | wc -l) -eq 7 ]"
 check "cycle_special_omega.csv written" "[ -s '$work/c/cycle_special_omega.csv' ]"
+check "... its header is the documented one" \
+  "[ \"\$(grep -v '^#' '$work/c/cycle_special_omega.csv' | head -1)\" = 'cycle,label,omega,period,amplitude,located' ]"
 check "cycles_omega.png written" "[ -s '$work/c/cycles_omega.png' ]"
 header=$(grep -v '^#' "$csv" | head -1)
 expected="cycle,point,omega,period,amplitude,stable,trivial_distance,beta1_min,beta1_max,beta2_min,beta2_max"

@@ -45,6 +45,10 @@ struct CycleOptions {
   /// instead of integrated at newton_rtol (model.md §17.7); integrated at the first two
   /// orbits, on the stiff route, and for a retried step. False: always integrated.
   bool extrapolate_newton_matrix = true;
+  /// LPC, PD and NS located on the branch (the test function's zero, model.md §17.5); false:
+  /// interpolated between the two orbits around the sign change. The stiff route's PD and NS
+  /// are always interpolated.
+  bool locate_specials = true;
   /// Scaled amplitude |z| ||D^-1 q_H|| of the first orbit (model.md (17.3)): small enough
   /// for the normal form, large enough to stay off the Hopf point's singular Jacobian.
   double first_amplitude = 2e-3;
@@ -93,6 +97,9 @@ struct CycleOrbit {
 struct CycleSpecial {
   std::string label;  ///< "LPC", "PD", "NS"
   double parameter = 0, period = 0, amplitude = 0;
+  /// True: the orbit where the test function is zero, on the branch (Brent's method to 1e-9
+  /// of the step, model.md §17.5); false: interpolated between the two orbits around it.
+  bool located = false;
   std::string note;
 };
 
