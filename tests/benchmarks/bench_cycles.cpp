@@ -30,7 +30,8 @@ struct Config {
   int intervals;
   bool chord;
   double rtol, newton_rtol, floquet_rtol;
-  bool extrapolate = true;  // the Newton matrix extrapolated from the last two orbits (model.md §17.6)
+  bool extrapolate = true;  // the Newton matrix extrapolated from the last orbits (model.md §17.7)
+  bool locate = true;       // LPC/PD/NS located on the branch (model.md §17.5)
 };
 
 abu::CycleOptions options(const Config& cf, int steps) {
@@ -42,6 +43,7 @@ abu::CycleOptions options(const Config& cf, int steps) {
   o.newton_rtol = cf.newton_rtol;
   o.floquet_rtol = cf.floquet_rtol;
   o.extrapolate_newton_matrix = cf.extrapolate;
+  o.locate_specials = cf.locate;
   return o;
 }
 
@@ -113,6 +115,7 @@ int main(int argc, char** argv) {
       {5, true, 1e-10, 1e-4, 1e-8, false},  // 12 without the extrapolated Newton matrix (stop 23's fast configuration)
       {10, true, 1e-10, 1e-4, 1e-8, false},
       {40, true, 1e-13, 1e-6, 1e-11, false},  // 2 without it (the defaults of stop 23)
+      {5, true, 1e-10, 1e-4, 1e-8, true, false},  // 12 with the branch's LPC interpolated, not located
   };
   fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | x AUTO 7.7 ms | period error | "
              "multiplier error | steps per orbit (state / Newton / Floquet) | Newton it. per orbit | orbits |\n"
@@ -137,8 +140,9 @@ int main(int argc, char** argv) {
     const std::string newton = !cf.chord ? std::string("full")
                                : cf.extrapolate ? fmt::format("chord, {} extrap.", c.extrapolated_matrices)
                                                 : std::string("chord");
+    const std::string specials = cf.locate ? "" : ", LPC interp.";
     fmt::print("| {} | {} | {:.0e} / {:.0e} / {:.0e} | {:.2f} | {:.2f} | {} | {} | {:.0f} / {:.0f} / {:.0f} | {:.1f} | {} |\n",
-               cf.intervals, newton, cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
+               cf.intervals, newton + specials, cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
                cf.chord ? cf.floquet_rtol : cf.rtol, 1e3 * cpu / n, 1e3 * cpu / n / 7.7, period_error, mult_error,
                double(c.state_steps) / n, double(c.newton_steps) / n, double(c.floquet_steps) / n, double(c.newton_iterations) / n, c.orbits.size());
   }
