@@ -182,7 +182,7 @@ void crossing_at_any_step(double c, double hopf, double bound, const char* label
     // Independent of the location's own test function: the orbit corrected at the located
     // omega has its multiplier on the circle (PD: at -1) to the location's error times the
     // multiplier's rate (~0.8 per rad/s for the PD, ~2.3 for the NS pair's modulus). Brent's
-    // method stops within 1e-9 of the step (scaled unknowns, < 1e-8 rad/s here) and the
+    // method stops within ~1e-8 of the step (scaled unknowns, < 1e-7 rad/s here) and the
     // multipliers are integrated to floquet_rtol 1e-11 (~1e-10 relative): margin < 1e-6, where
     // the interpolation between orbits it replaced (multipliers moving up to
     // max_multiplier_jump = 0.25 per step) was off by ~1e-3. And 0.02 rad/s above it the

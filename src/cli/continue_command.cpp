@@ -192,7 +192,7 @@ std::string cycles_csv(const std::vector<CycleBranch>& cycles, const ParamRef& p
 std::string cycle_specials_csv(const std::vector<CycleBranch>& cycles, const ParamRef& param, const std::string& header) {
   std::string s = header;
   s += "# special points of the cycle branches: LPC fold of cycles, PD period doubling, NS Neimark-Sacker (docs/model.md §17.5);\n"
-       "#   the orbit where the test function is zero; located = 1: on the branch (Brent's method to 1e-9 of the step,\n"
+       "#   the orbit where the test function is zero; located = 1: on the branch (Brent's method to ~1e-8 of the step,\n"
        "#   each value at an orbit corrected onto the branch), 0: interpolated between the two converged orbits around it\n";
   s += fmt::format("cycle,label,{},period,amplitude,located\n", to_string(param));
   for (std::size_t c = 0; c < cycles.size(); ++c)

@@ -97,7 +97,7 @@ struct CycleOrbit {
 struct CycleSpecial {
   std::string label;  ///< "LPC", "PD", "NS"
   double parameter = 0, period = 0, amplitude = 0;
-  /// True: the orbit where the test function is zero, on the branch (Brent's method to 1e-9
+  /// True: the orbit where the test function is zero, on the branch (Brent's method to ~1e-8
   /// of the step, model.md §17.5); false: interpolated between the two orbits around it.
   bool located = false;
   std::string note;
