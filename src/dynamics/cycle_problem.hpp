@@ -482,10 +482,10 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   const Evaluated& extrapolated(const Vec& u) const {
     extrapolated_since_commit_ = true;
     ++extrapolations_;
-    const Kept &a = kept_[0], &b = kept_[1], &c = kept_[2];
+    const Kept &a = kept_[0], &b = kept_[1], &c = kept_[2];  // a only with three kept
     // Positions along the branch: the chord lengths between kept orbits, u projected on the last.
     const Vec secant = c.u - b.u;
-    const double s0 = 0, s1 = (b.u - a.u).norm(), s2 = s1 + secant.norm();
+    const double s0 = 0, s1 = kept_count_ == 3 ? (b.u - a.u).norm() : 0.0, s2 = s1 + secant.norm();
     const double x = s2 + (secant.norm() > 0 ? (u - c.u).dot(secant) / secant.norm() : 0.0);
     Evaluated& e = extrapolation_;
     const int n = size();
