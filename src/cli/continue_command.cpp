@@ -339,8 +339,9 @@ Action add_continue_command(CLI::App& app) {
       ->check(CLI::Range(4, 10000))
       ->capture_default_str();
   sub->add_option("--cycle-newton-rtol", o->cycle.newton_rtol,
-                  "Tolerance of the variational equations for the chord corrector's Newton matrix (its contraction "
-                  "rate only; never tighter than --cycle-rtol; docs/model.md §17.8)")
+                  "Tolerance of the variational equations for the chord corrector's Newton matrix where it is "
+                  "integrated: the first two orbits and retried steps, elsewhere it is extrapolated from the orbits "
+                  "accepted (its contraction rate only; never tighter than --cycle-rtol; docs/model.md §17.7-17.8)")
       ->check(tolerance_range(1e-15, 1e-2))
       ->capture_default_str();
   sub->add_option("--cycle-floquet-rtol", o->cycle.floquet_rtol,
