@@ -163,16 +163,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       std::fill(y.begin(), y.end(), 0.0);
       for (int i = 0; i < kDim; ++i) y[std::size_t(i)] = u(kDim * j + i), y[std::size_t(kDim * (1 + i) + i)] = 1.0;
       std::string_view why;
-      if (!full.run(ctx_, y.data(), h, {h}, {}, why)) {
-        e.ok = false;
-        e.why = why;
-        e.residual.setConstant(1e300);
-        return e;
-      }
+      if (!full.run(ctx_, y.data(), h, {h}, {}, why)) return failed(e, why);
       const int next = (j + 1) % m_;
-      for (int i = 0; i < kDim; ++i)
-        e.residual(kDim * j + i) = full.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + full.increment()(i)
-                                                : y[std::size_t(i)] - u(kDim * next + i);
+      interval_residual(e, u, j, y.data(), full);
       const Eigen::Map<const Eigen::Matrix<double, kDim, kDim>> phi(y.data() + kDim);
       e.transitions[std::size_t(j)] = phi;
       e.jacobian.block(kDim * j, kDim * j, kDim, kDim) = phi;
@@ -188,6 +181,21 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
     e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
     flows_ += m_;
+    return e;
+  }
+
+  // Interval j's residual rows: its flow's end minus the next point (on the stiff route the
+  // increment summed apart from the state, model.md §17.11).
+  void interval_residual(Evaluated& e, const Vec& u, int j, const double* end, const Integrator& flow) const {
+    const int next = (j + 1) % m_;
+    for (int i = 0; i < kDim; ++i)
+      e.residual(kDim * j + i) = flow.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + flow.increment()(i)
+                                              : end[i] - u(kDim * next + i);
+  }
+  static const Evaluated& failed(Evaluated& e, std::string_view why) {
+    e.ok = false;
+    e.why = why;
+    e.residual.setConstant(1e300);
     return e;
   }
 
@@ -215,16 +223,8 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       double y[kDim];
       for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
       std::string_view why;
-      if (!state_.run(ctx_, y, h, targets, keep, why)) {
-        e.ok = false;
-        e.why = why;
-        e.residual.setConstant(1e300);
-        return e;
-      }
-      const int next = (j + 1) % m_;
-      for (int i = 0; i < kDim; ++i)
-        e.residual(kDim * j + i) = state_.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + state_.increment()(i)
-                                                  : y[i] - u(kDim * next + i);
+      if (!state_.run(ctx_, y, h, targets, keep, why)) return failed(e, why);
+      interval_residual(e, u, j, y, state_);
     }
     e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
     state_flows_ += m_;
@@ -488,11 +488,6 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     const double s0 = 0, s1 = kept_count_ == 3 ? (b.u - a.u).norm() : 0.0, s2 = s1 + secant.norm();
     const double x = s2 + (secant.norm() > 0 ? (u - c.u).dot(secant) / secant.norm() : 0.0);
     Evaluated& e = extrapolation_;
-    const int n = size();
-    e.u = u;
-    e.ok = true;
-    e.why = {};
-    e.residual = Vec::Zero(n - 1);  // unused: the chord corrector's residuals are state passes
     if (kept_count_ == 3 && s1 > 0 && s2 > s1) {  // quadratic (Lagrange)
       const double w0 = (x - s1) * (x - s2) / ((s0 - s1) * (s0 - s2));
       const double w1 = (x - s0) * (x - s2) / ((s1 - s0) * (s1 - s2));
@@ -502,12 +497,16 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       const double theta = s2 > s1 ? (x - s2) / (s2 - s1) : 0.0;
       e.jacobian = c.jacobian + theta * (c.jacobian - b.jacobian);
     }
-    return finish_estimate(e);
+    return finish_estimate(e, u);
   }
-  // The phase row exact (the current reference orbit, set_phase at the last commit) and the
-  // transition matrices from the blocks of an estimated Newton matrix.
-  const Evaluated& finish_estimate(Evaluated& e) const {
+  // An estimated Newton matrix at u completed: the phase row exact (the current reference
+  // orbit, set_phase at the last commit), the transition matrices from its blocks.
+  const Evaluated& finish_estimate(Evaluated& e, const Vec& u) const {
     const int n = size();
+    e.u = u;
+    e.ok = true;
+    e.why = {};
+    e.residual = Vec::Zero(n - 1);  // unused: the chord corrector's residuals are state passes
     e.jacobian.row(n - 2).setZero();
     e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
     e.transitions.resize(std::size_t(m_));
@@ -522,12 +521,8 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     const double length2 = chord.squaredNorm();
     const double theta = length2 > 0 ? (u - a.u).dot(chord) / length2 : 0.0;
     Evaluated& e = extrapolation_;
-    e.u = u;
-    e.ok = true;
-    e.why = {};
-    e.residual = Vec::Zero(size() - 1);  // unused: the chord corrector's residuals are state passes
     e.jacobian = a.jacobian + theta * (b.jacobian - a.jacobian);
-    return finish_estimate(e);
+    return finish_estimate(e, u);
   }
 
   // The unknowns of the orbit through x(0) = state0 (SI) with period T at parameter p:
