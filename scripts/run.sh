@@ -5,10 +5,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
-# Ninja on a new build directory: it compiles the tests' and the CLI's files while the
-# library's last files still compile (make waits for the whole library first).
-generator=(); [ -f build/CMakeCache.txt ] || generator=(-G Ninja)
-cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The same configuration as scripts/run.sh and scripts/test.sh (Ninja: it compiles the
+# tests' and the CLI's files while the library's last files still compile).
+source scripts/configure.sh
 cmake --build build -j"$(nproc)" --target stability-scan
 # omega_n = sqrt(7500 / 0.120066) = 249.93 rad/s for the default scene.
 build/stability-scan sweep data/scenes/default.toml --param omega --from 50 --to 2000 --steps 780 \

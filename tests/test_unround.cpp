@@ -152,7 +152,7 @@ TEST_CASE("unround race: the first-order residual whirl of §11.6 at small eps",
     for (int sheet : {-1, 1}) {
       const double b1 = std::numbers::pi - sheet * std::acos(U / (2 * m * l));
       const double b2 = std::numbers::pi + sheet * std::acos(U / (2 * m * l));
-      auto d1 = [&](double b) { return -l * k * eps * std::sin(k * b - phase); };
+      auto d1 = [&, k = k, phase = phase](double b) { return -l * k * eps * std::sin(k * b - phase); };
       const double s21 = std::sin(b2 - b1);
       const std::complex<double> q((d1(b2) * std::cos(b1) - d1(b1) * std::cos(b2)) / s21,
                                    (d1(b2) * std::sin(b1) - d1(b1) * std::sin(b2)) / s21);

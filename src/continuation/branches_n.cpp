@@ -300,7 +300,7 @@ class Tracer : public S {
     if (!pair) return;  // a neutral saddle (or unresolvable coalescence): not a Hopf point
     // Brent on the real part of the crossing eigenvalue, followed by nearness to the
     // linear interpolation between the bracket's pair.
-    const auto [la, lb] = *pair;
+    const std::complex<double> la = pair->first, lb = pair->second;
     const ld chord = (ub - ua).norm();
     std::complex<double> critical = la;
     const Vec from = ua;
