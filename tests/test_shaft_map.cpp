@@ -88,3 +88,21 @@ TEST_CASE("shaft crossing: the located speed brackets a sign change of the dense
   CHECK(std::abs(c.value.real()) <= 1e-9 * std::abs(c.value));
   CHECK(c.value.imag() > 1.0);  // a Hopf crossing: a complex pair (7.49 1/s, rotating frame)
 }
+
+// The failure reasons of refine_shaft_crossing are formatted with numbers: they must be owned
+// by the result (they were string_views of temporaries, read after the function returned; the
+// sanitized suite runs this test). A bracket 200 .. 210 rad/s, below the crossing near 250
+// rad/s, keeps the sign of the tracked eigenvalue's real part: the "keeps its sign" branch.
+TEST_CASE("shaft crossing: a bracket without a sign change is reported with its numbers", "[shaft_map]") {
+  const auto system_at = [](double w) { return one_node(w); };
+  const ShaftSystem lo = one_node(200.0);
+  const auto states = shaft_balanced_states(lo);
+  REQUIRE(!states.empty());
+  const SparseSpectrum s = shaft_rightmost(lo, states.front().state(), 10, 0.0);
+  const ShaftVerdict v = shaft_verdict(s, states.front().structural_zeros);
+  const ShaftCrossing c = refine_shaft_crossing(system_at, states.front().position, 200.0, v.rightmost, 210.0);
+  REQUIRE_FALSE(c.status.ok());
+  const std::string copy(ShaftCrossing(c).status.reason.view());  // read after the result moved around
+  CHECK(copy.find("keeps its sign up to omega = 210") != std::string::npos);
+  CHECK(copy.find("another eigenvalue crossed") != std::string::npos);
+}

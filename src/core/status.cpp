@@ -1,5 +1,7 @@
 #include "abu/core/status.hpp"
 
+#include <ostream>
+
 namespace abu {
 
 std::string_view to_string(Outcome o) {
@@ -10,5 +12,7 @@ std::string_view to_string(Outcome o) {
   }
   return "?";
 }
+
+std::ostream& operator<<(std::ostream& out, const Reason& reason) { return out << reason.view(); }
 
 }  // namespace abu

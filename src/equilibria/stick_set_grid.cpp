@@ -133,8 +133,8 @@ StickSet sampled_set(const StickModel& m, const StickSetOptions& o, std::vector<
       std::any_of(S.seeds.begin(), S.seeds.end(), [](const StickSeed& s) { return s.family == "balanced"; });
   if (!S.balanced_exists)
     S.status = Status{Outcome::not_converged, any_balanced_seed
-                                                  ? "the grid does not resolve the stick set around the balanced set"
-                                                  : "no balanced state in the stick set"};
+                                                  ? Reason("the grid does not resolve the stick set around the balanced set")
+                                                  : Reason("no balanced state in the stick set")};
   return S;
 }
 
