@@ -15,7 +15,7 @@ mkdir -p "$corpus"
 find data tests/scenes -name '*.toml' -exec cp {} "$corpus/" \;
 # Seeds with --set lines after a NUL byte.
 printf '%s\0omega=1e155\nm=0.02\nr=0.03\nl=0.2\n' "$(cat data/scenes/default.toml)" >"$corpus/with_sets"
-# The two toml++ 3.3 traps, guarded by src/io/toml_guard.cpp.
+# The two toml++ 3.3 traps, guarded by src/input/toml_guard.cpp.
 printf '[rotor]\nmass = 1\xc3\xa9\n' >"$corpus/nonascii_after_number"
 printf '[# speed]\nomega = 1\n' >"$corpus/hash_in_header"
 cd build-fuzz

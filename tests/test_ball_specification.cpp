@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/model/model.hpp"
 
 namespace {

@@ -14,7 +14,7 @@
 #include "../src/dynamics/stiff_cycles.hpp"  // internal to src/dynamics: the frozen-spectra step alone
 #include "abu/continuation/continuation.hpp"
 #include "abu/dynamics/periodic_orbits.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/model/model.hpp"
 
 namespace {

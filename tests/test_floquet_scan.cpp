@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/io/floquet_sweep.hpp"
+#include "abu/analysis/floquet_sweep.hpp"
 #include "abu/linear/balanced_floquet.hpp"
 #include "abu/scan/map.hpp"
 #include "abu/scan/scan.hpp"

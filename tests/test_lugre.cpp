@@ -12,7 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/lugre.hpp"
 #include "abu/model/model.hpp"

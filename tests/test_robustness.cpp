@@ -1,11 +1,11 @@
 // Hostile scene text (issue 12): the inputs toml++ 3.3 does not refuse cleanly are refused
-// by the pre-check (src/io/toml_guard.cpp) with a line number, never reach the parser.
+// by the pre-check (src/input/toml_guard.cpp) with a line number, never reach the parser.
 #include <catch2/catch.hpp>
 
 #include <string>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace {
 int refused_at(const std::string& text) {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-// Shaft scenes (include/abu/io/shaft_scene.hpp, docs/model.md §18.10–§18.11): what a valid
+// Shaft scenes (include/abu/input/shaft_scene.hpp, docs/model.md §18.10–§18.11): what a valid
 // [shaft] scene becomes, and the rules the invalid scenes 100–111 do not cover one by one.
 #include <catch2/catch.hpp>
 
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/scene.hpp"
-#include "abu/io/shaft_scene.hpp"
+#include "abu/input/scene.hpp"
+#include "abu/input/shaft_scene.hpp"
 #include "abu/model/shaft.hpp"
 
 namespace {

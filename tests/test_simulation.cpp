@@ -9,7 +9,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
 

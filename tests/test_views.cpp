@@ -14,8 +14,8 @@
 
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/io/report_views.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/output/report_views.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/linear/modes.hpp"
 #include "abu/scan/scan.hpp"
 

@@ -10,7 +10,7 @@
 // q [m] and beta [rad] (rotating frame), eigenvalues [1/s] (rotating frame); numbers in
 // shortest round-trip form. Exit 2 on a bad scene (the library's message), 1 otherwise.
 #include <abu/core/errors.hpp>
-#include <abu/io/scene.hpp>
+#include <abu/input/scene.hpp>
 #include <abu/scan/scan.hpp>
 
 #include <charconv>

@@ -17,7 +17,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/core/status.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace abu::python {
 

@@ -14,10 +14,13 @@
 #include <thread>
 
 #include "abu/core/errors.hpp"
-#include "abu/io/io.hpp"
-#include "abu/io/map_setup.hpp"
-#include "abu/io/report.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/output/format.hpp"
+#include "abu/output/provenance.hpp"
+#include "abu/analysis/map_setup.hpp"
+#include "abu/analysis/equilibria.hpp"
+#include "abu/output/equilibria_report.hpp"
+#include "abu/output/report.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/scan/scan.hpp"
 #include "bindings.hpp"
 
@@ -53,7 +56,7 @@ std::string scene_repr(const Scene& s) {
 // Every equilibrium of one analysis as arrays, row i = equilibrium i in the CLI's order
 // (equilibria --format csv/json): the same doubles the CSV prints.
 template <class A, int N>
-py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p) {
+py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p, const EquilibriaReport& report) {
   const auto points = a.equilibria.points();
   const auto rows = py::ssize_t(points.size());
   const int n = p.n_balls(), dim = 2 * n + 4;
@@ -144,33 +147,25 @@ py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p) {
   d["degeneracy"] = a.equilibria.degeneracy;
   d["degeneracies"] = describe_degeneracy(a.equilibria.degeneracy);
   d["warnings"] = analysis_warnings(a, fmt::format("omega={}", p.omega));
-  d["table"] = equilibria_report(a, p, SpeedUnit::rad_per_s);
+  d["table"] = equilibria_text(report, "table", OutputContext{});
   return d;
 }
 
 py::dict equilibria(const Scene& scene, int samples_per_sheet) {
   require_base_model(scene, "equilibria");
-  BalancedSampling sampling;
-  sampling.samples_per_sheet = samples_per_sheet;
-  if (const auto rule = options_violation(sampling)) throw InputError("equilibria", 0, "samples_per_sheet", *rule);
-  // As the CLI's `equilibria`: two balls take the fixed-size path, any other count the general one.
-  if (scene.balls.size() == 2) {
-    const Params p = params_of<2>(scene);
-    Analysis a;
-    {
-      py::gil_scoped_release release;
-      a = analyze(p);
-    }
-    return equilibria_dict(a, p);
-  }
-  const ParamsN p = params_of<any_balls>(scene);
-  AnalysisN a;
+  EquilibriaOptions options;
+  options.sampling.samples_per_sheet = samples_per_sheet;
+  if (const auto rule = options_violation(options.sampling)) throw InputError("equilibria", 0, "samples_per_sheet", *rule);
+  // As the CLI's `equilibria`: the same analysis call (two balls on the fixed-size path).
+  EquilibriaReport report;
   {
     py::gil_scoped_release release;
-    a = analyze(p, sampling);
+    report = analyze_equilibria(scene, options);
   }
-  py::dict d = equilibria_dict(a, p);
-  const auto& info = a.equilibria.balanced_set;
+  if (const auto* two = std::get_if<RigidStates2>(&report.states)) return equilibria_dict(two->analysis, two->params, report);
+  const auto& any = std::get<RigidStatesN>(report.states);
+  py::dict d = equilibria_dict(any.analysis, any.params, report);
+  const auto& info = any.analysis.equilibria.balanced_set;
   py::dict set;
   set["exists"] = info.exists;
   set["dimension"] = info.dimension;

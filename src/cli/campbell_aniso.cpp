@@ -6,8 +6,9 @@
 #include <cmath>
 #include <utility>
 
-#include "abu/io/chart_labels.hpp"
-#include "abu/io/report_campbell_aniso.hpp"
+#include "abu/output/chart_labels.hpp"
+#include "abu/output/gnuplot.hpp"
+#include "abu/output/report_campbell_aniso.hpp"
 
 namespace abu::cli {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "abu/io/floquet_sweep.hpp"
-#include "abu/io/io.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/analysis/floquet_sweep.hpp"
+#include "abu/output/files.hpp"
+#include "abu/input/scene.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "abu/core/speed_units.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/analysis/machine_parts.hpp"
+#include "abu/input/scene.hpp"
 
 namespace abu::cli {
 
@@ -42,25 +43,7 @@ Scene load(const SceneOptions& options);
 /// `option`, exit 2.
 std::vector<double> parse_real_list(const std::string& text, const std::string& option);
 
-/// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
-/// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
-/// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
-/// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
-/// field; InputError at the `law` key) — except what `handles` says the command carries
-/// itself: LuGre's bristle states (model.md §12.7), the event-driven stick-slip of
-/// `coulomb-set` (§14.5), an unround race (its own path, unround_commands.hpp, §11.10).
-struct Handles {
-  bool lugre = false;       ///< the 3n + 4 LuGre state (§12.7, §12.8)
-  bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8) or the stick set (§14.10)
-  bool unround = false;     ///< an unround race (§11.10)
-  bool anisotropic = false; ///< an anisotropic support, balanced states by Floquet (§10.11–§10.13)
-  bool shaft = false;       ///< a flexible shaft ([shaft], model.md §18)
-};
-/// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
-/// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every
-/// command calls it (refuse_unmodelled does).
-void refuse_combined_extensions(const Scene& scene);
-void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
+
 
 /// The exit code of a stop request: 128 + its signal (SIGINT 130, SIGTERM 143).
 int interrupted_exit_code();

@@ -8,9 +8,11 @@
 
 #include <algorithm>
 
-#include "abu/io/chart_labels.hpp"
-#include "abu/io/floquet_sweep.hpp"
-#include "abu/io/io.hpp"
+#include "abu/output/chart_labels.hpp"
+#include "abu/analysis/floquet_sweep.hpp"
+#include "abu/output/files.hpp"
+#include "abu/output/gnuplot.hpp"
+#include "abu/output/provenance.hpp"
 #include "abu/core/errors.hpp"
 
 namespace abu::cli {

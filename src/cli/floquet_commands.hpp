@@ -9,8 +9,8 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/params.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/io/floquet_sweep.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/analysis/floquet_sweep.hpp"
+#include "abu/input/scene.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {

@@ -11,8 +11,9 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/io/io.hpp"
-#include "abu/io/map_setup.hpp"
+#include "abu/output/format.hpp"
+#include "abu/output/files.hpp"
+#include "abu/analysis/map_setup.hpp"
 #include "abu/scan/map_driver.hpp"
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"

@@ -1,4 +1,5 @@
-// `equilibria` and `sweep --param omega` on a flexible-shaft scene (shaft_commands.hpp).
+// `sweep --param omega` on a flexible-shaft scene (shaft_commands.hpp); its states and their
+// spectra are analysis/shaft_states.hpp's.
 //
 // Per equilibrium (model.md §18.8) the rightmost eigenvalues of the sparse pencil
 // a v = lambda b v of (18.7.3) come from ARPACK shift-invert (linear/sparse_spectrum.hpp,
@@ -20,9 +21,14 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/analysis/shaft_states.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
-#include "abu/io/io.hpp"
-#include "abu/io/shaft_scene.hpp"
+#include "abu/output/report_shaft.hpp"
+#include "abu/output/format.hpp"
+#include "abu/output/files.hpp"
+#include "abu/output/gnuplot.hpp"
+#include "abu/output/provenance.hpp"
+#include "abu/input/shaft_scene.hpp"
 #include "abu/linear/sparse_spectrum.hpp"
 #include "abu/model/shaft_system.hpp"
 #include "abu/scan/scan.hpp"
@@ -32,291 +38,7 @@
 namespace abu::cli {
 
 namespace {
-
 using cplx = std::complex<double>;
-
-// One analysed equilibrium.
-struct ShaftPoint {
-  ShaftEquilibrium eq;
-  SparseSpectrum spectrum;
-  double q_abs = 0.0;           // |q| at the balancer node [m]
-  double max_deflection = 0.0;  // max_k |u_k| over the nodes [m]
-  int max_node = 0;
-  double rightmost = -std::numeric_limits<double>::infinity();  // max Re of the non-structural eigenvalues
-  std::vector<char> structural;  // per eigenpair: one of the eq's structural zeros
-  std::string verdict;           // stable / unstable / undetermined
-  std::string verdict_text;      // the sentence
-  int merged = 0;                // copies of one eigenvalue from overlapping shifts, dropped
-};
-
-ShaftSystem system_of(const Scene& scene) {
-  const ParamsN p = params_of<any_balls>(scene);
-  try {
-    return make_shaft_system(shaft_spec_of(scene), p);
-  } catch (const std::invalid_argument& e) {
-    // The scene reader checks the model's rules with file and line (shaft_scene.hpp); one it
-    // missed is still bad input, named here.
-    throw InputError(scene.file, 0, "shaft", e.what());
-  }
-}
-
-double band_of(const ShaftSpectrumOptions& o, double omega) { return o.band > 0 ? o.band : 10.0 * omega; }
-
-// The shift that found an eigenpair, for its nconv.
-const ShiftRun* run_of(const SparseSpectrum& s, cplx shift) {
-  for (const auto& r : s.shifts)
-    if (r.shift == shift) return &r;
-  return nullptr;
-}
-
-ShaftPoint analyse(const ShaftSystem& sys, const ShaftEquilibrium& e, const ShaftSpectrumOptions& o, bool vectors) {
-  ShaftPoint pt;
-  pt.eq = e;
-  const Eigen::VectorXd& s = e.position;
-  const int b = sys.balancer_dof();
-  pt.q_abs = std::hypot(s[b], s[b + 1]);
-  for (int k = 0; k < sys.nodes(); ++k) {
-    const double d = std::hypot(s[4 * k], s[4 * k + 1]);
-    if (d > pt.max_deflection) pt.max_deflection = d, pt.max_node = k;
-  }
-  pt.spectrum = shaft_rightmost(sys, e.state(), o.eigenvalues, o.band, vectors, &pt.merged);
-  // The verdict's rule and the structural zeros set aside: scan/shaft_map.hpp (shared with `map`).
-  ShaftVerdict v = shaft_verdict(pt.spectrum, e.structural_zeros);
-  pt.structural = std::move(v.structural);
-  pt.rightmost = v.abscissa;
-  const SpectrumCoverage& c = pt.spectrum.coverage;
-  const std::string cover =
-      c.empty() ? std::string("nothing covered")
-                : fmt::format("covered: every eigenvalue with {:.6g} <= Re <= {:.6g} and |Im| <= {:.6g} 1/s is listed "
-                              "({})",
-                              c.real_min, c.real_max, c.imag_max, c.how);
-  pt.verdict = v.verdict;
-  if (v.verdict == "unstable") {
-    pt.verdict_text = fmt::format("unstable: an eigenvalue with Re = {:.6g} 1/s > 0 was found", pt.rightmost);
-  } else if (v.verdict == "stable") {
-    pt.verdict_text = fmt::format(
-        "stable as far as covered: every listed eigenvalue has Re < 0 (rightmost {:.6g} 1/s){}; {}. Eigenvalues with "
-        "|Im| above the band or Re above {:.6g} 1/s are not excluded",
-        pt.rightmost, e.structural_zeros ? fmt::format(", {} structural zero(s) set aside", e.structural_zeros) : "",
-        cover, c.real_max);
-  } else {
-    pt.verdict_text = fmt::format(
-        "undetermined: {}; {}",
-        pt.spectrum.status.ok() ? std::string_view("the covered region does not reach Re >= 0")
-                                : pt.spectrum.status.reason,
-        cover);
-  }
-  return pt;
-}
-
-std::vector<ShaftPoint> analyse_all(const ShaftSystem& sys, const ShaftEquilibriumSet& set,
-                                    const ShaftSpectrumOptions& o, std::string& warnings) {
-  std::vector<ShaftPoint> out;
-  for (const auto& e : set.list) {
-    throw_if_stopped("equilibria (shaft)");
-    if (!e.status.ok())
-      warnings += fmt::format("warning: omega={}: a {} equilibrium's polish: {} (residual {:.3g})\n",
-                              sys.balancer.omega, to_string(e.family), e.status.reason, e.residual);
-    out.push_back(analyse(sys, e, o, false));
-    const ShaftPoint& pt = out.back();
-    if (!pt.spectrum.status.ok())
-      warnings += fmt::format("warning: omega={}: {} equilibrium: ARPACK: {} ({} eigenvalue(s) found)\n",
-                              sys.balancer.omega, to_string(e.family), pt.spectrum.status.reason,
-                              pt.spectrum.eigenpairs.size());
-  }
-  if (!set.status.ok())
-    warnings += fmt::format("warning: omega={}: shaft equilibria: {}\n", sys.balancer.omega, set.status.reason);
-  return out;
-}
-
-std::string pattern_text(const ShaftEquilibrium& e, int n) {
-  if (e.family == Family::balanced) return "";
-  std::string s;
-  for (int i = 0; i < n; ++i) s += (e.pattern >> i) & 1u ? '-' : '+';
-  return s;
-}
-
-std::string shaft_line(const ShaftSystem& sys) {
-  const auto x = node_positions(sys.spec);
-  return fmt::format("{} nodes ({} elements, length {:.9g} m), {} shaft dofs + {} balls: {} states; balancer at node "
-                     "{} (x = {:.9g} m); shaft and discs {:.9g} kg",
-                     sys.nodes(), sys.spec.elements.size(), x.back(), sys.shaft_dofs(), sys.n_balls(),
-                     sys.state_size(), sys.spec.balancer_node, x[std::size_t(sys.spec.balancer_node)],
-                     shaft_mass(sys.spec));
-}
-
-std::string spectrum_line(const SparseSpectrum& s) {
-  int requested = 0, converged = 0;
-  for (const auto& r : s.shifts) requested += r.requested, converged += r.converged;
-  return fmt::format("{} eigenvalue(s); {} shift(s), nconv {} of {} asked, {} factorization(s); status {}{}",
-                     s.eigenpairs.size(), s.shifts.size(), converged, requested, s.factorizations,
-                     to_string(s.status.outcome), s.status.ok() ? "" : fmt::format(" ({})", s.status.reason));
-}
-
-std::string table(const ShaftSystem& sys, const std::vector<ShaftPoint>& pts, const std::string& file,
-                  const ShaftSpectrumOptions& o) {
-  const int n = sys.n_balls();
-  std::string out = fmt::format("{}: flexible shaft (model.md §18): {}\n", file, shaft_line(sys));
-  out += fmt::format("omega = {} rad/s, U = {} kg m; eigenvalues in the rotating frame [1/s], the {} rightmost with "
-                     "|Im| <= {} 1/s (ARPACK shift-invert, model.md §19)\n",
-                     sys.balancer.omega, sys.balancer.rotor.unbalance, o.eigenvalues, band_of(o, sys.balancer.omega));
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const ShaftPoint& pt = pts[i];
-    const ShaftEquilibrium& e = pt.eq;
-    std::string beta;
-    for (int b = 0; b < n; ++b) beta += fmt::format("{}{:.9g}", b ? ", " : "", e.position[sys.ball_dof(b)]);
-    out += fmt::format("\nequilibrium {}: {}{}{} member {}: {} (residual {:.3g}, {} Newton iterations)\n", i + 1,
-                       to_string(e.family), e.family == Family::balanced ? "" : " ", pattern_text(e, n), e.member,
-                       to_string(e.status.outcome), e.residual, e.newton_iterations);
-    out += fmt::format("  balancer node |q| = {:.6g} m; beta = ({}) rad; largest shaft deflection {:.6g} m at node {}\n",
-                       pt.q_abs, beta, pt.max_deflection, pt.max_node);
-    out += fmt::format("  spectrum: {}{}\n", spectrum_line(pt.spectrum),
-                       pt.merged ? fmt::format("; {} copies found by a second shift merged", pt.merged) : "");
-    out += "     #            Re [1/s]            Im [1/s]   residual   nconv  covered\n";
-    for (std::size_t k = 0; k < pt.spectrum.eigenpairs.size(); ++k) {
-      const auto& ep = pt.spectrum.eigenpairs[k];
-      const ShiftRun* r = run_of(pt.spectrum, ep.shift);
-      out += fmt::format("  {:4d} {:19.12g} {:19.12g} {:10.3g} {:4d}/{:<3d} {}{}\n", k + 1, ep.value.real(),
-                         ep.value.imag(), ep.residual, r ? r->converged : 0, r ? r->requested : 0,
-                         ep.covered ? "yes" : "no", pt.structural[k] ? "  (structural zero)" : "");
-    }
-    out += fmt::format("  verdict: {}\n", pt.verdict_text);
-  }
-  return out;
-}
-
-std::string header_lines(const Scene& scene, const ShaftSystem& sys) {
-  return fmt::format("# stability-scan {} (abu-stability)\n# command: {}\n# scene: {}\n# parameters (SI): {} (k, c, "
-                     "M_r unused: the shaft's bearings and discs replace them)\n# shaft (model.md §18): {}\n",
-                     ABU_VERSION, escaped(command_line()), escaped(scene.file), describe_parameters(sys.balancer),
-                     shaft_line(sys));
-}
-
-std::string csv(const Scene& scene, const ShaftSystem& sys, const std::vector<ShaftPoint>& pts,
-                const ShaftSpectrumOptions& o) {
-  const int n = sys.n_balls();
-  std::string out = header_lines(scene, sys);
-  out += fmt::format("# eigenvalues: rotating frame [1/s]; the {} rightmost with |Im| <= {} 1/s per equilibrium "
-                     "(ARPACK shift-invert); q_abs, max_deflection [m], beta [rad]\n",
-                     o.eigenvalues, band_of(o, sys.balancer.omega));
-  out += "equilibrium,family,pattern,member,status,residual,q_abs,max_deflection,max_deflection_node";
-  for (int b = 0; b < n; ++b) out += fmt::format(",beta{}", b + 1);
-  out += ",verdict,spectrum_status,coverage_real_min,coverage_real_max,coverage_imag_max,rank,re,im,residual_eig,"
-         "backward_error,shift_im,nconv,requested,covered,structural\n";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const ShaftPoint& pt = pts[i];
-    const ShaftEquilibrium& e = pt.eq;
-    std::string front = fmt::format("{},{},{},{},{},{},{},{},{}", i + 1, to_string(e.family), pattern_text(e, n),
-                                    e.member, to_string(e.status.outcome), format_number(e.residual, "residual"),
-                                    format_number(pt.q_abs, "|q|"), format_number(pt.max_deflection, "deflection"),
-                                    pt.max_node);
-    for (int b = 0; b < n; ++b) front += fmt::format(",{}", format_number(e.position[sys.ball_dof(b)], "beta"));
-    const SpectrumCoverage& c = pt.spectrum.coverage;
-    front += fmt::format(",{},{},{},{},{}", pt.verdict, to_string(pt.spectrum.status.outcome),
-                         c.empty() ? "" : format_number(c.real_min), c.empty() ? "" : format_number(c.real_max),
-                         c.empty() ? "" : format_number(c.imag_max));
-    if (pt.spectrum.eigenpairs.empty()) out += front + ",,,,,,,,,,\n";
-    for (std::size_t k = 0; k < pt.spectrum.eigenpairs.size(); ++k) {
-      const auto& ep = pt.spectrum.eigenpairs[k];
-      const ShiftRun* r = run_of(pt.spectrum, ep.shift);
-      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", front, k + 1, format_number(ep.value.real(), "eigenvalue"),
-                         format_number(ep.value.imag(), "eigenvalue"), format_number(ep.residual, "residual"),
-                         format_number(ep.backward_error, "backward error"), format_number(ep.shift.imag(), "shift"),
-                         r ? r->converged : 0, r ? r->requested : 0, ep.covered ? 1 : 0, int(pt.structural[k]));
-    }
-  }
-  return out;
-}
-
-std::string json(const Scene& scene, const ShaftSystem& sys, const std::vector<ShaftPoint>& pts,
-                 const ShaftSpectrumOptions& o) {
-  const int n = sys.n_balls();
-  const auto x = node_positions(sys.spec);
-  std::string out = fmt::format("{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n",
-                                ABU_VERSION, json_string(command_line()), json_string(scene.file));
-  out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"frame\": \"rotating\",\n", json_string(describe_parameters(sys.balancer)), n);
-  out += fmt::format("  \"units\": {},\n", json_string("q_abs, max_deflection [m], beta [rad], eigenvalues and coverage "
-                                                       "[1/s] (rotating frame), residuals dimensionless"));
-  out += fmt::format("  \"shaft\": {{\"nodes\": {}, \"elements\": {}, \"length\": {}, \"shaft_dofs\": {}, \"states\": "
-                     "{}, \"balancer_node\": {}, \"mass\": {}}},\n",
-                     sys.nodes(), sys.spec.elements.size(), format_number(x.back()), sys.shaft_dofs(), sys.state_size(),
-                     sys.spec.balancer_node, format_number(shaft_mass(sys.spec)));
-  out += fmt::format("  \"spectrum_request\": {{\"eigenvalues\": {}, \"band\": {}, \"method\": \"ARPACK shift-invert, "
-                     "rightmost in the band (model.md §19)\"}},\n",
-                     o.eigenvalues, format_number(band_of(o, sys.balancer.omega)));
-  out += "  \"equilibria\": [";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const ShaftPoint& pt = pts[i];
-    const ShaftEquilibrium& e = pt.eq;
-    out += i ? ",\n    {" : "\n    {";
-    out += fmt::format("\"family\": \"{}\", \"pattern\": \"{}\", \"member\": {}, \"status\": \"{}\", \"residual\": {}, "
-                       "\"q_abs\": {}, \"max_deflection\": {}, \"max_deflection_node\": {}, \"beta\": [",
-                       to_string(e.family), pattern_text(e, n), e.member, to_string(e.status.outcome),
-                       format_number(e.residual), format_number(pt.q_abs), format_number(pt.max_deflection),
-                       pt.max_node);
-    for (int b = 0; b < n; ++b) out += fmt::format("{}{}", b ? ", " : "", format_number(e.position[sys.ball_dof(b)]));
-    const SparseSpectrum& s = pt.spectrum;
-    const SpectrumCoverage& c = s.coverage;
-    out += fmt::format("],\n     \"verdict\": \"{}\", \"verdict_text\": {},\n", pt.verdict, json_string(pt.verdict_text));
-    out += fmt::format("     \"spectrum\": {{\"status\": \"{}\", \"reason\": {}, \"factorizations\": {}, "
-                       "\"merged_copies\": {}, \"coverage\": ",
-                       to_string(s.status.outcome), json_string(s.status.reason), s.factorizations, pt.merged);
-    out += c.empty() ? std::string("null")
-                     : fmt::format("{{\"real_min\": {}, \"real_max\": {}, \"imag_max\": {}, \"how\": {}}}",
-                                   format_number(c.real_min), format_number(c.real_max), format_number(c.imag_max),
-                                   json_string(c.how));
-    out += ",\n      \"shifts\": [";
-    for (std::size_t k = 0; k < s.shifts.size(); ++k) {
-      const auto& r = s.shifts[k];
-      out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"requested\": {}, \"nconv\": {}, \"iterations\": {}, \"radius\": "
-                         "{}, \"status\": \"{}\"}}",
-                         k ? ", " : "", format_number(r.shift.real()), format_number(r.shift.imag()), r.requested,
-                         r.converged, r.iterations, format_number(r.radius), to_string(r.status.outcome));
-    }
-    out += "],\n      \"eigenvalues\": [";
-    for (std::size_t k = 0; k < s.eigenpairs.size(); ++k) {
-      const auto& ep = s.eigenpairs[k];
-      const ShiftRun* r = run_of(s, ep.shift);
-      out += fmt::format("{}{{\"re\": {}, \"im\": {}, \"residual\": {}, \"backward_error\": {}, \"shift_im\": {}, "
-                         "\"nconv\": {}, \"covered\": {}, \"structural\": {}}}",
-                         k ? ",\n        " : "\n        ", format_number(ep.value.real()), format_number(ep.value.imag()),
-                         format_number(ep.residual), format_number(ep.backward_error), format_number(ep.shift.imag()),
-                         r ? r->converged : 0, ep.covered, bool(pt.structural[k]));
-    }
-    out += "]}}";
-  }
-  out += "\n  ]\n}\n";
-  return out;
-}
-
-// The circular split of a mode (model.md (16.2.1)) over the shaft's nodes (translations and
-// tilts, weighted by the diagonal of A) and the balls (absolute displacement
-// dq + l_i (-sin beta_i, cos beta_i) dbeta_i, mass m_i): the forward share f+.
-double forward_share(const ShaftSystem& sys, const Eigen::SparseMatrix<double>& mass, const Eigen::VectorXd& s,
-                     const Eigen::VectorXcd& v) {
-  double fwd = 0.0, all = 0.0;
-  auto add = [&](double m, cplx a1, cplx a2) {
-    const cplx wp = (a1 + cplx(0, 1) * a2) / 2.0;
-    const cplx wm = (std::conj(a1) + cplx(0, 1) * std::conj(a2)) / 2.0;
-    fwd += m * std::norm(wp);
-    all += m * (std::norm(wp) + std::norm(wm));
-  };
-  // Translations and tilts of every node: both pairs turn with the frame (model.md §18.5), and
-  // the diagonal of A weighs them by their kinetic energy (kg for u, kg m^2 for psi).
-  for (int k = 0; k < sys.nodes(); ++k) {
-    add(mass.coeff(4 * k, 4 * k), v[4 * k], v[4 * k + 1]);
-    add(mass.coeff(4 * k + 2, 4 * k + 2), v[4 * k + 2], v[4 * k + 3]);
-  }
-  const int b = sys.balancer_dof();
-  for (int i = 0; i < sys.n_balls(); ++i) {
-    const auto& ball = sys.balancer.balls[std::size_t(i)];
-    const double beta = s[sys.ball_dof(i)];
-    const cplx db = v[sys.ball_dof(i)];
-    add(ball.mass, v[b] - ball.race_radius * std::sin(beta) * db, v[b + 1] + ball.race_radius * std::cos(beta) * db);
-  }
-  return all > 0 ? fwd / all : 0.5;
-}
-
 }  // namespace
 
 void add_shaft_spectrum_options(CLI::App& sub, ShaftSpectrumOptions& o) {
@@ -329,20 +51,6 @@ void add_shaft_spectrum_options(CLI::App& sub, ShaftSpectrumOptions& o) {
                  "10 omega")
       ->check(CLI::Range(0.0, 1e12))
       ->capture_default_str();
-}
-
-std::string shaft_equilibria(const Scene& scene, const std::string& format, const BalancedSampling& sampling,
-                             const ShaftSpectrumOptions& spectrum, std::string& warnings) {
-  const ShaftSystem sys = system_of(scene);
-  const ShaftEquilibriumSet set = find_shaft_equilibria(sys, sampling);
-  const std::vector<ShaftPoint> pts = analyse_all(sys, set, spectrum, warnings);
-  for (const auto& pt : pts)
-    if (pt.spectrum.eigenpairs.empty())
-      throw NumericalError(fmt::format("omega={}: ARPACK found no eigenvalue of a {} equilibrium: {}",
-                                       sys.balancer.omega, to_string(pt.eq.family), pt.spectrum.status.reason));
-  if (format == "csv") return csv(scene, sys, pts, spectrum);
-  if (format == "json") return json(scene, sys, pts, spectrum);
-  return table(sys, pts, scene.file, spectrum);
 }
 
 int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double from, double to, int steps,
@@ -358,8 +66,8 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
   const SpeedUnit unit = options.speed_unit();
   std::string rows;
   std::size_t count = 0;
-  const ShaftSystem first = system_of(scenes.front());
-  std::string head = header_lines(scene, first);
+  const ShaftSystem first = shaft_system_of(scenes.front());
+  std::string head = shaft_header_lines(command_line(), scene.file, first);
   head += fmt::format("# Campbell diagram of the flexible shaft (model.md §16.1, §18): per speed the balanced state "
                       "(else the aligned state of least |q|), its {} rightmost eigenvalues with |Im| <= {} "
                       "(rotating frame, ARPACK); whirl = the signed fixed-frame frequency Omega = omega + Im lambda "
@@ -378,7 +86,7 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
   std::vector<Abscissa> abscissas(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     throw_if_stopped("sweep (shaft)");
-    const ShaftSystem sys = system_of(scenes[i]);
+    const ShaftSystem sys = shaft_system_of(scenes[i]);
     const ShaftEquilibriumSet set = find_shaft_equilibria(sys);
     if (set.list.empty())
       throw NumericalError(fmt::format("omega={}: no equilibrium of the shaft: {}", values[i], set.status.reason));
@@ -390,7 +98,7 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
       const double key = e.family == Family::balanced ? -1.0 : q;
       if (key < best) best = key, chosen = &e;
     }
-    const ShaftPoint pt = analyse(sys, *chosen, spectrum, true);
+    const ShaftState pt = analyze_shaft_state(sys, *chosen, spectrum, true);
     if (pt.spectrum.eigenpairs.empty())
       throw NumericalError(fmt::format("omega={}: ARPACK found no eigenvalue: {}", values[i], pt.spectrum.status.reason));
     if (!pt.spectrum.status.ok())
@@ -407,7 +115,7 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
     for (std::size_t k = 0; k < pt.spectrum.eigenpairs.size(); ++k) {
       const auto& ep = pt.spectrum.eigenpairs[k];
       if (ep.value.imag() < 0 || pt.structural[k]) continue;  // one of each conjugate pair; no structural zero
-      const double f = forward_share(sys, lin.mass, chosen->position, ep.vector.head(sys.configuration_size()));
+      const double f = shaft_forward_share(sys, lin.mass, chosen->position, ep.vector.head(sys.configuration_size()));
       const double omega = values[i];
       const double whirl = f >= 0.5 ? omega + ep.value.imag() : omega - ep.value.imag();
       const double zeta = -ep.value.real() / std::abs(cplx(ep.value.real(), whirl));
@@ -425,9 +133,9 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
   const auto system_at = [&scene](double omega) {
     Scene s = scene;
     set_checked(s, {Quantity::omega, -1}, omega, "--from/--to");
-    return system_of(s);
+    return shaft_system_of(s);
   };
-  std::string crossings = header_lines(scene, first);
+  std::string crossings = shaft_header_lines(command_line(), scene.file, first);
   crossings += "# Stability changes of the balanced state along omega (model.md §18.14): between two speeds of the "
                "sweep (bracket_lo, bracket_hi) whose spectral abscissas have opposite signs, the crossing eigenvalue "
                "tracked by ARPACK shift-invert and Re lambda(omega) = 0 solved by Brent to 1e-12 relative. change = "
@@ -456,7 +164,7 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
     }
     const ShaftSystem sys = system_at(c.omega);
     const ShaftLinearization lin = linearize_shaft(sys, c.state);
-    const double f = forward_share(sys, lin.mass, c.state.head(sys.configuration_size()),
+    const double f = shaft_forward_share(sys, lin.mass, c.state.head(sys.configuration_size()),
                                    c.vector.head(sys.configuration_size()));
     const double whirl = f >= 0.5 ? c.omega + c.value.imag() : c.omega - c.value.imag();
     crossings += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", format_number(lo), format_number(hi),

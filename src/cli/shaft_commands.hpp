@@ -10,23 +10,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "abu/analysis/shaft_states.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {
 
-/// The spectrum options of a shaft command (--eigenvalues, --band).
-struct ShaftSpectrumOptions {
-  int eigenvalues = 10;  ///< k rightmost asked for per equilibrium
-  double band = 0.0;     ///< |Im lambda| <= band [1/s, rotating frame]; 0: 10 omega
-};
-
 void add_shaft_spectrum_options(CLI::App& sub, ShaftSpectrumOptions& o);
-
-/// `equilibria` on a shaft scene: the text of the table, CSV or JSON; `warnings` gets
-/// what goes to stderr (an ARPACK shortfall, an unpolished equilibrium).
-std::string shaft_equilibria(const Scene& scene, const std::string& format, const BalancedSampling& sampling,
-                             const ShaftSpectrumOptions& spectrum, std::string& warnings);
 
 /// `sweep --param omega` on a shaft scene: DIR/campbell_shaft_omega.csv and its chart.
 /// Returns the exit code.

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "abu/equilibria/stick_set.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace abu::cli {
 

@@ -4,9 +4,11 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/io/chart_labels.hpp"
-#include "abu/io/io.hpp"
-#include "abu/io/report_stick_set.hpp"
+#include "abu/output/chart_labels.hpp"
+#include "abu/output/files.hpp"
+#include "abu/output/gnuplot.hpp"
+#include "abu/output/provenance.hpp"
+#include "abu/output/report_stick_set.hpp"
 #include "cli.hpp"
 #include "stick_options.hpp"
 

@@ -4,7 +4,7 @@
 #include <unistd.h>
 
 #include "abu/core/cancel.hpp"
-#include "abu/io/io.hpp"
+#include "abu/output/format.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {

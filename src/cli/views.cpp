@@ -1,5 +1,7 @@
 #include "views.hpp"
 
+#include "abu/output/gnuplot.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "abu/io/io.hpp"
-#include "abu/io/report_views.hpp"
+#include "abu/output/files.hpp"
+#include "abu/output/report_views.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {

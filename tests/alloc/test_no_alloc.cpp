@@ -11,7 +11,7 @@
 #include <string>
 
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/map.hpp"

@@ -31,7 +31,7 @@
 
 #include "abu/continuation/continuation.hpp"
 #include "abu/scan/scan.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace {
 

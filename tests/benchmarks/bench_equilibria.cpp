@@ -20,7 +20,7 @@
 
 #include "abu/scan/scan.hpp"
 #include "abu/equilibria/equilibria.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 
 namespace {

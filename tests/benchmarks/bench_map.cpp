@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "abu/io/map_setup.hpp"
+#include "abu/analysis/map_setup.hpp"
 #include "abu/scan/map.hpp"
 
 namespace {

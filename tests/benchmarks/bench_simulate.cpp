@@ -25,7 +25,7 @@
 
 #include "abu/dynamics/simulation.hpp"
 #include "abu/equilibria/equilibria.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 namespace {
 

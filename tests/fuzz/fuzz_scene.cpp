@@ -9,7 +9,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/core/params.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "abu/equilibria/equilibria.hpp"
-#include "abu/io/scene.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/scan/scan.hpp"
 
 namespace {

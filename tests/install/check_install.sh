@@ -21,7 +21,7 @@ cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" 2>&1
 check "cmake --install exits 0" "[ $? -eq 0 ]"
 p=$work/prefix
 check "bin/stability-scan" "[ -x '$p/bin/stability-scan' ]"
-check "include/abu: the public headers" "[ -f '$p/include/abu/scan/scan.hpp' ] && [ -f '$p/include/abu/io/scene.hpp' ]"
+check "include/abu: the public headers" "[ -f '$p/include/abu/scan/scan.hpp' ] && [ -f '$p/include/abu/input/scene.hpp' ]"
 check "every header of include/abu installed" \
   "[ \$(cd '$src/include' && find abu -name '*.hpp' | wc -l) -eq \$(cd '$p/include' && find abu -name '*.hpp' | wc -l) ]"
 libdir=$(dirname "$(find "$p" -name libabu.a | head -1)")

@@ -21,7 +21,7 @@
 #include <string_view>
 #include <vector>
 
-#include "abu/dynamics/speed_profile.hpp"
+#include "abu/model/speed_profile.hpp"
 #include "abu/model/model.hpp"
 
 namespace abu {

@@ -11,7 +11,7 @@
 // i.e. model.md (2.2) with (q1, q2) replaced by the whole shaft's u; the balancer node's
 // (u1, u2) is the q of the rigid model.
 //
-//   abu::ShaftSpec spec = abu::shaft_spec_of(scene);                // io/scene.hpp
+//   abu::ShaftSpec spec = abu::shaft_spec_of(scene);                // input/scene.hpp
 //   abu::ShaftMatrices m = abu::assemble_shaft(spec);               // fixed-frame M, G, K, C
 #pragma once
 
@@ -52,7 +52,7 @@ struct ShaftBearing {
   double tilt_damping{};     ///< c_psi [N m s/rad]
 };
 
-/// The whole shaft. Invariant (checked by the scene reader, io/scene.cpp): every node
+/// The whole shaft. Invariant (checked by the scene reader, input/scene.cpp): every node
 /// index in [0, elements.size()], the balancer node carries a disc.
 struct ShaftSpec {
   std::vector<ShaftElement> elements;

@@ -19,7 +19,7 @@
 
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
-#include "abu/dynamics/speed_profile.hpp"
+#include "abu/model/speed_profile.hpp"
 #include "abu/scan/basin_certificate.hpp"
 #include "abu/scan/map_driver.hpp"
 

@@ -1,0 +1,44 @@
+// The parts of a scene's machine that decide how a question is answered: the one place that
+// reads them off a scene (a rigid rotor or a flexible shaft, an isotropic or anisotropic
+// support, a round or unround race, the friction law), and the refusals of a question a part
+// cannot answer yet, each naming what answers it instead.
+//
+//   switch (abu::route_of(scene)) { case abu::Route::shaft: ...; case abu::Route::rigid: ...; }
+#pragma once
+
+#include <string_view>
+
+#include "abu/input/scene.hpp"
+
+namespace abu {
+
+/// How a scene is analysed: the part that sets the method. A scene has at most one of the
+/// extensions (refuse_combined_extensions); `rigid` is the base model of model.md §3 with a
+/// smooth law (none, viscous, coulomb, stribeck), any ball count.
+enum class Route { rigid, lugre, set_valued, unround, anisotropic, shaft };
+std::string_view to_string(Route route);
+
+/// The route of a scene (after refuse_combined_extensions, which it calls).
+Route route_of(const Scene& scene);
+
+/// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
+/// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
+/// friction (model.md §12, InputError at the `law` key), an unround race (§11) or an
+/// anisotropic support (§10) (NotSupportedError), `coulomb-set` friction (§14, not a vector
+/// field; InputError at the `law` key) — except what `handles` says the command carries
+/// itself: LuGre's bristle states (model.md §12.7), the event-driven stick-slip of
+/// `coulomb-set` (§14.5), an unround race (its own path, unround_commands.hpp, §11.10).
+struct Handles {
+  bool lugre = false;       ///< the 3n + 4 LuGre state (§12.7, §12.8)
+  bool set_valued = false;  ///< coulomb-set, event-driven stick-slip (§14.5–§14.8) or the stick set (§14.10)
+  bool unround = false;     ///< an unround race (§11.10)
+  bool anisotropic = false; ///< an anisotropic support, balanced states by Floquet (§10.11–§10.13)
+  bool shaft = false;       ///< a flexible shaft ([shaft], model.md §18)
+};
+/// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
+/// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every
+/// command calls it (refuse_unmodelled does).
+void refuse_combined_extensions(const Scene& scene);
+void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
+
+}  // namespace abu

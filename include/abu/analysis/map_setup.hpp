@@ -1,0 +1,72 @@
+// A stability map from a scene: its axes parsed and checked against the scene's rules
+// (the ball count as an axis on a [balls] ring), the job built (map_driver.hpp), and the
+// whole run: tiles on every thread and MPI rank, resume, the assembled CSVs, the fold /
+// Hopf boundaries and the heat maps, written together (OutputTransaction) or not at all.
+// The command line (src/cli/map_command.cpp) only adds options and signals.
+//
+//   abu::MapJob job = abu::map_job(scene, "omega:50:2000:400", "mu:1e-4:0.1:300:log", request);
+//   abu::MapRunReport r = abu::run_map(job, scene.file, output);
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "abu/input/scene.hpp"
+#include "abu/scan/map_driver.hpp"
+
+namespace abu {
+
+/// Parses "NAME:FROM:TO:N[:log]" and checks it against the scene (the parameter exists
+/// and its law uses it, both ends in its physical range, N in [1, kMaxAxisCount], log
+/// needs positive ends); or "n:FROM:TO:COUNT", the ball count of a [balls] ring scene
+/// (integers 2 <= FROM <= TO <= 12, COUNT = TO - FROM + 1, no log, every count's ring
+/// valid). Throws InputError with file `origin` (e.g. "--x").
+Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& origin);
+
+struct MapRequest {
+  std::string x, y;  ///< the axis specifications
+  CellMethod method = CellMethod::fast;
+  BalancedSampling sampling;
+  StickSetOptions stick;  ///< coulomb-set scenes: the stick set's resolution per cell (stick_map.hpp)
+  /// The command line that determines the output (without threads, resume, output
+  /// directory), for the provenance header; n-ball maps get " --set-samples S" added.
+  std::string command_line;
+};
+
+/// The map's job: both axes checked (a per-ball axis on every ball count of a ball-count
+/// axis), the cell limit, the parameters (two balls, n balls, or one ring per count).
+/// Throws InputError before any work.
+MapJob map_job(const Scene& scene, const MapRequest& request);
+
+struct MapOutput {
+  std::filesystem::path directory;
+  TileStore::Mode mode = TileStore::Mode::fresh;
+  int threads = 1;
+  const std::atomic<bool>* stop = nullptr;  ///< set by a signal: stop after the tiles in progress
+  bool progress = false;                    ///< the progress line on stderr (rank 0)
+  bool chart = true, boundaries = true;
+  bool long_csv = false;  ///< map_X_Y.csv, a row per equilibrium per cell (the summary is always written)
+  std::string title;  ///< the charts' subtitle (the scene file)
+};
+
+struct MapRunReport {
+  enum class Outcome {
+    done,         ///< every file written
+    interrupted,  ///< stopped; the finished tiles stay in `tile_directory`
+    refused,      ///< rank > 0: rank 0 refused the input (it says why)
+    other_rank,   ///< rank > 0: done, rank 0 writes
+  } outcome = Outcome::done;
+  MapRunStats stats;
+  int tiles_total = 0, tiles_kept = 0;
+  std::filesystem::path tile_directory;
+  double boundary_seconds = -1;  ///< < 0: no boundaries computed
+  std::string boundary_note;     ///< why there are none, if not asked-for-and-done
+};
+
+/// Runs the map (every rank calls it in an MPI build). Throws InputError (tile store
+/// rules), NumericalError, std::runtime_error (I/O, gnuplot).
+MapRunReport run_map(const MapJob& job, const MapOutput& output);
+
+}  // namespace abu

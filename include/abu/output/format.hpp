@@ -1,0 +1,22 @@
+// Numbers and strings as every output writes them: numbers in shortest round-trip form (no NaN
+// reaches a file), JSON string literals, escaped terminal text.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace abu {
+
+/// Shortest decimal that reads back to the same double (fmt's "{}", locale-free).
+/// Throws NumericalError naming `what` for a non-finite value: no NaN reaches a file.
+std::string format_number(double value, std::string_view what = "value");
+
+/// `s` as a JSON string literal: quotes, `"` and `\\` escaped, \n and \t, every other control
+/// character as \u00XX, so that a scene path or command line with any byte is valid JSON.
+std::string json_string(std::string_view s);
+
+/// `text` with every control character (and DEL) written as an escape (\n, \t, \xHH), for
+/// terminal messages and CSV comment lines: a scene string or path cannot start a line.
+std::string escaped(std::string_view text);
+
+}  // namespace abu

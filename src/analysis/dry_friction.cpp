@@ -1,0 +1,27 @@
+// Dry friction next to a smooth law (dry_friction.hpp, model.md §14.10).
+#include "abu/analysis/dry_friction.hpp"
+
+#include "abu/core/errors.hpp"
+
+namespace abu {
+
+DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOptions& options) {
+  DryFrictionVerdict out;
+  if (smooth.law != FrictionLaw::coulomb && smooth.law != FrictionLaw::stribeck) return out;
+  out.applies = true;
+  ParamsN p = smooth;
+  p.law = FrictionLaw::coulomb_set;
+  if (smooth.law == FrictionLaw::stribeck)
+    for (auto& b : p.balls) b.mu = b.mu_s;  // the breakaway level holds a ball at rest
+  StickSetOptions o = options;
+  o.trace = false;
+  out.which = smooth.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
+  try {
+    out.set = stick_set(p, o);
+  } catch (const NotSupportedError& e) {
+    out.not_defined = e.what();
+  }
+  return out;
+}
+
+}  // namespace abu

@@ -1,0 +1,144 @@
+// `equilibria` on any scene (analysis/equilibria.hpp).
+#include "abu/analysis/equilibria.hpp"
+
+#include <fmt/format.h>
+
+#include "abu/core/cancel.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/analysis/machine_parts.hpp"
+#include "abu/core/widen_params.hpp"
+#include "abu/input/race_scene.hpp"
+
+namespace abu {
+
+namespace {
+
+// A row must be an equilibrium: a point whose Newton polish left a residual above 1e-8
+// (rounding level is 1e-16) is a numerical failure, exit 3, not a row.
+template <class A>
+void check_equilibria(const A& a, double omega) {
+  for (const auto& e : a.equilibria.points())
+    if (!e.converged && !(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: the Newton polish of a {} point did not converge (residual {:.3g}): "
+                                       "it is not an equilibrium",
+                                       omega, to_string(e.family), e.residual));
+}
+
+LugreStates lugre_states(const Scene& scene, const EquilibriaOptions& o) {
+  if (o.mode_shapes) throw InputError("--mode-shapes", 0, "", "not available for friction law 'lugre' yet (model.md §12)");
+  LugreStates out{params_of<any_balls>(scene), {}};
+  const ParamsN& p = out.params;
+  const int n = p.n_balls();
+  throw_if_stopped("equilibria (lugre)");
+  out.rows = lugre_zero_bristle_rows(p, o.sampling);
+  if (!o.stuck_balls.empty()) {
+    if (int(o.stuck_balls.size()) != n)
+      throw InputError("--at-balls", 0, "",
+                       fmt::format("the scene has {} balls: give {} angles beta_1..beta_{} [rad] (got {})", n, n, n,
+                                   o.stuck_balls.size()));
+    out.rows.push_back({"stuck", "", 1, analyze_lugre_rest(p, lugre_configuration(p, o.stuck_balls), false)});
+  }
+  return out;
+}
+
+UnroundStates unround_states(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
+  if (o.mode_shapes) throw NotSupportedError("--mode-shapes on an unround race (model.md §11): not supported yet");
+  UnroundStates out{params_of<any_balls>(scene), race_shape(scene), {}};
+  out.result = find_unround_equilibria(out.params, out.race);
+  for (const auto& e : out.result.list)
+    if (!(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("omega={}: an equilibrium of the unround race has residual {:.3g}: it is not "
+                                       "an equilibrium",
+                                       out.params.omega, e.residual));
+  // An incomplete search is said on stderr as well as in the output's search line.
+  if (!out.result.doubt.empty())
+    warnings = fmt::format("warning: omega={}: unround race: {}\n", out.params.omega, out.result.doubt);
+  return out;
+}
+
+AnisotropicStates anisotropic_states(const Scene& scene, const EquilibriaOptions& o) {
+  if (o.mode_shapes)
+    throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
+  AnisotropicStates out{params_of<any_balls>(scene), *scene.support, {}, {}};
+  out.floquet = analyze_floquet(out.params, out.support, o.sampling);
+  // The other states: periodic orbits continued from the mean system's (model.md §10.14).
+  // They cost seconds to minutes on stiff coulomb balls; the caller may leave them out.
+  if (o.periodic_orbits) {
+    out.orbits = analyze_forced_orbits(out.params, out.support, out.floquet.mean_equilibria);
+    out.floquet.periodic_orbits_not_computed = 0;
+  }
+  return out;
+}
+
+template <class States, class P>
+States rigid_states(const P& p, const BalancedSampling& sampling) {
+  States out;
+  out.params = p;
+  if constexpr (std::is_same_v<P, Params>) {
+    out.analysis = analyze(p);
+    out.dry = dry_friction_verdict(widen(p));
+  } else {
+    out.analysis = analyze(p, sampling);
+    out.dry = dry_friction_verdict(p);
+  }
+  check_equilibria(out.analysis, p.omega);
+  out.kappa = kappa_sensitivities(out.analysis, p);
+  return out;
+}
+
+}  // namespace
+
+template <class A, int N>
+std::vector<KappaSensitivity<N>> kappa_sensitivities(const A& a, const ParamsT<double, N>& p) {
+  std::vector<KappaSensitivity<N>> out;
+  const auto points = a.equilibria.points();
+  out.reserve(points.size());
+  const auto pl = p.template cast<long double>();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (p.law != FrictionLaw::coulomb && p.law != FrictionLaw::stribeck) {
+      out.emplace_back();
+      continue;
+    }
+    out.push_back(kappa_sensitivity(p, linearize(pl, at_rest<long double, N>(points[i].position)), a.spectra[i]));
+  }
+  return out;
+}
+template std::vector<KappaSensitivity<2>> kappa_sensitivities<Analysis, 2>(const Analysis&, const Params&);
+template std::vector<KappaSensitivity<any_balls>> kappa_sensitivities<AnalysisN, any_balls>(const AnalysisN&,
+                                                                                           const ParamsN&);
+
+EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions& o) {
+  EquilibriaReport r;
+  const Route route = route_of(scene);
+  if (!o.stuck_balls.empty() && route != Route::lugre)
+    throw InputError("--at-balls", 0, "",
+                     fmt::format("a stuck state is an equilibrium only with friction law 'lugre' (model.md §12.3); "
+                                 "this scene's law is '{}'",
+                                 to_string(scene.law)));
+  switch (route) {
+    case Route::shaft: {  // its equilibria and rightmost eigenvalues (model.md §18)
+      if (o.mode_shapes) throw NotSupportedError("--mode-shapes on a flexible shaft ([shaft], model.md §18)");
+      ShaftStates st = analyze_shaft_states(shaft_system_of(scene), o.sampling, o.shaft);
+      r.warnings = st.warnings;
+      r.states = std::move(st);
+      break;
+    }
+    case Route::unround: r.states = unround_states(scene, o, r.warnings); break;
+    case Route::anisotropic: r.states = anisotropic_states(scene, o); break;
+    case Route::set_valued: {
+      const ParamsN p = params_of<any_balls>(scene);
+      r.states = StickSetStates{p, stick_set(p, o.stick)};
+      break;
+    }
+    case Route::lugre: r.states = lugre_states(scene, o); break;
+    case Route::rigid:
+      if (scene.balls.size() == 2)
+        r.states = rigid_states<RigidStates2>(params_of<2>(scene), o.sampling);
+      else
+        r.states = rigid_states<RigidStatesN>(params_of<any_balls>(scene), o.sampling);
+      break;
+  }
+  return r;
+}
+
+}  // namespace abu

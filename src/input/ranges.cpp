@@ -1,0 +1,51 @@
+#include "abu/input/ranges.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "abu/core/errors.hpp"
+
+namespace abu {
+
+std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
+  double balls_mass = 0, capacity = 0;
+  for (const auto& b : scene.balls) {
+    balls_mass += b.mass;
+    capacity += b.mass * b.race_radius;
+  }
+  const double total = scene.rotor.mass + balls_mass;
+  const double omega_n = std::sqrt(scene.rotor.stiffness / total);
+  const double ratio = scene.omega / omega_n;
+  if (!(ratio >= kMinSpeedRatio && ratio <= kMaxSpeedRatio))
+    return RangeViolation{"omega", fmt::format("omega / omega_n must lie in [{:g}, {:g}] (omega_n = {:.6g} rad/s, so "
+                                               "omega in [{:.6g}, {:.6g}] rad/s); got omega = {:g} rad/s",
+                                               kMinSpeedRatio, kMaxSpeedRatio, omega_n, kMinSpeedRatio * omega_n,
+                                               kMaxSpeedRatio * omega_n, scene.omega)};
+  const double zeta = scene.rotor.damping / (2 * std::sqrt(scene.rotor.stiffness * total));
+  if (!(zeta <= kMaxDampingRatio))
+    return RangeViolation{"c", fmt::format("the damping ratio c / (2 sqrt(k M)) must be <= {:g} (c <= {:.6g} N s/m); "
+                                           "got c = {:g} N s/m",
+                                           kMaxDampingRatio, kMaxDampingRatio * 2 * std::sqrt(scene.rotor.stiffness * total),
+                                           scene.rotor.damping)};
+  if ((scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck) &&
+      !(scene.kappa * omega_n <= kMaxSharpness))
+    return RangeViolation{"kappa", fmt::format("kappa omega_n must be <= {:g} (omega_n = {:.6g} rad/s, so kappa <= "
+                                               "{:.6g} s/rad; beyond, the stiff friction modes and the creep modes "
+                                               "are too far apart for double precision); got kappa = {:g} s/rad",
+                                               kMaxSharpness, omega_n, kMaxSharpness / omega_n, scene.kappa)};
+  const double u = scene.rotor.unbalance;
+  if (u != 0 && !(u >= kMinUnbalanceRatio * capacity))
+    return RangeViolation{"U", fmt::format("U must be 0 or >= {:g} of the balls' capacity sum m_i l_i = {:.6g} kg m "
+                                           "(U >= {:.6g} kg m; below, the balanced states agree to rounding: give U = 0 "
+                                           "for a balanced rotor); got U = {:g} kg m",
+                                           kMinUnbalanceRatio, capacity, kMinUnbalanceRatio * capacity, u)};
+  return std::nullopt;
+}
+
+void check_numerical_range(const Scene& scene, const std::string& origin, const std::string& what) {
+  if (const auto v = numerical_range_violation(scene))
+    throw InputError(origin, 0, v->key, what.empty() ? v->rule : fmt::format("{} ({})", v->rule, what));
+}
+
+}  // namespace abu
