@@ -99,6 +99,12 @@ std::vector<KappaSensitivity<N>> kappa_sensitivities(const A& a, const ParamsT<d
       out.emplace_back();
       continue;
     }
+    if constexpr (std::is_same_v<A, AnalysisN>) {  // a permutation image: its representative's (model.md §13.9)
+      if (i < a.representative.size() && a.representative[i] < int(i)) {
+        out.push_back(out[std::size_t(a.representative[i])]);
+        continue;
+      }
+    }
     out.push_back(kappa_sensitivity(p, linearize(pl, at_rest<long double, N>(points[i].position)), a.spectra[i]));
   }
   return out;

@@ -90,7 +90,8 @@ namespace spectrum_detail {
 template <int N>
 void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts, SpectrumMethod method,
                        const VectorSource<N>& vector_of, SpectrumT<N>& sp, std::array<ld, SpectrumT<N>::capacity>& band,
-                       std::array<bool, SpectrumT<N>::capacity>* failed_out) {
+                       std::array<bool, SpectrumT<N>::capacity>* failed_out,
+                       const std::array<bool, SpectrumT<N>::capacity>* refine_only) {
   const auto& start = starts.estimates;
   const std::size_t m = eigen_count<N>(starts.count);  // eigenvalues to fill, from slot `first`
   const std::size_t first = eigen_count<N>(sp.count) - m;
@@ -122,6 +123,16 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
     converged_at[k] = r.converged;
     filled[k] = true;
   };
+  // Not to be refined (refine_only): the QR value, left out of every test below.
+  std::array<bool, SpectrumT<N>::capacity> skipped{};
+  if (refine_only)
+    for (std::size_t i = 0; i < m; ++i)
+      if (!(*refine_only)[i]) {
+        skipped[i] = filled[i] = true;
+        sp.eigenvalues[first + i] = start[i].value;
+        sp.condition[first + i] = 1;
+        sp.vectors[first + i] = QepVector<N>::Zero(qep.mass.rows());
+      }
   for (std::size_t i = 0; i < m; ++i) {
     const auto z = start[i].value;
     if (filled[i] || z.imag() < 0) continue;  // lower half-plane: the conjugate partner
@@ -177,7 +188,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
   std::array<bool, SpectrumT<N>::capacity> failed{};
   std::array<bool, SpectrumT<N>::capacity> none{};
   for (std::size_t i = 0; i < m; ++i)
-    failed[i] = !converged_at[i] || std::abs(refined[i] - as_ld(start[i].value)) > basin_radius(i, none);
+    failed[i] = !skipped[i] && (!converged_at[i] || std::abs(refined[i] - as_ld(start[i].value)) > basin_radius(i, none));
   // Second chance for a multiple eigenvalue where the plain Newton stalled (its bordered
   // matrix is singular there, or it jumps to a neighbour): a failed start and every
   // start within 1e-3 of it that failed too (a semisimple cluster of a non-normal J
@@ -275,7 +286,7 @@ void assemble_spectrum(const Linearization<ld, N>& qep, const Starts<N>& starts,
       sp.error[first + i] = std::max(sp.error[first + i], double(64 * apriori));
       sp.converged = false;
       sp.status.merge(Outcome::not_converged, "an eigenvalue refinement did not converge; its QR value is kept");
-    } else if (!converged_at[i]) {
+    } else if (!converged_at[i] && !skipped[i]) {
       sp.converged = false;
       sp.status.merge(Outcome::not_converged, "an eigenvalue refinement stopped above its tolerance");
     }
@@ -289,11 +300,13 @@ void finish_spectrum(SpectrumT<N>& sp, const std::array<ld, SpectrumT<N>::capaci
 
 template void assemble_spectrum<2>(const Linearization<ld, 2>&, const Starts<2>&, SpectrumMethod,
                                    const VectorSource<2>&, SpectrumT<2>&, std::array<ld, SpectrumT<2>::capacity>&,
-                                   std::array<bool, SpectrumT<2>::capacity>*);
+                                   std::array<bool, SpectrumT<2>::capacity>*,
+                                   const std::array<bool, SpectrumT<2>::capacity>*);
 template void assemble_spectrum<any_balls>(const Linearization<ld, any_balls>&, const Starts<any_balls>&,
                                            SpectrumMethod, const VectorSource<any_balls>&, SpectrumT<any_balls>&,
                                            std::array<ld, SpectrumT<any_balls>::capacity>&,
-                                           std::array<bool, SpectrumT<any_balls>::capacity>*);
+                                           std::array<bool, SpectrumT<any_balls>::capacity>*,
+                                           const std::array<bool, SpectrumT<any_balls>::capacity>*);
 template void finish_spectrum<2>(SpectrumT<2>&, const std::array<ld, SpectrumT<2>::capacity>&, int);
 template void finish_spectrum<any_balls>(SpectrumT<any_balls>&, const std::array<ld, SpectrumT<any_balls>::capacity>&,
                                          int);

@@ -112,11 +112,15 @@ using VectorSource = std::function<QepVector<N>(const Estimate<N>&, bool complex
 /// sp.count - starts.count .. sp.count - 1 of `sp`, with their bands (the Newton of
 /// refinement.hpp, kept in the basin of its start; QR values only for other methods).
 /// `failed_out`, if given: which estimates kept their QR value (refinement failed).
+/// `refine_only`, if given: only these estimates are refined (with any start the QR did not
+/// tell apart from a failed one, as the grouping does); the others keep their QR value,
+/// band 0, and are neither failed nor "not converged" (spectrum_verdict.hpp).
 template <int N>
 void assemble_spectrum(const Linearization<long double, N>& qep, const Starts<N>& starts, SpectrumMethod method,
                        const VectorSource<N>& vector_of, SpectrumT<N>& sp,
                        std::array<long double, SpectrumT<N>::capacity>& band,
-                       std::array<bool, SpectrumT<N>::capacity>* failed_out = nullptr);
+                       std::array<bool, SpectrumT<N>::capacity>* failed_out = nullptr,
+                       const std::array<bool, SpectrumT<N>::capacity>* refine_only = nullptr);
 
 /// Sorts and classifies (spectrum.hpp's rules); `structural_zeros` as compute_spectrum's.
 template <int N>

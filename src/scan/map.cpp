@@ -9,7 +9,9 @@
 #include "abu/linear/lugre_spectrum.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/linear/balanced_floquet.hpp"
+#include "abu/linear/balanced_reduced.hpp"
 #include "abu/linear/spectrum.hpp"
+#include "abu/linear/spectrum_verdict.hpp"
 #include "abu/model/friction.hpp"
 
 namespace abu {
@@ -163,6 +165,29 @@ CellAnalyzerN::CellAnalyzerN(const ParamsN& base, std::vector<ParamsN> by_count,
                              const BalancedSampling& sampling, std::optional<AnisotropicSupport> support)
     : base_(base), by_count_(std::move(by_count)), x_(x), y_(y), sampling_(sampling), support_(support) {}
 
+namespace {
+// Whether find_equilibria and the permutation classes give the same for both: every
+// parameter but the friction coefficients (which do not move equilibria, model.md §4), the
+// balls' kinds (which do depend on them) and whether any ball has a friction slope at rest
+// (the structural zeros of the balanced samples, model.md §13.4).
+bool same_equilibria(const ParamsN& a, const ParamsN& b) {
+  if (a.n_balls() != b.n_balls() || a.omega != b.omega || a.law != b.law || a.rotor.mass != b.rotor.mass ||
+      a.rotor.stiffness != b.rotor.stiffness || a.rotor.damping != b.rotor.damping ||
+      a.rotor.unbalance != b.rotor.unbalance)
+    return false;
+  bool slope_a = false, slope_b = false;
+  for (int i = 0; i < a.n_balls(); ++i) {
+    const auto &x = a.balls[std::size_t(i)], &y = b.balls[std::size_t(i)];
+    if (x.mass != y.mass || x.race_radius != y.race_radius || x.radius != y.radius ||
+        x.inertia_factor != y.inertia_factor)
+      return false;
+    slope_a = slope_a || friction_slope(a, i, 0.0) != 0.0;
+    slope_b = slope_b || friction_slope(b, i, 0.0) != 0.0;
+  }
+  return slope_a == slope_b && ball_kinds(a).kind == ball_kinds(b).kind;
+}
+}  // namespace
+
 ParamsN CellAnalyzerN::cell_params(int ix, int iy) const {
   ParamsN p = x_.ball_count ? by_count_[std::size_t(ix)] : y_.ball_count ? by_count_[std::size_t(iy)] : base_;
   if (!x_.ball_count) set(p, x_.param, x_.value(ix));
@@ -178,7 +203,14 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
   const bool lugre = p.law == FrictionLaw::lugre;
   ParamsN frictionless = p;
   if (lugre) frictionless.law = FrictionLaw::none;
-  find_equilibria(frictionless, sampling_, set_);
+  const bool same_statics = have_set_ && same_equilibria(set_params_, frictionless);
+  if (!same_statics) {
+    find_equilibria(frictionless, sampling_, set_);
+    // Equal balls (model.md §13.9): a permutation image takes its representative's verdict.
+    find_permutation_classes(lugre ? BallKinds{} : ball_kinds(p), set_.points(), classes_);
+    set_params_ = frictionless;
+    have_set_ = true;
+  }
   out.n_balls = p.n_balls();
   out.capacity = 0;
   for (const auto& b : p.balls) out.capacity += b.mass * b.race_radius;
@@ -193,24 +225,61 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     return;
   }
   out.equilibria.resize(points.size());
+  if (ix != column_) {
+    column_ = ix;
+    reduced_tracked_ = false;
+  }
+  // The balanced samples of equal balls are judged by the reduced problem in g.
+  const BalancedReduction reduction = lugre ? BalancedReduction{} : balanced_reduction(p);
+  std::optional<ReducedPolynomials> corners;  // (once per cell, at the first sample that needs them)
+  // A class copies the verdict of a member whose refinements converged (as analyze does).
+  source_.assign(points.size(), -1);
   for (std::size_t k = 0; k < points.size(); ++k) {
     const EquilibriumN& e = points[k];
-    // As equilibrium_spectrum (scan.hpp): on the balanced set the normal spectrum, the
-    // tangent directions deflated (model.md §13.5); elsewhere the refined spectrum.
-    const SpectrumN sp = [&] {
-      if (lugre) return lugre_zero_bristle_spectrum(p, e.position);
-      const auto lin = linearize(pl, e.state());
-      return e.on_balanced_set ? compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position))
-                               : compute_spectrum(lin, SpectrumMethod::refined, e.structural_zeros);
-    }();
     MapEquilibriumN& m = out.equilibria[k];
+    const auto rep = std::size_t(classes_.images[k].representative);
+    bool converged = true;
+    if (const int from = source_[rep]; from >= 0) {
+      const MapEquilibriumN& r = out.equilibria[std::size_t(from)];
+      m.n_unstable = r.n_unstable;
+      m.n_structural = r.n_structural;
+      m.stable = r.stable;
+      m.abscissa = r.abscissa;
+    } else if (reducible(reduction, e)) {
+      if (!corners) corners = reduced_polynomials(reduction);
+      const NormalVerdict v =
+          reduced_normal_verdict(reduction, *corners, arrangement_of(e.position).g, reduced_root_, reduced_tracked_);
+      m.n_unstable = v.n_unstable;
+      m.n_structural = v.n_structural;
+      m.stable = v.stability == Stability::stable;
+      m.abscissa = v.abscissa;
+      converged = v.converged;
+    } else {
+      // As equilibrium_spectrum (scan.hpp): on the balanced set the normal spectrum, the
+      // tangent directions deflated (model.md §13.5); elsewhere the verdict of the refined
+      // spectrum, refining only what it needs (spectrum_verdict.hpp).
+      if (lugre || e.on_balanced_set) {
+        const SpectrumN sp = lugre ? lugre_zero_bristle_spectrum(p, e.position)
+                                   : compute_normal_spectrum(linearize(pl, e.state()),
+                                                             balanced_tangent_basis(p, e.position));
+        m.n_unstable = sp.n_unstable;
+        m.n_structural = sp.n_structural;
+        m.stable = sp.stability == Stability::stable;
+        m.abscissa = sp.abscissa;
+        converged = sp.converged;
+      } else {
+        const SpectrumVerdict v = spectrum_verdict(linearize(pl, e.state()), e.structural_zeros);
+        m.n_unstable = v.n_unstable;
+        m.n_structural = v.n_structural;
+        m.stable = v.stability == Stability::stable;
+        m.abscissa = v.abscissa;
+        converged = v.converged;
+      }
+    }
+    if (source_[rep] < 0 && converged) source_[rep] = int(k);
     m.family = e.family;
     m.pattern = e.pattern;
     m.member = e.member;
-    m.n_unstable = sp.n_unstable;
-    m.n_structural = sp.n_structural;
-    m.stable = sp.stability == Stability::stable;
-    m.abscissa = sp.abscissa;
     m.q_abs = std::hypot(double(e.position(0)), double(e.position(1)));
     m.beta.fill(0);
     for (int i = 0; i < out.n_balls; ++i) m.beta[std::size_t(i)] = double(e.position(2 + i));

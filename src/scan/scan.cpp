@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "abu/core/cancel.hpp"
+#include "abu/equilibria/ball_permutations.hpp"
+#include "abu/linear/balanced_reduced.hpp"
 #include "abu/linear/lugre_spectrum.hpp"
 
 namespace abu {
@@ -18,6 +20,21 @@ SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, Spectrum
   return compute_normal_spectrum(lin, balanced_tangent_basis(p, e.position), method);
 }
 
+namespace {
+// The spectrum of a permutation image: the same eigenvalues, ball i's eigenvector entry
+// the source's entry of ball ball_of[i] (T' = P T P^T).
+SpectrumN permuted(const SpectrumN& of, const PermutationImage& image, int n_balls) {
+  SpectrumN sp = of;
+  for (int k = 0; k < sp.count; ++k) {
+    const auto& x = of.vectors[std::size_t(k)];
+    auto& y = sp.vectors[std::size_t(k)];
+    if (x.size() != n_balls + 2) continue;
+    for (int i = 0; i < n_balls; ++i) y(2 + i) = x(2 + image.ball_of[std::size_t(i)]);
+  }
+  return sp;
+}
+}  // namespace
+
 AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMethod method) {
   AnalysisN a;
   ParamsN where = p;  // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3)
@@ -26,8 +43,36 @@ AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMe
   a.unbalance = p.rotor.unbalance;
   for (const auto& b : p.balls) a.capacity += b.mass * b.race_radius;
   const auto points = a.equilibria.points();
-  a.spectra.reserve(points.size());
-  for (const auto& e : points) a.spectra.push_back(equilibrium_spectrum(p, e, method));
+  a.spectra.resize(points.size());
+  a.representative.resize(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) a.representative[k] = int(k);
+  if (p.law == FrictionLaw::lugre) {
+    for (std::size_t k = 0; k < points.size(); ++k) a.spectra[k] = equilibrium_spectrum(p, points[k], method);
+    return a;
+  }
+  // Equal balls (model.md §13.9): one spectrum per class of permutation images, copied to
+  // the others with the balls' eigenvector entries permuted; the balanced samples of equal
+  // balls from the reduced problem in g. The copy comes from a member whose refinement
+  // converged: where the first did not (a QR value kept), the next members compute their
+  // own until one does, as each did before.
+  PermutationClasses classes;
+  find_permutation_classes(ball_kinds(p), points, classes);
+  const BalancedReduction reduction = balanced_reduction(p);
+  std::vector<int> source(points.size(), -1);  // per class: a member to copy from
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const PermutationImage& image = classes.images[k];
+    const auto rep = std::size_t(image.representative);
+    if (const int from = source[rep]; from >= 0) {
+      const PermutationImage relative = relative_to(image, classes.images[std::size_t(from)], from, p.n_balls());
+      a.spectra[k] = permuted(a.spectra[std::size_t(from)], relative, p.n_balls());
+      a.representative[k] = from;
+      continue;
+    }
+    a.spectra[k] = method == SpectrumMethod::refined && reducible(reduction, points[k])
+                       ? reduced_normal_spectrum(reduction, p, points[k])
+                       : equilibrium_spectrum(p, points[k], method);
+    if (method != SpectrumMethod::refined || a.spectra[k].converged) source[rep] = int(k);
+  }
   return a;
 }
 

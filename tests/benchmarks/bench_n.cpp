@@ -21,7 +21,11 @@
 //                on the same equilibria as refined
 //   map cell     abu::CellAnalyzerN::analyze, one cell of an n-ball map at the scene's
 //                parameters (the same equilibria and spectra, rows stored in the
-//                cell's reused storage), / cell: what `map` costs per cell at this n
+//                cell's reused storage), / cell: what `map` costs per cell at this n on
+//                a friction axis (y = mu: the column keeps its equilibria, model.md §13.9)
+//   map cell, general axis   the same with y = U, two values 1e-9 apart analysed in
+//                turn: every cell finds its equilibria and their classes again (any axis
+//                that moves them: omega, U, k, c, ...)
 //   dense QR     Eigen::EigenSolver (eigenvalues only, no balancing) on the double
 //                Jacobian jacobian(p, at_rest(position)), precomputed: the same matrices
 //                as the numpy baseline's
@@ -104,7 +108,7 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
          "refined_balanced_us,linearize_us,structured_us,qr_us,qr_aligned_us,qr_balanced_us,not_converged,"
          "ill_conditioned,marginal,spectrum_not_converged,timed_aligned,timed_balanced,refined_aligned_conv_us,"
          "refined_aligned_nconv_us,refined_balanced_conv_us,refined_balanced_nconv_us,nconv_aligned,nconv_balanced,"
-         "map_cell_us\n";
+         "map_cell_us,map_cell_general_us\n";
   volatile double sink = 0;
   fmt::print("{:>3} {:>6} {:>6} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}   (us per equilibrium, median of {})\n",
              "n", "align.", "bal.", "analyze", "find_eq", "refined", "ref.align", "ref.bal", "linearize",
@@ -184,6 +188,16 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
     abu::CellAnalyzerN cells(p, {}, ax, ay, abu::BalancedSampling{});
     abu::MapCellN cell;
     cells.analyze(0, 0, cell);  // warm-up: the cell's storage grows once
+    abu::Axis au = ay;
+    au.param = *abu::parse_param("U", n);
+    au.from = p.rotor.unbalance;
+    au.to = p.rotor.unbalance * (1 + 1e-9);
+    au.count = 2;
+    abu::CellAnalyzerN moving(p, {}, ax, au, abu::BalancedSampling{});
+    moving.analyze(0, 0, cell);
+    moving.analyze(0, 1, cell);
+    int next_row = 0;
+    std::vector<double> t_general;
     for (int r = 0; r < repeats; ++r) {
       t_an.push_back(per(per_call([&] { sink = sink + double(abu::analyze(p).spectra.size()); }, min_s), count));
       t_find.push_back(
@@ -212,6 +226,14 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
                                  min_s),
                              sub_all.size()));
       t_cell.push_back(per_call([&] { cells.analyze(0, 0, cell); sink = sink + double(cell.equilibria.size()); }, min_s) * 1e6);
+      t_general.push_back(per_call(
+                              [&] {
+                                moving.analyze(0, next_row, cell);
+                                next_row = 1 - next_row;
+                                sink = sink + double(cell.equilibria.size());
+                              },
+                              min_s) *
+                          1e6);
       t_qr_al.push_back(per(per_call([&] { qr_of(aligned); }, min_s), aligned.size()));
       t_qr_bal.push_back(per(per_call([&] { qr_of(balanced); }, min_s), balanced.size()));
     }
@@ -233,11 +255,12 @@ int run(const std::string& scene_path, const std::string& bin_path, const std::s
     std::fflush(stdout);
     if (cell.equilibria.size() != count)
       throw std::runtime_error(fmt::format("n = {}: the map cell has {} equilibria, analyze {}", n, cell.equilibria.size(), count));
-    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", n, aligned.size(), balanced.size(),
+    csv << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", n, aligned.size(), balanced.size(),
                        a.equilibria.balanced_set.grid_points, repeats, median(t_an), median(t_find), refined, ref_al,
                        ref_bal, median(t_lin), median(t_struct), qr, qr_al, qr_bal, not_converged, ill, marginal,
                        spec_nc, sub_al.size(), sub_bal.size(), median(t_conv[0]), median(t_nconv[0]),
-                       median(t_conv[1]), median(t_nconv[1]), nconv_al, nconv_bal, median(t_cell));
+                       median(t_conv[1]), median(t_nconv[1]), nconv_al, nconv_bal, median(t_cell),
+                       median(t_general));
 
     // Matrices and eigenvalues for the numpy script.
     for (const std::int64_t v : {std::int64_t(n), std::int64_t(count), std::int64_t(dim), std::int64_t(0)}) put(bin, v);

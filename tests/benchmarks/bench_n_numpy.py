@@ -131,6 +131,9 @@ def main():
             cell_ms = float(rows[n]["map_cell_us"]) / 1e3
             np_ms = us * len(J) / 1e3
             cell_lines[n] = f"{n:>3} {len(J):>10} {cell_ms:>17.3f} {np_ms:>14.3f} {np_ms / cell_ms:>16.3f}x"
+            if "map_cell_general_us" in rows[n]:
+                general_ms = float(rows[n]["map_cell_general_us"]) / 1e3
+                cell_lines[n] += f" {general_ms:>18.3f} {np_ms / general_ms:>16.3f}x"
         got = np.asarray(got, dtype=complex)
         worst, worst_zero, wrong_naive, wrong_clean, marginal, worst_all = score(b, got)
         qr_worst, qr_zero, qr_wrong_naive, qr_wrong_clean, _, _ = score(b, b["qr"])
@@ -174,8 +177,10 @@ def main():
     # A map cell (CellAnalyzerN::analyze: every equilibrium and spectrum of the cell)
     # against numpy's stacked eigvals of the same cell's Jacobians, one core each.
     print("# map cell cost against n: analyzer (one cell, 1 thread) vs numpy.linalg.eigvals of the cell's Jacobians "
-          "(stacked, 1 thread; equilibria not counted for numpy)")
-    print(f"{'n':>3} {'equilibria':>10} {'analyzer ms/cell':>17} {'numpy ms/cell':>14} {'numpy / analyzer':>17}")
+          "(stacked, 1 thread; equilibria not counted for numpy); analyzer on a friction axis (the column keeps "
+          "its equilibria) and on a general axis (U: every cell finds them again)")
+    print(f"{'n':>3} {'equilibria':>10} {'analyzer ms/cell':>17} {'numpy ms/cell':>14} {'numpy / analyzer':>17}"
+          f" {'general ms/cell':>18} {'numpy / general':>16}")
     for n, line in sorted(cell_lines.items()):
         print(line)
 

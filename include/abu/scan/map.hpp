@@ -28,6 +28,7 @@
 
 #include <vector>
 
+#include "abu/equilibria/ball_permutations.hpp"
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/characteristic.hpp"
@@ -171,7 +172,20 @@ class CellAnalyzerN {
   Axis x_, y_;
   BalancedSampling sampling_;
   std::optional<AnisotropicSupport> support_;
+  // The cell's equilibria and their classes, kept while the next cell's statics are the
+  // same (friction coefficients do not move equilibria, model.md §4: a friction axis
+  // finds them once per column; the balls' kinds and whether any has a friction slope,
+  // which sets the structural zeros, must not change either).
   EquilibriumSetN set_;
+  PermutationClasses classes_;  // equal balls: one verdict per class (model.md §13.9)
+  ParamsN set_params_{};
+  bool have_set_ = false;
+  std::vector<int> source_;  // per class: the member whose verdict the others copy
+  // The reduced problem's rightmost root along the column (cells iy = 0, 1, .. of one ix,
+  // in that order whatever the threads: the same bytes), the start of the next sample's.
+  int column_ = -1;
+  std::complex<double> reduced_root_{};
+  bool reduced_tracked_ = false;
 };
 
 }  // namespace abu

@@ -30,6 +30,10 @@ Analysis analyze(const Params& p, SpectrumMethod method = SpectrumMethod::refine
 struct AnalysisN {
   EquilibriumSetN equilibria;
   std::vector<SpectrumN> spectra;
+  /// representative[i]: the equilibrium whose spectrum spectra[i] copies (model.md §13.9:
+  /// equal balls' permutation images; i itself where computed), always <= i. Anything
+  /// computed from a spectrum and invariant under permuting equal balls can be shared too.
+  std::vector<int> representative;
   double capacity = 0;   ///< sum m_i l_i [kg m], what the balls can cancel
   double unbalance = 0;  ///< U [kg m]
 };
