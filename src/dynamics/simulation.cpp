@@ -17,6 +17,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/model/lugre.hpp"
 #include "abu/model/unround_field.hpp"
+#include "dense_output.hpp"
 
 namespace abu {
 
@@ -125,6 +126,13 @@ struct OdeContext {
   ParamRef omega_ref{Quantity::omega, -1};
   const RaceShape* race = nullptr;  // unround race (model.md §15.6), N = any_balls
   void set_time(double t) { p.omega = segment_omega0 + omega_dot * (t - segment_t0); }
+  // The last Jacobian evaluated and where: bsimp asks for J at the start of every step (again
+  // after a rejection), the dense output at the end of every step, the same point (§15.1).
+  bool jac_valid = false;
+  double jac_t = 0;
+  double jac_y[lugre_state_capacity] = {};
+  double jac_dfdy[lugre_state_capacity * lugre_state_capacity] = {};  // row-major, dim x dim
+  double jac_dfdt[lugre_state_capacity] = {};
 };
 
 template <int N>
@@ -189,8 +197,7 @@ int ode_rhs(double t, const double y[], double dydt[], void* params) {
 }
 
 template <int N>
-int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
-  auto& c = *static_cast<OdeContext<N>*>(params);
+int evaluate_jacobian(OdeContext<N>& c, double t, const double y[], double* dfdy, double dfdt[]) {
   ++c.jac;
   c.set_time(t);
   if constexpr (N == any_balls)
@@ -220,6 +227,54 @@ int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
   }
   return GSL_SUCCESS;
 }
+
+// J and df/dt at (t, y) in the context's cache, evaluated unless the cache holds that point.
+template <int N>
+int cached_jacobian(OdeContext<N>& c, double t, const double y[]) {
+  if (c.jac_valid && t == c.jac_t && std::equal(y, y + c.dim, c.jac_y)) return GSL_SUCCESS;
+  c.jac_valid = false;
+  const int st = evaluate_jacobian(c, t, y, c.jac_dfdy, c.jac_dfdt);
+  if (st != GSL_SUCCESS) return st;
+  c.jac_valid = true;
+  c.jac_t = t;
+  std::copy(y, y + c.dim, c.jac_y);
+  return GSL_SUCCESS;
+}
+
+template <int N>
+int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
+  auto& c = *static_cast<OdeContext<N>*>(params);
+  const int st = cached_jacobian(c, t, y);
+  if (st != GSL_SUCCESS) return st;
+  std::copy(c.jac_dfdy, c.jac_dfdy + c.dim * c.dim, dfdy);
+  std::copy(c.jac_dfdt, c.jac_dfdt + c.dim, dfdt);
+  return GSL_SUCCESS;
+}
+
+// y'' = J f + df/dt at (t, y) with f = y' given (the dense output's second derivative, §15.1).
+template <int N>
+int second_derivative(OdeContext<N>& c, double t, const double y[], const double f[], double g[]) {
+  const int st = cached_jacobian(c, t, y);
+  if (st != GSL_SUCCESS) return st;
+  for (int i = 0; i < c.dim; ++i) {
+    double v = c.jac_dfdt[i];
+    const double* row = c.jac_dfdy + i * c.dim;
+    for (int j = 0; j < c.dim; ++j) v += row[j] * f[j];
+    g[i] = v;
+  }
+  return GSL_SUCCESS;
+}
+
+// simulate()'s field for the dense output (model.md §15.1): f, and y'' = J f + f_t from the
+// analytic Jacobian (the one bsimp evaluates at the next step's start: cached, not repeated).
+template <int N>
+struct OdeField {
+  OdeContext<N>* ctx;
+  int rhs(double t, const double* y, double* f) const { return ode_rhs<N>(t, y, f, ctx); }
+  int second(double t, const double* y, const double* f, double* g) const {
+    return second_derivative(*ctx, t, y, f, g);
+  }
+};
 
 const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
   switch (m) {
@@ -392,20 +447,20 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   for (int i = mech; i < dim; ++i) y[i] = o.bristle_start.empty() ? 0.0 : o.bristle_start[std::size_t(i - mech)];
   r.bristle_count = dim - mech;
   double t = 0, h = h0;
-  const auto record = [&](double time) {
+  const auto record = [&](double time, const double* x) {
     if (!o.record) return;
     TrajectorySample<N> s;
     s.t = time;
     s.omega = speed.omega(time);
-    s.x = load_state<N>(y, mech);
+    s.x = load_state<N>(x, mech);
     r.samples.push_back(s);
-    r.bristle.insert(r.bristle.end(), y + mech, y + dim);
+    r.bristle.insert(r.bristle.end(), x + mech, x + dim);
     if (o.progress) o.progress(time);
-    if (o.stop_at_sample && o.stop_at_sample(time, y)) r.stopped_early = true;
+    if (o.stop_at_sample && o.stop_at_sample(time, x)) r.stopped_early = true;
   };
   if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
   if (o.record) r.bristle.reserve(std::size_t(dim - mech) * (std::size_t(std::ceil(o.t_end / every)) + 2));
-  record(0.0);
+  record(0.0, y);
 
   std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
   breaks.push_back(o.t_end);
@@ -414,74 +469,116 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     ctx.segment_t0 = at;
     ctx.segment_omega0 = speed.omega(at);
     ctx.omega_dot = speed.omega_dot(at);
+    ctx.jac_valid = false;  // J and df/dt depend on omega'
   };
   begin_segment(0.0);
-  unsigned long long k_out = 1;
   const auto accumulate = [&] {
     r.stats.steps += drv->e->count;
     r.stats.rejected += drv->e->failed_steps;
   };
   bool stop = false;
+  const auto fail = [&](int st) {
+    r.status = SimulationStatus::failed;
+    const char* why = st == GSL_EBADFUNC ? "the right-hand side or Jacobian is not finite"
+                      : st == GSL_FAILURE ? "the step size fell below the rounding level of t (the tolerance cannot be met)"
+                                          : gsl_strerror(st);
+    r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s, step {:.3g} s, {} steps): {} [GSL {}: {}]", t,
+                           speed.omega(t), h, r.stats.steps + drv->e->count, why, st, gsl_strerror(st));
+    stop = true;
+  };
+
+  // Dense output (model.md §15.1): the stepper runs freely to the next breakpoint; after every
+  // accepted step the samples inside it come from the quintic Hermite interpolant and the
+  // maxima of |q| inside it are located (§15.4). Slot 0 of `step` is the current point.
+  dense::Stepper<OdeField<N>> dense(OdeField<N>{&ctx}, dim, o.rtol, cs->scale, cs->relative);
+  const bool dense_on = o.record;
+  const bool retake_allowed = r.method != IntegrationMethod::bdf;  // msbdf keeps a history
+  const bool exact_dydt_out = drv->s->type->gives_exact_dydt_out != 0;
+  dense::SampleClock clock{every, o.t_end};
+  double x_sample[dense::capacity];
+  if (dense_on) {
+    if (int st = dense.start(t, y); st != GSL_SUCCESS) fail(st);
+    dense.peaks.add({std::hypot(y[0], y[1]), 0.0}, ctx.omega_dot != 0);
+  }
   while (!stop && !r.stopped_early && t < o.t_end) {
-    // Without recording, only the breakpoints and t_end stop the stepper.
-    const double t_out = o.record ? std::min(double(k_out) * every, o.t_end) : o.t_end;
-    const double target = std::min(t_out, breaks[next_break]);
-    while (t < target) {
-      const double h_before = h;
-      const int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, target, &h, y);
-      if (st != GSL_SUCCESS) {
-        r.status = SimulationStatus::failed;
-        const char* why = st == GSL_EBADFUNC ? "the right-hand side or Jacobian is not finite"
-                          : st == GSL_FAILURE ? "the step size fell below the rounding level of t (the tolerance cannot be met)"
-                                              : gsl_strerror(st);
-        r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s, step {:.3g} s, {} steps): {} [GSL {}: {}]", t,
-                               speed.omega(t), h, r.stats.steps + drv->e->count, why, st, gsl_strerror(st));
-        stop = true;
-        break;
-      }
-      if (r.stats.steps + drv->e->count > o.max_steps) {
-        r.status = SimulationStatus::failed;
-        r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
-                               o.max_steps);
-        stop = true;
-        break;
-      }
-      if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
-        r.status = SimulationStatus::interrupted;
-        r.reason = fmt::format("interrupted at t = {:.9g} s", t);
-        stop = true;
-        break;
-      }
-      // A step clamped to reach the target returns a small proposal; keep the previous one.
-      if (t == target && h < h_before) h = h_before;
-    }
-    if (stop) {
-      if (o.record && r.samples.back().t < t) record(t);
+    double target = breaks[next_break];
+    if (dense_on) target = dense.plan(t, h, clock.next(), target);
+    const double h_before = h;
+    const int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, target, &h, y);
+    if (st != GSL_SUCCESS) {
+      fail(st);
       break;
     }
-    if (t == t_out) {
-      record(t);
-      ++k_out;
-      if (r.stopped_early) break;
+    // A step clamped to reach the target returns a small proposal; keep the previous one.
+    if (t == target && h < h_before) h = h_before;
+    if (dense_on) {
+      const int fs = dense.finish(t, y, exact_dydt_out ? drv->e->dydt_out : nullptr);
+      if (fs != GSL_SUCCESS) {
+        fail(fs);
+        break;
+      }
+      const dense::QPeak candidate = dense.step.q_peak(dense.step.t0, t, dense.step.y0, y);
+      if (retake_allowed && dense.retake(clock.next(), candidate)) {  // the interpolant misses: again, shorter
+        t = dense.step.t0;
+        std::copy(dense.step.y0, dense.step.y0 + dim, y);
+        h = std::min(h, dense.h_limit);
+        // GSL's evolve takes the last step's end field as the next step's start field: reset it
+        // (its counts are kept first), so that it evaluates f(t0, y0) again.
+        accumulate();
+        gsl_odeiv2_evolve_reset(drv->e);
+        continue;
+      }
+      // The samples in (t0, t]: interpolated, the step's end exactly.
+      const double t_part = dense.emit(
+          clock, [&](double ts, const double* x) { return record(ts, x), r.stopped_early; }, candidate,
+          ctx.omega_dot != 0, x_sample);
+      if (r.stopped_early) {  // the run ends at that sample
+        t = t_part;
+        std::copy(x_sample, x_sample + dim, y);
+        break;
+      }
+      dense.advance();
+    }
+    if (r.stats.steps + drv->e->count - dense.retaken > o.max_steps) {
+      r.status = SimulationStatus::failed;
+      r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
+                             o.max_steps);
+      stop = true;
+      break;
+    }
+    if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
+      r.status = SimulationStatus::interrupted;
+      r.reason = fmt::format("interrupted at t = {:.9g} s", t);
+      stop = true;
+      break;
     }
     if (t == breaks[next_break] && next_break + 1 < breaks.size()) {
-      // omega' jumps here (model.md §9): restart the multistep history on the new segment.
+      // omega' jumps here (model.md §9): restart the stepper on the new segment.
       accumulate();
-      if (int st = gsl_odeiv2_driver_reset(drv.get()); st != GSL_SUCCESS)
-        throw NumericalError(fmt::format("simulate: GSL reset at t = {}: {}", t, gsl_strerror(st)));
+      if (int rs = gsl_odeiv2_driver_reset(drv.get()); rs != GSL_SUCCESS)
+        throw NumericalError(fmt::format("simulate: GSL reset at t = {}: {}", t, gsl_strerror(rs)));
       ++r.stats.restarts;
       ++next_break;
       begin_segment(t);
+      if (dense_on)
+        if (int ds = dense.start(t, y); ds != GSL_SUCCESS) fail(ds);
     }
   }
+  if (stop && o.record && r.samples.back().t < t) record(t, y);
   accumulate();
+  r.stats.steps -= dense.retaken;  // counted by GSL as accepted, then discarded
+  r.stats.rejected += dense.retaken;
+  r.stats.retaken = dense.retaken;
   r.stats.rhs_evaluations = ctx.rhs;
   r.stats.jacobian_evaluations = ctx.jac;
   r.x_end = load_state<N>(y, mech);
   r.bristle_end.assign(y + mech, y + dim);
   r.t_reached = t;
   r.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (o.record) r.summary = summarize(p, speed, r.samples, o);
+  if (o.record) {
+    r.summary = summarize(p, speed, r.samples, o);
+    dense.peaks.merge_into(r.summary);  // the maxima between the samples (model.md §15.4)
+  }
   return r;
 }
 

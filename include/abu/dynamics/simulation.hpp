@@ -89,6 +89,9 @@ struct IntegrationStats {
   unsigned long rhs_evaluations = 0;
   unsigned long jacobian_evaluations = 0;
   unsigned long restarts = 0;        ///< at breakpoints of the speed profile (omega' jumps)
+  /// Steps discarded and taken again shorter because the dense output's interpolant missed the
+  /// tolerance (model.md §15.1); counted in `rejected` too.
+  unsigned long retaken = 0;
   double wall_seconds = 0;
 };
 
