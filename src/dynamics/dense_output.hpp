@@ -100,7 +100,8 @@ struct Step {
     const double H = h(), hp = t0 - t_prev;
     const Basis b(-hp / H);
     // p(t) - y(t) = c (t - t0)^3 (t - t1)^3 + ...; c from the node t_prev, the nodal factor at mid-step.
-    const double mid = std::pow(0.5 * H, 6) / (std::pow(hp, 3) * std::pow(hp + H, 3));
+    const double r = 0.5 * H / hp, r2 = 0.5 * H / (hp + H);
+    const double mid = (r * r * r) * (r2 * r2 * r2);  // (H/2)^6 / (hp^3 (hp + H)^3)
     double worst = 0;
     for (int i = 0; i < dim; ++i) worst = std::max(worst, std::abs(value(i, b, H) - y_prev[i]) * mid / tol(i, y1[i]));
     return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
@@ -121,13 +122,20 @@ struct Step {
 
   /// The largest |q| = hypot(y_0, y_1) of the interpolant on [ta, tb] (within [t0, t1]): the ends
   /// and every interior maximum, a root of G = q . q' where it changes sign from + to - on one
-  /// of four sub-intervals, polished by safeguarded Newton on G. `xa` holds the state at ta.
-  QPeak q_peak(double ta, double tb, const double* xa, const double* xb) const {
+  /// of four sub-intervals, polished by safeguarded Newton on G. `xa`, `xb` hold the state at ta
+  /// and tb. The interior is not searched where a bound of |p| on the step stays below `floor`
+  /// (the largest |q| so far): |H3| <= 1 keeps the first two terms of (15.1.3) within the ends'
+  /// largest, |H1|, |H4| <= 16/81 and |H2|, |H5| <= 0.01728 bound the others.
+  QPeak q_peak(double ta, double tb, const double* xa, const double* xb, double floor = 0) const {
     QPeak best{std::hypot(xa[0], xa[1]), ta};
     const double qb = std::hypot(xb[0], xb[1]);
     if (qb > best.q_abs) best = {qb, tb};
     const double H = h();
     if (!(tb > ta) || !(H > 0)) return best;
+    const auto norm = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1]); };  // q: no overflow
+    const double bound = std::max(norm(y0), norm(y1)) + 0.19753086419753085 * H * (norm(f0) + norm(f1)) +
+                         0.01728 * H * H * (norm(g0) + norm(g1));
+    if (bound * (1 + 1e-12) < std::max(floor, best.q_abs)) return best;
     const auto G = [&](double s, double* dG) {
       const Basis b(s);
       double g = 0, dg = 0;
@@ -309,14 +317,16 @@ struct Stepper {
       step.state_at(ts, x);
       clock.taken(ts);
       if (record(ts, static_cast<const double*>(x))) {
-        peaks.add(q_peak_to(ts, x), speed_changing);
+        peaks.add(step.q_peak(step.t0, ts, step.y0, x, peaks.all.q_abs), speed_changing);
         return ts;
       }
     }
     peaks.add(candidate, speed_changing);
     return step.t1;
   }
-  QPeak q_peak_to(double t, const double* x) const { return step.q_peak(step.t0, t, step.y0, x); }
+  /// The largest |q| of the whole step, its interior searched only where it may exceed the
+  /// largest so far.
+  QPeak candidate() const { return step.q_peak(step.t0, step.t1, step.y0, step.y1, peaks.all.q_abs); }
 
   /// The step's end becomes the current point.
   void advance() {

@@ -265,14 +265,24 @@ int second_derivative(OdeContext<N>& c, double t, const double y[], const double
   return GSL_SUCCESS;
 }
 
-// simulate()'s field for the dense output (model.md §15.1): f, and y'' = J f + f_t from the
-// analytic Jacobian (the one bsimp evaluates at the next step's start: cached, not repeated).
+// simulate()'s field for the dense output (model.md §15.1): f, and y'' = J f + f_t. With the
+// steppers that evaluate J at every step's start (bsimp, rk4imp) from the analytic Jacobian,
+// cached for the next step: it costs nothing more. With the others a Jacobian would cost about
+// four evaluations of f, so y'' is the forward difference of f along (1, f) with step delta:
+// one evaluation, its relative error ~ 2 sqrt(eps) entering (15.1.3) times h^2 |H2| <= 0.0173 h^2.
 template <int N>
 struct OdeField {
   OdeContext<N>* ctx;
+  bool analytic;
+  double delta;
   int rhs(double t, const double* y, double* f) const { return ode_rhs<N>(t, y, f, ctx); }
   int second(double t, const double* y, const double* f, double* g) const {
-    return second_derivative(*ctx, t, y, f, g);
+    if (analytic) return second_derivative(*ctx, t, y, f, g);
+    double ahead[lugre_state_capacity];
+    for (int i = 0; i < ctx->dim; ++i) ahead[i] = y[i] + delta * f[i];
+    if (const int st = ode_rhs<N>(t + delta, ahead, g, ctx); st != GSL_SUCCESS) return st;
+    for (int i = 0; i < ctx->dim; ++i) g[i] = (g[i] - f[i]) / delta;
+    return GSL_SUCCESS;
   }
 };
 
@@ -289,8 +299,8 @@ const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
 // The error control's tolerance is rtol / factor, so that the global error the method achieves
 // lies within a small factor of the requested rtol (model.md §15.1, measured by
 // tests/benchmarks/bench_simulate): bsimp's local-error control accumulates to 35-420 times the
-// tolerance over the benchmark problems, and handed rtol / 30 it ends at 0.2 to 8 times rtol;
-// rk8pd's ends at 0.3 to 2 times rtol as it is (on the problems it is chosen for).
+// tolerance over the benchmark problems, and handed rtol / 30 it ends at 0.4 to 8 times rtol;
+// rk8pd's ends at 0.6 to 1.6 times rtol as it is (on the problem it is chosen for).
 double tolerance_factor(IntegrationMethod m) { return m == IntegrationMethod::bsimp ? 30.0 : 1.0; }
 
 struct DriverDeleter {
@@ -498,7 +508,9 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   // Dense output (model.md §15.1): the stepper runs freely to the next breakpoint; after every
   // accepted step the samples inside it come from the quintic Hermite interpolant and the
   // maxima of |q| inside it are located (§15.4). Slot 0 of `step` is the current point.
-  dense::Stepper<OdeField<N>> dense(OdeField<N>{&ctx}, dim, o.rtol, cs->scale, cs->relative);
+  const bool jacobian_each_step = r.method == IntegrationMethod::bsimp || r.method == IntegrationMethod::rk4imp;
+  const OdeField<N> field{&ctx, jacobian_each_step, 1.5e-8 / (w_max + w_n)};  // sqrt(eps) of the whirls' time scale
+  dense::Stepper<OdeField<N>> dense(field, dim, o.rtol, cs->scale, cs->relative);
   const bool dense_on = o.record;
   const bool retake_allowed = r.method != IntegrationMethod::bdf;  // msbdf keeps a history
   const bool exact_dydt_out = drv->s->type->gives_exact_dydt_out != 0;
@@ -525,7 +537,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
         fail(fs);
         break;
       }
-      const dense::QPeak candidate = dense.step.q_peak(dense.step.t0, t, dense.step.y0, y);
+      const dense::QPeak candidate = dense.candidate();
       if (retake_allowed && dense.retake(clock.next(), candidate)) {  // the interpolant misses: again, shorter
         t = dense.step.t0;
         std::copy(dense.step.y0, dense.step.y0 + dim, y);

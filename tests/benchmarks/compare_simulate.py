@@ -10,7 +10,10 @@ the scaled norm of model.md §15.1, and the largest |q| against the reference's 
 Each run is launched with the old binary at its default tolerance and with the new one at its
 default and at every --rtol given (e.g. --rtol 1e-7 --rtol 1e-6). --instructions adds the
 instructions executed inside simulate() (valgrind --tool=callgrind, once per run: the same
-count whatever the machine's load) and their ratio to the old binary's.
+count whatever the machine's load) and their ratio to the old binary's. Then one `basin` run
+(data/scenes/viscous.toml, 8 x 8 cells, its run-up to 20 s, one thread) with both binaries at
+their defaults: the process's wall time, the instructions in simulate() over all cells, and
+whether every cell's class is the same, with the largest change of a cell's max_q_abs.
 """
 import argparse
 import csv
@@ -22,6 +25,7 @@ import subprocess
 import sys
 import re
 import tempfile
+import time
 
 RUNS = [  # name, scene (relative to SOURCE_DIR), arguments, omega_max [rad/s] (the scales of §15.1)
     ("coulomb 900 rad/s (stiff)", "data/scenes/default.toml",
@@ -98,7 +102,43 @@ def main():
                          if a.instructions else "")
                 print(f"| {name} | {tag} | {s['method']} | {s['stats']['steps']} | {med * 1e3:.3g} ms | {worst:.2e} | "
                       f"{peak:.1e} | {med / base:.2f} |" + extra, flush=True)
+    basin(a)
     return 0
+
+
+def basin(a):
+    args = ["basin", os.path.join(a.source, "data/scenes/viscous.toml"), "--grid", "8", "--ramp", "100:400:100",
+            "--threads", "1", "--no-chart", "--quiet"]
+    with tempfile.TemporaryDirectory() as tmp:
+        walls = {"old": [], "new": []}
+        for k in range(a.repeat):
+            for tag, binary in (("old", a.old), ("new", a.new)):
+                out = os.path.join(tmp, f"{tag}{k}")
+                t0 = time.perf_counter()
+                subprocess.run([binary] + args + ["-o", out], check=True, capture_output=True)
+                walls[tag].append(time.perf_counter() - t0)
+        rows = {}
+        for tag in ("old", "new"):
+            with open(os.path.join(tmp, f"{tag}0", "basin.csv")) as fh:
+                rows[tag] = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+        same = all(x["attractor"] == y["attractor"] and x["member"] == y["member"] for x, y in zip(rows["old"], rows["new"]))
+        dq = max(abs(float(x["max_q_abs"]) - float(y["max_q_abs"])) / float(x["max_q_abs"])
+                 for x, y in zip(rows["old"], rows["new"]))
+        steps = {tag: sum(int(r["steps"]) for r in rows[tag]) for tag in rows}
+        counts = {}
+        if a.instructions:
+            for tag, binary in (("old", a.old), ("new", a.new)):
+                res = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={tmp}/{tag}.cg",
+                                      "--toggle-collect=*abu::simulate<*", binary] + args + ["-o", f"{tmp}/cg{tag}"],
+                                     capture_output=True, text=True, check=True)
+                counts[tag] = int(re.search(r"Collected : (\d+)", res.stderr).group(1))
+        old, new = statistics.median(walls["old"]), statistics.median(walls["new"])
+        print(f"\nbasin (viscous, 8 x 8, run-up 100 -> 400 rad/s at 100 rad/s^2, 20 s, 1 thread): steps {steps['old']} -> "
+              f"{steps['new']}, process wall {old:.2f} s -> {new:.2f} s ({new / old:.2f})"
+              + (f", instructions in simulate() {counts['old'] / 1e6:.0f} M -> {counts['new'] / 1e6:.0f} M "
+                 f"({counts['new'] / counts['old']:.2f})" if counts else "")
+              + f"; every cell's class {'the same' if same else 'NOT the same'}, max_q_abs changed by at most "
+              f"{dq:.1e} (relative)")
 
 
 if __name__ == "__main__":

@@ -46,7 +46,7 @@ struct SimulationOptions {
   /// Local error per component <= rtol * (scale_i + |x_i|), scale_i the model's scaling:
   /// q in the displacement scale L, q' in L omega_max, beta' in omega_max; angles
   /// absolutely, <= rtol rad (model.md §15.1). bsimp's error control gets rtol / 30, so that
-  /// the global error of every method stays within a small factor of rtol (measured: 0.2 to 8);
+  /// the global error of every method stays within a small factor of rtol (measured: 0.4 to 8);
   /// the samples between steps are interpolated to rtol.
   double rtol = 1e-7;
   IntegrationMethod method = IntegrationMethod::automatic;
