@@ -268,21 +268,18 @@ int second_derivative(OdeContext<N>& c, double t, const double y[], const double
 // simulate()'s field for the dense output (model.md §15.1): f, and y'' = J f + f_t. With the
 // steppers that evaluate J at every step's start (bsimp, rk4imp) from the analytic Jacobian,
 // cached for the next step: it costs nothing more. With the others a Jacobian would cost about
-// four evaluations of f, so y'' is the forward difference of f along (1, f) with step delta:
-// one evaluation, its relative error ~ 2 sqrt(eps) entering (15.1.3) times h^2 |H2| <= 0.0173 h^2.
+// four evaluations of f: y'' by differences of f along (1, f) instead (dense_output.hpp).
 template <int N>
 struct OdeField {
   OdeContext<N>* ctx;
   bool analytic;
-  double delta;
+  bool central;       // the central difference (rtol < 1e-9), else the forward one
+  double time_scale;  // 1 / (omega_max + omega_n)
   int rhs(double t, const double* y, double* f) const { return ode_rhs<N>(t, y, f, ctx); }
   int second(double t, const double* y, const double* f, double* g) const {
     if (analytic) return second_derivative(*ctx, t, y, f, g);
-    double ahead[lugre_state_capacity];
-    for (int i = 0; i < ctx->dim; ++i) ahead[i] = y[i] + delta * f[i];
-    if (const int st = ode_rhs<N>(t + delta, ahead, g, ctx); st != GSL_SUCCESS) return st;
-    for (int i = 0; i < ctx->dim; ++i) g[i] = (g[i] - f[i]) / delta;
-    return GSL_SUCCESS;
+    const auto field = [this](double tt, const double* yy, double* ff) { return ode_rhs<N>(tt, yy, ff, ctx); };
+    return dense::second_by_difference(field, ctx->dim, time_scale, central, t, y, f, g);
   }
 };
 
@@ -509,7 +506,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   // accepted step the samples inside it come from the quintic Hermite interpolant and the
   // maxima of |q| inside it are located (§15.4). Slot 0 of `step` is the current point.
   const bool jacobian_each_step = r.method == IntegrationMethod::bsimp || r.method == IntegrationMethod::rk4imp;
-  const OdeField<N> field{&ctx, jacobian_each_step, 1.5e-8 / (w_max + w_n)};  // sqrt(eps) of the whirls' time scale
+  const OdeField<N> field{&ctx, jacobian_each_step, o.rtol < 1e-9, 1.0 / (w_max + w_n)};
   dense::Stepper<OdeField<N>> dense(field, dim, o.rtol, cs->scale, cs->relative);
   const bool dense_on = o.record;
   const bool retake_allowed = r.method != IntegrationMethod::bdf;  // msbdf keeps a history

@@ -118,20 +118,17 @@ int phase_rhs(double t, const double y[], double dydt[], void* params) {
   return GSL_SUCCESS;
 }
 
-// The phase's field for the dense output (model.md §15.1): f, and y'' = d/dt f(t, y(t)) by a
-// forward difference along (1, f) with step delta: its relative error ~ 2 sqrt(eps) enters the
-// interpolant times h^2 |H2| <= 0.0173 h^2, below 1e-9 of |y| for steps with h omega <= 1.
+// The phase's field for the dense output (model.md §15.1): f, and y'' = d/dt f(t, y(t)) by
+// differences along (1, f) (no Jacobian of the constrained field; dense_output.hpp).
 template <int N>
 struct PhaseField {
   Phase<N>* ph;
-  double delta;
+  bool central;       // the central difference (rtol < 1e-9), else the forward one
+  double time_scale;  // 1 / (omega_max + omega_n)
   int rhs(double t, const double* y, double* f) const { return phase_rhs<N>(t, y, f, ph); }
   int second(double t, const double* y, const double* f, double* g) const {
-    double ahead[2 * max_balls + 4];
-    for (int i = 0; i < ph->dim; ++i) ahead[i] = y[i] + delta * f[i];
-    if (const int st = phase_rhs<N>(t + delta, ahead, g, ph); st != GSL_SUCCESS) return st;
-    for (int i = 0; i < ph->dim; ++i) g[i] = (g[i] - f[i]) / delta;
-    return GSL_SUCCESS;
+    const auto field = [this](double tt, const double* yy, double* ff) { return phase_rhs<N>(tt, yy, ff, ph); };
+    return dense::second_by_difference(field, ph->dim, time_scale, central, t, y, f, g);
   }
 };
 
@@ -354,12 +351,11 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
 
   // Dense output (model.md §15.1, §14.6): the smooth phases stepped freely to the next breakpoint
   // or switch; the samples inside a step from the quintic Hermite interpolant of the phase that
-  // held during it, y'' = d/dt f(t, y(t)) by a forward difference along (1, f) (no Jacobian of the
-  // constrained field); the maxima of |q| located inside each step (§15.4).
+  // held during it; the maxima of |q| located inside each step (§15.4).
   bool relative[2 * max_balls + 4];
   std::fill(relative, relative + dim, true);  // GSL's scaled control: rtol (scale_i + |y_i|)
-  const double fd_step = 1.5e-8 / (w_max + w_n);  // sqrt(eps) of the motion's time scale
-  dense::Stepper<PhaseField<N>> dense(PhaseField<N>{&ph, fd_step}, dim, o.rtol, scale, relative);
+  dense::Stepper<PhaseField<N>> dense(PhaseField<N>{&ph, o.rtol < 1e-9, 1.0 / (w_max + w_n)}, dim, o.rtol, scale,
+                                      relative);
   const bool dense_on = o.record;
   const bool exact_dydt_out = stepper->gives_exact_dydt_out != 0;
   dense::SampleClock clock{every, o.t_end};
