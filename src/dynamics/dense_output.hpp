@@ -5,9 +5,11 @@
 //
 //   dense::Step s;  // t0, t1 and y, y', y'' at both ends, filled by the caller
 //   double x[dense::capacity];
-//   s.state_at(t, x);                 // every component at t in [t0, t1]
-//   dense::QPeak pk = s.q_peak(t0, t1, x);   // largest |q| = |(y_0, y_1)| in [t0, t1] and where
+//   s.state_at(t, x);                                       // every component at t in [t0, t1]
+//   dense::QPeak pk = s.q_peak(s.t0, s.t1, s.y0, s.y1);     // largest |q| = |(y_0, y_1)| and where
 //
+// dense::Stepper keeps a run's bookkeeping around GSL's evolve (the current step, the estimate,
+// the step limit, retaken steps, the maxima); simulation.cpp and stick_slip.cpp drive it.
 // Internal to the dynamics layer. Fixed-size storage: nothing is allocated per step.
 #pragma once
 
