@@ -26,8 +26,12 @@
 #     double (model.md §13.8);
 # 10. `simulate`'s integrators against scipy's Radau, BDF, LSODA and DOP853 on the same
 #     problems (coulomb kappa = 1e3 and 1e6, 1 s from a perturbed balanced state; a run-up
-#     through omega_n): time to reach 1e-6 and 1e-9 error (`bench_simulate`,
-#     tests/benchmarks/bench_simulate_scipy.py). `scripts/bench.sh 10` runs this section only.
+#     through omega_n): time to reach 1e-4, 1e-5, 1e-6 and 1e-9 error, the analyzer with free
+#     steps and with its default 2000 samples by dense output (`bench_simulate`,
+#     tests/benchmarks/bench_simulate_scipy.py); with ABU_BENCH_BEFORE=BINARY also the default
+#     `simulate` runs of that older binary against this one (tests/benchmarks/
+#     compare_simulate.py: wall time, instructions, sample and peak errors).
+#     `scripts/bench.sh 10` runs this section only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh python3-numpy python3-scipy
@@ -40,6 +44,12 @@ section10() {
   build/tests/benchmarks/bench_simulate data/scenes/default.toml --repeat 3 --json "$res"
   OPENBLAS_NUM_THREADS=1 /usr/bin/python3 tests/benchmarks/bench_simulate_scipy.py "$res" --timeout 60
   rm -f "$res"
+  if [ -n "${ABU_BENCH_BEFORE:-}" ]; then
+    cmake --build build -j"$(nproc)" --target stability-scan >/dev/null
+    echo "## 10b. default simulate runs: $ABU_BENCH_BEFORE against build/stability-scan"
+    /usr/bin/python3 tests/benchmarks/compare_simulate.py "$ABU_BENCH_BEFORE" build/stability-scan . --repeat 5 \
+      --rtol 1e-8 --instructions
+  fi
 }
 if [ "${1:-}" = 10 ]; then
   echo "# machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); build: Release, $(c++ --version | head -1)"

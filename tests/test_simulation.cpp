@@ -1,6 +1,7 @@
 // Simulation (model.md §9, §15): the run-up terms' derivatives, conservation of the Jacobi
 // integral, the observed order of convergence, the decay of a perturbed equilibrium at its
-// rightmost eigenvalue's rate, omega' = 0 run-up = constant speed, the speed profiles.
+// rightmost eigenvalue's rate, omega' = 0 run-up = constant speed, samples between steps against
+// runs that end there, the speed profiles.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -268,6 +269,44 @@ TEST_CASE("simulation: a run-up with omega' = 0 equals the constant-speed run", 
     worst = std::max(worst, scaled_error(p, constant.samples[k].x, runup.samples[k].x, 900.0));
   }
   CHECK(worst < 1e-7);  // two runs at tolerance 1e-10 (coulomb, stiff: errors grow ~ 1e2 times)
+}
+
+TEST_CASE("simulation: a sample between steps equals the end of a run to its time (dense output)", "[simulation]") {
+  // model.md §15.1: a sample comes from the quintic Hermite interpolant of the step that holds it
+  // (where the interpolant reaches it); a run whose t_end is the sample's time ends there
+  // exactly, on its own steps. Both are within 10 rtol of the true state (the global error of the calibrated tolerance),
+  // so within 20 rtol of each other; an interpolant of lower order (a cubic's error (h omega)^4 /
+  // 384 is ~1e-3 at these steps, h omega ~ 1), or samples taken from the wrong step, miss by far more.
+  const Scene viscous = load_scene(std::string(ABU_SOURCE_DIR) + "/data/scenes/viscous.toml");
+  struct Case {
+    Params p;
+    SpeedProfile speed;
+    IntegrationMethod method;
+  };
+  const Case cases[] = {{params_of<2>(default_scene()), SpeedProfile::constant(900), IntegrationMethod::bsimp},
+                        {params_of<2>(viscous), SpeedProfile::ramp(100, 400, 1000), IntegrationMethod::rk8pd},
+                        {params_of<2>(viscous), SpeedProfile::ramp(100, 400, 1000), IntegrationMethod::bsimp}};
+  for (const auto& c : cases) {
+    SimulationOptions o;
+    o.rtol = 1e-9;
+    o.method = c.method;
+    o.t_end = 0.5;
+    o.every = o.t_end / 7;  // sample times that are no breakpoint and no multiple of a step
+    const State<double, 2> x0 = start_at_rest(c.p, {2.0, 4.0});
+    const auto run = simulate(c.p, c.speed, x0, o);
+    REQUIRE(run.status == SimulationStatus::completed);
+    REQUIRE(run.method == c.method);
+    REQUIRE(run.samples.size() == 8);
+    for (std::size_t k = 1; k + 1 < run.samples.size(); ++k) {
+      SimulationOptions to = o;
+      to.t_end = run.samples[k].t;
+      to.record = false;
+      const auto end = simulate(c.p, c.speed, x0, to);
+      const double e = scaled_error(c.p, run.samples[k].x, end.x_end, c.speed.max_omega());
+      INFO(to_string(c.method) << " sample at t = " << to.t_end << ": " << e << " (scaled)");
+      CHECK(e <= 20 * o.rtol);
+    }
+  }
 }
 
 TEST_CASE("speed profiles: ramps, files, crossings and bad input", "[simulation]") {

@@ -491,7 +491,7 @@ def map(scene, x, y, *, method="fast", threads=None, samples_per_sheet=64):  # n
 
 
 def simulate(scene, t_end=1.0, *, balls=None, state=None, from_equilibrium=None, perturb=None, ramp=None,
-             speed_profile=None, method="auto", rtol=1e-8, every=0.0, max_steps=200_000_000, settle_tol=1e-3):
+             speed_profile=None, method="auto", rtol=1e-7, every=0.0, max_steps=200_000_000, settle_tol=1e-3):
     """Integrates the equations of motion: the CLI's `simulate`.
 
     One start: balls (angles [rad] of balls at rest in the rotor frame, rotor at rest), state

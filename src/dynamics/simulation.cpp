@@ -13,11 +13,11 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <numbers>
 
 #include "abu/core/errors.hpp"
 #include "abu/model/lugre.hpp"
 #include "abu/model/unround_field.hpp"
+#include "dense_output.hpp"
 
 namespace abu {
 
@@ -62,8 +62,6 @@ std::string_view to_string(SimulationOutcome o) {
 }
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // GSL's default handler aborts; this module reports every return code instead.
 void gsl_handler_off_once() {
@@ -128,6 +126,13 @@ struct OdeContext {
   ParamRef omega_ref{Quantity::omega, -1};
   const RaceShape* race = nullptr;  // unround race (model.md §15.6), N = any_balls
   void set_time(double t) { p.omega = segment_omega0 + omega_dot * (t - segment_t0); }
+  // The last Jacobian evaluated and where: bsimp asks for J at the start of every step (again
+  // after a rejection), the dense output at the end of every step, the same point (§15.1).
+  bool jac_valid = false;
+  double jac_t = 0;
+  double jac_y[lugre_state_capacity] = {};
+  double jac_dfdy[lugre_state_capacity * lugre_state_capacity] = {};  // row-major, dim x dim
+  double jac_dfdt[lugre_state_capacity] = {};
 };
 
 template <int N>
@@ -192,8 +197,7 @@ int ode_rhs(double t, const double y[], double dydt[], void* params) {
 }
 
 template <int N>
-int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
-  auto& c = *static_cast<OdeContext<N>*>(params);
+int evaluate_jacobian(OdeContext<N>& c, double t, const double y[], double* dfdy, double dfdt[]) {
   ++c.jac;
   c.set_time(t);
   if constexpr (N == any_balls)
@@ -224,6 +228,61 @@ int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
   return GSL_SUCCESS;
 }
 
+// J and df/dt at (t, y) in the context's cache, evaluated unless the cache holds that point.
+template <int N>
+int cached_jacobian(OdeContext<N>& c, double t, const double y[]) {
+  if (c.jac_valid && t == c.jac_t && std::equal(y, y + c.dim, c.jac_y)) return GSL_SUCCESS;
+  c.jac_valid = false;
+  const int st = evaluate_jacobian(c, t, y, c.jac_dfdy, c.jac_dfdt);
+  if (st != GSL_SUCCESS) return st;
+  c.jac_valid = true;
+  c.jac_t = t;
+  std::copy(y, y + c.dim, c.jac_y);
+  return GSL_SUCCESS;
+}
+
+template <int N>
+int ode_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
+  auto& c = *static_cast<OdeContext<N>*>(params);
+  const int st = cached_jacobian(c, t, y);
+  if (st != GSL_SUCCESS) return st;
+  std::copy(c.jac_dfdy, c.jac_dfdy + c.dim * c.dim, dfdy);
+  std::copy(c.jac_dfdt, c.jac_dfdt + c.dim, dfdt);
+  return GSL_SUCCESS;
+}
+
+// y'' = J f + df/dt at (t, y) with f = y' given (the dense output's second derivative, §15.1).
+template <int N>
+int second_derivative(OdeContext<N>& c, double t, const double y[], const double f[], double g[]) {
+  const int st = cached_jacobian(c, t, y);
+  if (st != GSL_SUCCESS) return st;
+  for (int i = 0; i < c.dim; ++i) {
+    double v = c.jac_dfdt[i];
+    const double* row = c.jac_dfdy + i * c.dim;
+    for (int j = 0; j < c.dim; ++j) v += row[j] * f[j];
+    g[i] = v;
+  }
+  return GSL_SUCCESS;
+}
+
+// simulate()'s field for the dense output (model.md §15.1): f, and y'' = J f + f_t. With the
+// steppers that evaluate J at every step's start (bsimp, rk4imp) from the analytic Jacobian,
+// cached for the next step: it costs nothing more. With the others a Jacobian would cost about
+// four evaluations of f: y'' by differences of f along (1, f) instead (dense_output.hpp).
+template <int N>
+struct OdeField {
+  OdeContext<N>* ctx;
+  bool analytic;
+  bool central;       // the central difference (rtol < 1e-9), else the forward one
+  double time_scale;  // 1 / (omega_max + omega_n)
+  int rhs(double t, const double* y, double* f) const { return ode_rhs<N>(t, y, f, ctx); }
+  int second(double t, const double* y, const double* f, double* g) const {
+    if (analytic) return second_derivative(*ctx, t, y, f, g);
+    const auto field = [this](double tt, const double* yy, double* ff) { return ode_rhs<N>(tt, yy, ff, ctx); };
+    return dense::second_by_difference(field, ctx->dim, time_scale, central, t, y, f, g);
+  }
+};
+
 const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
   switch (m) {
     case IntegrationMethod::rk8pd: return gsl_odeiv2_step_rk8pd;
@@ -234,15 +293,16 @@ const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
   }
 }
 
+// The error control's tolerance is rtol / factor, so that the global error the method achieves
+// lies within a small factor of the requested rtol (model.md §15.1, measured by
+// tests/benchmarks/bench_simulate): bsimp's local-error control accumulates to 35-420 times the
+// tolerance over the benchmark problems, and handed rtol / 30 it ends at 0.4 to 8 times rtol;
+// rk8pd's ends at 0.6 to 1.6 times rtol as it is (on the problem it is chosen for).
+double tolerance_factor(IntegrationMethod m) { return m == IntegrationMethod::bsimp ? 30.0 : 1.0; }
+
 struct DriverDeleter {
   void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
 };
-
-double scaled_distance_q_beta(const double* a, const double* b, int n, double L) {
-  double d = std::max(std::abs(a[0] - b[0]), std::abs(a[1] - b[1])) / L;
-  for (int i = 0; i < n; ++i) d = std::max(d, std::abs(std::remainder(a[2 + i] - b[2 + i], 2 * kPi)));
-  return d;
-}
 
 }  // namespace
 
@@ -301,53 +361,6 @@ State<double, N> perturbed_equilibrium(const ParamsT<double, N>& p, const Coordi
   State<double, N> x = at_rest<double, N>(position);
   x += (eps / size) * dir;
   return x;
-}
-
-template <int N>
-std::optional<std::vector<double>> nearest_balanced_angles(const ParamsT<double, N>& p, const std::vector<double>& beta) {
-  const int n = ball_count(p);
-  double capacity = 0, largest = p.rotor.unbalance;
-  for (const auto& b : p.balls) {
-    capacity += b.mass * b.race_radius;
-    largest = std::max(largest, b.mass * b.race_radius);
-  }
-  // The polygon inequality (model.md §13.4): the set exists iff max(U, a_i) <= (U + sum a)/2.
-  if (largest > 0.5 * (capacity + p.rotor.unbalance) * (1 + 1e-12)) return std::nullopt;
-  // Wrapped first: after a long run-up the continuous angles reach hundreds of radians, whose
-  // rounding (ulp 1e-13 at 557 rad) keeps |W| above the 1e-14 tolerance below.
-  std::vector<double> b = beta;
-  for (auto& v : b) v = std::remainder(v, 2 * kPi);
-  const double scale = capacity + p.rotor.unbalance;
-  for (int iter = 0; iter < 60; ++iter) {
-    // W = U + sum a_j e^{i beta_j}; G = dW/dbeta (2 x n); minimal-norm step -G^T (G G^T)^-1 W.
-    double w1 = p.rotor.unbalance, w2 = 0, g11 = 0, g12 = 0, g22 = 0;
-    for (int j = 0; j < n; ++j) {
-      const double a = p.balls[std::size_t(j)].mass * p.balls[std::size_t(j)].race_radius;
-      w1 += a * std::cos(b[std::size_t(j)]);
-      w2 += a * std::sin(b[std::size_t(j)]);
-      const double gx = -a * std::sin(b[std::size_t(j)]), gy = a * std::cos(b[std::size_t(j)]);
-      g11 += gx * gx;
-      g12 += gx * gy;
-      g22 += gy * gy;
-    }
-    if (std::hypot(w1, w2) <= 1e-14 * scale) {
-      for (auto& v : b) v = std::remainder(v, 2 * kPi);
-      return b;
-    }
-    // Levenberg-Marquardt damping keeps the step finite where G is rank-deficient (collinear balls).
-    const double mu = 1e-10 * (g11 + g22);
-    const double a11 = g11 + mu, a22 = g22 + mu, det = a11 * a22 - g12 * g12;
-    if (!(det > 0)) return std::nullopt;
-    const double y1 = (a22 * w1 - g12 * w2) / det, y2 = (a11 * w2 - g12 * w1) / det;
-    for (int j = 0; j < n; ++j) {
-      const double a = p.balls[std::size_t(j)].mass * p.balls[std::size_t(j)].race_radius;
-      const double gx = -a * std::sin(b[std::size_t(j)]), gy = a * std::cos(b[std::size_t(j)]);
-      double step = -(gx * y1 + gy * y2);
-      step = std::clamp(step, -0.5, 0.5);  // at most half a radian per iteration
-      b[std::size_t(j)] += step;
-    }
-  }
-  return std::nullopt;
 }
 
 template <int N>
@@ -438,7 +451,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     cs->scale[mech + i] = b.mu_s / b.sigma0;
     cs->relative[mech + i] = true;
   }
-  if (int st = gsl_odeiv2_control_init(drv->c, o.rtol, o.rtol, 1.0, 0.0); st != GSL_SUCCESS)
+  const double gsl_rtol = o.rtol / tolerance_factor(r.method);
+  if (int st = gsl_odeiv2_control_init(drv->c, gsl_rtol, gsl_rtol, 1.0, 0.0); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
   if (int st = gsl_odeiv2_control_set_driver(drv->c, drv.get()); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control: {}", gsl_strerror(st)));
@@ -448,20 +462,20 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   for (int i = mech; i < dim; ++i) y[i] = o.bristle_start.empty() ? 0.0 : o.bristle_start[std::size_t(i - mech)];
   r.bristle_count = dim - mech;
   double t = 0, h = h0;
-  const auto record = [&](double time) {
+  const auto record = [&](double time, const double* x) {
     if (!o.record) return;
     TrajectorySample<N> s;
     s.t = time;
     s.omega = speed.omega(time);
-    s.x = load_state<N>(y, mech);
+    s.x = load_state<N>(x, mech);
     r.samples.push_back(s);
-    r.bristle.insert(r.bristle.end(), y + mech, y + dim);
+    r.bristle.insert(r.bristle.end(), x + mech, x + dim);
     if (o.progress) o.progress(time);
-    if (o.stop_at_sample && o.stop_at_sample(time, y)) r.stopped_early = true;
+    if (o.stop_at_sample && o.stop_at_sample(time, x)) r.stopped_early = true;
   };
   if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
   if (o.record) r.bristle.reserve(std::size_t(dim - mech) * (std::size_t(std::ceil(o.t_end / every)) + 2));
-  record(0.0);
+  record(0.0, y);
 
   std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
   breaks.push_back(o.t_end);
@@ -470,196 +484,127 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
     ctx.segment_t0 = at;
     ctx.segment_omega0 = speed.omega(at);
     ctx.omega_dot = speed.omega_dot(at);
+    ctx.jac_valid = false;  // J and df/dt depend on omega'
   };
   begin_segment(0.0);
-  unsigned long long k_out = 1;
   const auto accumulate = [&] {
     r.stats.steps += drv->e->count;
     r.stats.rejected += drv->e->failed_steps;
   };
   bool stop = false;
+  const auto fail = [&](int st) {
+    r.status = SimulationStatus::failed;
+    const char* why = st == GSL_EBADFUNC ? "the right-hand side or Jacobian is not finite"
+                      : st == GSL_FAILURE ? "the step size fell below the rounding level of t (the tolerance cannot be met)"
+                                          : gsl_strerror(st);
+    r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s, step {:.3g} s, {} steps): {} [GSL {}: {}]", t,
+                           speed.omega(t), h, r.stats.steps + drv->e->count, why, st, gsl_strerror(st));
+    stop = true;
+  };
+
+  // Dense output (model.md §15.1): the stepper runs freely to the next breakpoint; after every
+  // accepted step the samples inside it come from the quintic Hermite interpolant and the
+  // maxima of |q| inside it are located (§15.4). Slot 0 of `step` is the current point.
+  const bool jacobian_each_step = r.method == IntegrationMethod::bsimp || r.method == IntegrationMethod::rk4imp;
+  const OdeField<N> field{&ctx, jacobian_each_step, o.rtol < 1e-9, 1.0 / (w_max + w_n)};
+  dense::Stepper<OdeField<N>> dense(field, dim, o.rtol, cs->scale, cs->relative);
+  const bool dense_on = o.record;
+  const bool retake_allowed = r.method != IntegrationMethod::bdf;  // msbdf keeps a history
+  const bool exact_dydt_out = drv->s->type->gives_exact_dydt_out != 0;
+  dense::SampleClock clock{every, o.t_end};
+  double x_sample[dense::capacity];
+  if (dense_on) {
+    if (int st = dense.start(t, y); st != GSL_SUCCESS) fail(st);
+    dense.peaks.add({std::hypot(y[0], y[1]), 0.0}, ctx.omega_dot != 0);
+  }
   while (!stop && !r.stopped_early && t < o.t_end) {
-    // Without recording, only the breakpoints and t_end stop the stepper.
-    const double t_out = o.record ? std::min(double(k_out) * every, o.t_end) : o.t_end;
-    const double target = std::min(t_out, breaks[next_break]);
-    while (t < target) {
-      const double h_before = h;
-      const int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, target, &h, y);
-      if (st != GSL_SUCCESS) {
-        r.status = SimulationStatus::failed;
-        const char* why = st == GSL_EBADFUNC ? "the right-hand side or Jacobian is not finite"
-                          : st == GSL_FAILURE ? "the step size fell below the rounding level of t (the tolerance cannot be met)"
-                                              : gsl_strerror(st);
-        r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s, step {:.3g} s, {} steps): {} [GSL {}: {}]", t,
-                               speed.omega(t), h, r.stats.steps + drv->e->count, why, st, gsl_strerror(st));
-        stop = true;
-        break;
-      }
-      if (r.stats.steps + drv->e->count > o.max_steps) {
-        r.status = SimulationStatus::failed;
-        r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
-                               o.max_steps);
-        stop = true;
-        break;
-      }
-      if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
-        r.status = SimulationStatus::interrupted;
-        r.reason = fmt::format("interrupted at t = {:.9g} s", t);
-        stop = true;
-        break;
-      }
-      // A step clamped to reach the target returns a small proposal; keep the previous one.
-      if (t == target && h < h_before) h = h_before;
-    }
-    if (stop) {
-      if (o.record && r.samples.back().t < t) record(t);
+    double target = breaks[next_break];
+    if (dense_on) target = dense.plan(t, h, clock.next(), target);
+    const double h_before = h;
+    const int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, target, &h, y);
+    if (st != GSL_SUCCESS) {
+      fail(st);
       break;
     }
-    if (t == t_out) {
-      record(t);
-      ++k_out;
-      if (r.stopped_early) break;
+    // A step clamped to reach the target returns a small proposal; keep the previous one.
+    if (t == target && h < h_before) h = h_before;
+    if (dense_on) {
+      const int fs = dense.finish(t, y, exact_dydt_out ? drv->e->dydt_out : nullptr);
+      if (fs != GSL_SUCCESS) {
+        fail(fs);
+        break;
+      }
+      const dense::QPeak candidate = dense.candidate();
+      if (retake_allowed && dense.retake(clock.next(), candidate)) {  // the interpolant misses: again, shorter
+        t = dense.step.t0;
+        std::copy(dense.step.y0, dense.step.y0 + dim, y);
+        h = std::min(h, dense.h_limit);
+        // GSL's evolve takes the last step's end field as the next step's start field: reset it
+        // (its counts are kept first), so that it evaluates f(t0, y0) again.
+        accumulate();
+        gsl_odeiv2_evolve_reset(drv->e);
+        continue;
+      }
+      // The samples in (t0, t]: interpolated, the step's end exactly.
+      const double t_part = dense.emit(
+          clock, [&](double ts, const double* x) { return record(ts, x), r.stopped_early; }, candidate,
+          ctx.omega_dot != 0, x_sample);
+      if (r.stopped_early) {  // the run ends at that sample
+        t = t_part;
+        std::copy(x_sample, x_sample + dim, y);
+        break;
+      }
+      dense.advance();
+    }
+    if (r.stats.steps + drv->e->count - dense.retaken > o.max_steps) {
+      r.status = SimulationStatus::failed;
+      r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
+                             o.max_steps);
+      stop = true;
+      break;
+    }
+    if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
+      r.status = SimulationStatus::interrupted;
+      r.reason = fmt::format("interrupted at t = {:.9g} s", t);
+      stop = true;
+      break;
     }
     if (t == breaks[next_break] && next_break + 1 < breaks.size()) {
-      // omega' jumps here (model.md §9): restart the multistep history on the new segment.
+      // omega' jumps here (model.md §9): restart the stepper on the new segment.
       accumulate();
-      if (int st = gsl_odeiv2_driver_reset(drv.get()); st != GSL_SUCCESS)
-        throw NumericalError(fmt::format("simulate: GSL reset at t = {}: {}", t, gsl_strerror(st)));
+      if (int rs = gsl_odeiv2_driver_reset(drv.get()); rs != GSL_SUCCESS)
+        throw NumericalError(fmt::format("simulate: GSL reset at t = {}: {}", t, gsl_strerror(rs)));
       ++r.stats.restarts;
       ++next_break;
       begin_segment(t);
+      if (dense_on)
+        if (int ds = dense.start(t, y); ds != GSL_SUCCESS) fail(ds);
     }
   }
+  if (stop && o.record && r.samples.back().t < t) record(t, y);
   accumulate();
+  r.stats.steps -= dense.retaken;  // counted by GSL as accepted, then discarded
+  r.stats.rejected += dense.retaken;
+  r.stats.retaken = dense.retaken;
   r.stats.rhs_evaluations = ctx.rhs;
   r.stats.jacobian_evaluations = ctx.jac;
   r.x_end = load_state<N>(y, mech);
   r.bristle_end.assign(y + mech, y + dim);
   r.t_reached = t;
   r.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (o.record) r.summary = summarize(p, speed, r.samples, o);
+  if (o.record) {
+    r.summary = summarize(p, speed, r.samples, o);
+    dense.peaks.merge_into(r.summary);  // the maxima between the samples (model.md §15.4)
+  }
   return r;
-}
-
-template <int N>
-SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& speed,
-                            const std::vector<TrajectorySample<N>>& samples, const SimulationOptions& o) {
-  SimulationSummary s;
-  if (samples.empty()) return s;
-  const int n = ball_count(p), d = n + 2;
-  const double L = displacement_scale(p);
-  s.omega_n = natural_frequency(p.rotor.stiffness, p.total_mass());
-  const auto& last = samples.back();
-  s.t_end = last.t;
-  s.state_end.assign(last.x.data(), last.x.data() + last.x.size());
-  for (const auto& smp : samples) {
-    const double qa = std::hypot(smp.x(0), smp.x(1));
-    if (qa > s.max_q_abs) s.max_q_abs = qa, s.t_max_q_abs = smp.t;
-    if (speed.omega_dot(smp.t) != 0 || (smp.t > 0 && speed.omega_dot(std::nextafter(smp.t, 0.0)) != 0))
-      s.max_q_abs_run_up = std::max(s.max_q_abs_run_up.value_or(0.0), qa);
-  }
-  s.t_omega_n = speed.crossings(s.omega_n, s.t_end);
-  s.speed_changing_at_end = s.t_end > 0 && speed.omega_dot(std::nextafter(s.t_end, 0.0)) != 0;
-
-  // Final window (model.md §15.2): the last `final_window` of the run, at least 3 samples.
-  s.window_from = s.t_end * (1 - o.final_window);
-  std::size_t w0 = samples.size() - 1;
-  while (w0 > 0 && samples[w0 - 1].t >= s.window_from) --w0;
-  if (samples.size() - w0 < 3) w0 = samples.size() >= 3 ? samples.size() - 3 : 0;
-  s.window_from = samples[w0].t;
-  const double span = s.t_end - s.window_from;
-  const double w_bar = span > 0 ? (speed.angle(s.t_end) - speed.angle(s.window_from)) / span : last.omega;
-  s.omega_mean_window = w_bar;
-
-  // Stall (model.md §15.3): ball i slips against the rotor by more than 5 % of the spin speed
-  // on average while its mean fixed-frame speed lies within 15 % of omega_n.
-  s.ball_speed_fixed.resize(std::size_t(n));
-  for (int i = 0; i < n; ++i) {
-    const double rel = span > 0 ? (last.x(2 + i) - samples[w0].x(2 + i)) / span : last.x(d + 2 + i);
-    const double fixed = w_bar + rel;
-    s.ball_speed_fixed[std::size_t(i)] = fixed;
-    if (std::abs(rel) > 0.05 * w_bar && std::abs(fixed - s.omega_n) <= 0.15 * s.omega_n) s.stalled_balls.push_back(i + 1);
-  }
-  s.stalled = !s.stalled_balls.empty();
-
-  // Settled: every sample of the window within settle_tolerance of the end state in the
-  // scaled distance (q / L, angles in rad, q' / (L omega), beta' / omega).
-  const auto distance = [&](const State<double, N>& a, const State<double, N>& b, double w) {
-    double dist = scaled_distance_q_beta(a.data(), b.data(), n, L);
-    dist = std::max(dist, std::max(std::abs(a(d) - b(d)), std::abs(a(d + 1) - b(d + 1))) / (L * w));
-    for (int i = 0; i < n; ++i) dist = std::max(dist, std::abs(a(d + 2 + i) - b(d + 2 + i)) / w);
-    return dist;
-  };
-  bool settled = !s.speed_changing_at_end;
-  double speed_at_end = 0;
-  for (int i = 0; i < d; ++i) speed_at_end = std::max(speed_at_end, std::abs(last.x(d + i)) / (i < 2 ? L * last.omega : last.omega));
-  if (speed_at_end > o.settle_tolerance) settled = false;
-  for (std::size_t k = w0; settled && k < samples.size(); ++k)
-    if (distance(samples[k].x, last.x, last.omega) > o.settle_tolerance) settled = false;
-  const double q_abs = std::hypot(last.x(0), last.x(1));
-  if (settled) {
-    std::size_t k = samples.size();
-    while (k > 0 && distance(samples[k - 1].x, last.x, last.omega) <= o.settle_tolerance) --k;
-    s.settle_time = samples[k < samples.size() ? k : samples.size() - 1].t;
-    double capacity = p.rotor.unbalance, w1 = p.rotor.unbalance, w2 = 0;
-    for (int i = 0; i < n; ++i) {
-      const double a = p.balls[std::size_t(i)].mass * p.balls[std::size_t(i)].race_radius;
-      capacity += a;
-      w1 += a * std::cos(last.x(2 + i));
-      w2 += a * std::sin(last.x(2 + i));
-    }
-    const double phi = std::atan2(last.x(1), last.x(0));
-    bool on_line = q_abs > 0;
-    for (int i = 0; i < n; ++i) on_line = on_line && std::abs(std::sin(last.x(2 + i) - phi)) <= 1e-2;
-    if (q_abs <= 1e-2 * L && std::hypot(w1, w2) <= 1e-2 * capacity) {
-      s.outcome = SimulationOutcome::balanced;
-      s.note = fmt::format("at rest with |q| = {:.3g} L and residual unbalance |W| = {:.3g} of U + sum m l", q_abs / L,
-                           std::hypot(w1, w2) / capacity);
-    } else if (on_line) {
-      s.outcome = SimulationOutcome::aligned;
-      const double ref = std::cos(last.x(2) - phi);
-      for (int i = 0; i < n; ++i) s.pattern += std::cos(last.x(2 + i) - phi) * ref >= 0 ? '+' : '-';
-      s.note = fmt::format("at rest with every ball on the line of q (|q| = {:.4g} m), pattern {}", q_abs, s.pattern);
-    } else {
-      s.outcome = SimulationOutcome::rest;
-      s.note = "at rest off every equilibrium: the balls creep too slowly to move within the window (dry friction; the stick set of model.md (5.10))";
-    }
-    return s;
-  }
-  // Periodic (a steady oscillation, not a verified periodic orbit): the two halves of the
-  // window have the same range of |q| to 2 % of its largest value, and something moves.
-  const std::size_t mid = w0 + (samples.size() - w0) / 2;
-  double lo[2] = {1e300, 1e300}, hi[2] = {0, 0};
-  for (std::size_t k = w0; k < samples.size(); ++k) {
-    const int half = k < mid ? 0 : 1;
-    const double qa = std::hypot(samples[k].x(0), samples[k].x(1));
-    lo[half] = std::min(lo[half], qa);
-    hi[half] = std::max(hi[half], qa);
-  }
-  const double top = std::max(hi[0], hi[1]);
-  if (!s.speed_changing_at_end && samples.size() - w0 >= 8 && top > 0 && std::abs(hi[0] - hi[1]) <= 0.02 * top &&
-      std::abs(lo[0] - lo[1]) <= 0.02 * top) {
-    s.outcome = SimulationOutcome::periodic;
-    s.note = fmt::format("steady oscillation: |q| in [{:.4g}, {:.4g}] m in both halves of the final window{}", lo[1],
-                         hi[1], s.stalled ? " (stalled balls)" : "");
-  } else {
-    s.outcome = SimulationOutcome::not_settled;
-    s.note = s.speed_changing_at_end ? "the speed is still changing at the end of the run"
-                                     : "still moving at the end of the run (neither at rest nor a steady oscillation)";
-  }
-  return s;
 }
 
 #define ABU_INSTANTIATE_SIMULATION(N)                                                                               \
   template State<double, N> start_at_rest<N>(const ParamsT<double, N>&, const std::vector<double>&);                  \
   template State<double, N> perturbed_equilibrium<N>(const ParamsT<double, N>&, const Coordinates<double, N>&,       \
                                                      std::complex<double>, const ModeVector<N>&, double);            \
-  template std::optional<std::vector<double>> nearest_balanced_angles<N>(const ParamsT<double, N>&,                 \
-                                                                         const std::vector<double>&);               \
   template SimulationResult<N> simulate<N>(const ParamsT<double, N>&, const SpeedProfile&, const State<double, N>&, \
-                                           const SimulationOptions&);                                                \
-  template SimulationSummary summarize<N>(const ParamsT<double, N>&, const SpeedProfile&,                            \
-                                          const std::vector<TrajectorySample<N>>&, const SimulationOptions&);
+                                           const SimulationOptions&);
 ABU_INSTANTIATE_SIMULATION(2)
 ABU_INSTANTIATE_SIMULATION(any_balls)
 #undef ABU_INSTANTIATE_SIMULATION

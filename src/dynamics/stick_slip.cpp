@@ -18,6 +18,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/core/gsl_errors.hpp"
 #include "abu/equilibria/stick_set.hpp"
+#include "dense_output.hpp"
 
 namespace abu {
 
@@ -116,6 +117,20 @@ int phase_rhs(double t, const double y[], double dydt[], void* params) {
     if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
   return GSL_SUCCESS;
 }
+
+// The phase's field for the dense output (model.md §15.1): f, and y'' = d/dt f(t, y(t)) by
+// differences along (1, f) (no Jacobian of the constrained field; dense_output.hpp).
+template <int N>
+struct PhaseField {
+  Phase<N>* ph;
+  bool central;       // the central difference (rtol < 1e-9), else the forward one
+  double time_scale;  // 1 / (omega_max + omega_n)
+  int rhs(double t, const double* y, double* f) const { return phase_rhs<N>(t, y, f, ph); }
+  int second(double t, const double* y, const double* f, double* g) const {
+    const auto field = [this](double tt, const double* yy, double* ff) { return phase_rhs<N>(tt, yy, ff, ph); };
+    return dense::second_by_difference(field, ph->dim, time_scale, central, t, y, f, g);
+  }
+};
 
 // Switching functions (model.md §14.6): a slipping ball sigma_i beta_i' (> 0 while it slips),
 // a stuck ball (mu_i N_i - |F_i|) / force_scale_i (>= 0 while it can stick).
@@ -279,16 +294,16 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
       if (ph.stuck[i]) m |= 1u << i;
     return m;
   };
-  const auto record = [&](double time) {
+  const auto record = [&](double time, const double* x) {
     if (!o.record) return;
     TrajectorySample<N> s;
     s.t = time;
     s.omega = speed.omega(time);
-    s.x = load<N>(y, dim);
+    s.x = load<N>(x, dim);
     r.samples.push_back(s);
     out.stuck_mask.push_back(mask());
     if (o.progress) o.progress(time);
-    if (o.stop_at_sample && o.stop_at_sample(time, y)) r.stopped_early = true;
+    if (o.stop_at_sample && o.stop_at_sample(time, x)) r.stopped_early = true;
   };
   std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
   breaks.push_back(o.t_end);
@@ -315,9 +330,8 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
   switch_modes(0.0);  // balls at rest relative to the race stick if they can
   out.sticks = out.slips = out.reversals = 0;  // the start's modes are not switches
   if (o.record) r.samples.reserve(std::size_t(std::ceil(o.t_end / every)) + 2);
-  record(0.0);
+  record(0.0, y);
 
-  unsigned long long k_out = 1;
   unsigned long at_one_instant = 0;
   double last_event = -1;
   const unsigned long max_events_at_one_instant = 1000;
@@ -327,93 +341,138 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
     r.reason = fmt::format("at t = {:.9g} s (omega = {:.9g} rad/s): {}", t, speed.omega(t), why);
     stop = true;
   };
+  unsigned long rejected = 0;  // by the evolve objects before their resets
+  // GSL's evolve takes the last step's end field as the next step's start field: after the state
+  // changed outside it (an event, a retaken step, a breakpoint) it is reset, its count kept.
+  const auto reset_evolve = [&] {
+    rejected += evolve->failed_steps;
+    gsl_odeiv2_evolve_reset(evolve.get());
+  };
+
+  // Dense output (model.md §15.1, §14.6): the smooth phases stepped freely to the next breakpoint
+  // or switch; the samples inside a step from the quintic Hermite interpolant of the phase that
+  // held during it; the maxima of |q| located inside each step (§15.4).
+  bool relative[2 * max_balls + 4];
+  std::fill(relative, relative + dim, true);  // GSL's scaled control: rtol (scale_i + |y_i|)
+  dense::Stepper<PhaseField<N>> dense(PhaseField<N>{&ph, o.rtol < 1e-9, 1.0 / (w_max + w_n)}, dim, o.rtol, scale,
+                                      relative);
+  const bool dense_on = o.record;
+  const bool exact_dydt_out = stepper->gives_exact_dydt_out != 0;
+  dense::SampleClock clock{every, o.t_end};
+  double x_sample[2 * max_balls + 4];
+  if (dense_on) {
+    if (dense.start(t, y) != GSL_SUCCESS) fail("the right-hand side is not finite at the start");
+    dense.peaks.add({std::hypot(y[0], y[1]), 0.0}, ph.omega_dot != 0);
+  }
   while (!stop && !r.stopped_early && t < o.t_end) {
-    const double t_out = o.record ? std::min(double(k_out) * every, o.t_end) : o.t_end;
-    const double target = std::min(t_out, breaks[next_break]);
-    while (t < target) {
-      const double t0 = t, h_before = h;
-      std::copy(y, y + dim, y0);
-      switching_functions(ph, t0, y0, g0);
-      const int st = gsl_odeiv2_evolve_apply(evolve.get(), control.get(), step.get(), &sys, &t, target, &h, y);
-      if (st != GSL_SUCCESS) {
-        fail(fmt::format("{} [GSL {}]", st == GSL_EBADFUNC ? "the right-hand side is not finite" : gsl_strerror(st), st));
-        break;
-      }
-      if (++r.stats.steps > o.max_steps) {
-        fail(fmt::format("more than {} steps (raise the tolerance or shorten the run)", o.max_steps));
-        break;
-      }
-      if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
-        r.status = SimulationStatus::interrupted;
-        r.reason = fmt::format("interrupted at t = {:.9g} s", t);
-        stop = true;
-        break;
-      }
-      switching_functions(ph, t, y, g1);
-      bool any = false;
-      for (int i = 0; i < n; ++i) any = any || switched(ph.stuck[i], g0[i], g1[i]);
-      if (any) {
-        // Locate the first switch by bisection on the step length from (t0, y0): one step of the
-        // same method per trial (its error below the accepted step's), to rounding of t.
-        double lo = 0, hi = t - t0;
-        std::copy(y, y + dim, yprobe);
-        for (int it = 0; it < 200 && hi - lo > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, t0 + hi);
-             ++it) {
-          const double mid = 0.5 * (lo + hi);
-          double ym[2 * max_balls + 4];
-          std::copy(y0, y0 + dim, ym);
-          if (gsl_odeiv2_step_apply(probe.get(), t0, mid, ym, yerr, nullptr, nullptr, &sys) != GSL_SUCCESS) {
-            lo = mid;  // cannot happen with a finite field; keep the bracket
-            continue;
-          }
-          switching_functions(ph, t0 + mid, ym, g1);
-          bool crossed = false;
-          for (int i = 0; i < n; ++i) crossed = crossed || switched(ph.stuck[i], g0[i], g1[i]);
-          if (crossed) {
-            hi = mid;
-            std::copy(ym, ym + dim, yprobe);
-          } else {
-            lo = mid;
-          }
-        }
-        t = t0 + hi;
-        std::copy(yprobe, yprobe + dim, y);
-        switching_functions(ph, t, y, g1);
-        for (int i = 0; i < n; ++i)
-          if (!ph.stuck[i] && switched(false, g0[i], g1[i])) y[d + 2 + i] = 0.0;  // reached rest relative to the race
-        switch_modes(t);
-        gsl_odeiv2_evolve_reset(evolve.get());
-        gsl_odeiv2_step_reset(step.get());
-        ++r.stats.restarts;
-        at_one_instant = t - last_event <= 1e-12 * std::max(1.0, t) ? at_one_instant + 1 : 0;
-        last_event = t;
-        if (at_one_instant > max_events_at_one_instant) {
-          fail(fmt::format("more than {} stick-slip switches at one instant (Zeno accumulation; model.md §14.6)",
-                           max_events_at_one_instant));
-          break;
-        }
-        h = std::max(h_before, 1e-6 / (w_max + w_n));
-        continue;
-      }
-      if (t == target && h < h_before) h = h_before;
-    }
-    if (stop) {
-      if (o.record && r.samples.back().t < t) record(t);
+    double target = breaks[next_break];
+    if (dense_on) target = dense.plan(t, h, clock.next(), target);
+    const double t0 = t, h_before = h;
+    std::copy(y, y + dim, y0);
+    switching_functions(ph, t0, y0, g0);
+    const int st = gsl_odeiv2_evolve_apply(evolve.get(), control.get(), step.get(), &sys, &t, target, &h, y);
+    if (st != GSL_SUCCESS) {
+      fail(fmt::format("{} [GSL {}]", st == GSL_EBADFUNC ? "the right-hand side is not finite" : gsl_strerror(st), st));
       break;
     }
-    if (t == t_out) {
-      record(t);
-      ++k_out;
-      if (r.stopped_early) break;
+    if (++r.stats.steps - dense.retaken > o.max_steps) {
+      fail(fmt::format("more than {} steps (raise the tolerance or shorten the run)", o.max_steps));
+      break;
+    }
+    if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
+      r.status = SimulationStatus::interrupted;
+      r.reason = fmt::format("interrupted at t = {:.9g} s", t);
+      stop = true;
+      break;
+    }
+    switching_functions(ph, t, y, g1);
+    bool any = false;
+    for (int i = 0; i < n; ++i) any = any || switched(ph.stuck[i], g0[i], g1[i]);
+    if (any) {
+      // Locate the first switch by bisection on the step length from (t0, y0): one step of the
+      // same method per trial (its error below the accepted step's), to rounding of t.
+      double lo = 0, hi = t - t0;
+      std::copy(y, y + dim, yprobe);
+      for (int it = 0; it < 200 && hi - lo > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, t0 + hi);
+           ++it) {
+        const double mid = 0.5 * (lo + hi);
+        double ym[2 * max_balls + 4];
+        std::copy(y0, y0 + dim, ym);
+        if (gsl_odeiv2_step_apply(probe.get(), t0, mid, ym, yerr, nullptr, nullptr, &sys) != GSL_SUCCESS) {
+          lo = mid;  // cannot happen with a finite field; keep the bracket
+          continue;
+        }
+        switching_functions(ph, t0 + mid, ym, g1);
+        bool crossed = false;
+        for (int i = 0; i < n; ++i) crossed = crossed || switched(ph.stuck[i], g0[i], g1[i]);
+        if (crossed) {
+          hi = mid;
+          std::copy(ym, ym + dim, yprobe);
+        } else {
+          lo = mid;
+        }
+      }
+      t = t0 + hi;
+      std::copy(yprobe, yprobe + dim, y);
+    } else if (t == target && h < h_before) {
+      h = h_before;  // a step clamped to reach the target returns a small proposal; keep the previous one
+    }
+    if (dense_on) {
+      // The step (cut at the switch, if any) in the phase that held during it.
+      if (dense.finish(t, y, any || !exact_dydt_out ? nullptr : evolve->dydt_out) != GSL_SUCCESS) {
+        fail("the right-hand side is not finite");
+        break;
+      }
+      const dense::QPeak candidate = dense.candidate();
+      // A step cut at a switch is shorter than the one planned: its interpolant is used as it is.
+      if (!any && dense.retake(clock.next(), candidate)) {
+        t = t0;
+        std::copy(y0, y0 + dim, y);
+        h = std::min(h, dense.h_limit);
+        reset_evolve();
+        continue;
+      }
+      const double t_part = dense.emit(
+          clock, [&](double ts, const double* x) { return record(ts, x), r.stopped_early; }, candidate,
+          ph.omega_dot != 0, x_sample);
+      if (r.stopped_early) {  // the run ends at that sample
+        t = t_part;
+        std::copy(x_sample, x_sample + dim, y);
+        break;
+      }
+      dense.advance();
+    }
+    if (any) {
+      switching_functions(ph, t, y, g1);
+      for (int i = 0; i < n; ++i)
+        if (!ph.stuck[i] && switched(false, g0[i], g1[i])) y[d + 2 + i] = 0.0;  // reached rest relative to the race
+      switch_modes(t);
+      reset_evolve();
+      gsl_odeiv2_step_reset(step.get());
+      ++r.stats.restarts;
+      at_one_instant = t - last_event <= 1e-12 * std::max(1.0, t) ? at_one_instant + 1 : 0;
+      last_event = t;
+      if (at_one_instant > max_events_at_one_instant) {
+        fail(fmt::format("more than {} stick-slip switches at one instant (Zeno accumulation; model.md §14.6)",
+                         max_events_at_one_instant));
+        break;
+      }
+      h = std::max(h_before, 1e-6 / (w_max + w_n));
+      if (dense_on && dense.start(t, y) != GSL_SUCCESS) fail("the right-hand side is not finite after a switch");
+      continue;
     }
     if (t == breaks[next_break] && next_break + 1 < breaks.size()) {
       ++next_break;
       begin_segment(t);
-      gsl_odeiv2_evolve_reset(evolve.get());
+      reset_evolve();
       switch_modes(t);  // omega' jumps: the force a stuck ball needs jumps too
+      if (dense_on && dense.start(t, y) != GSL_SUCCESS) fail("the right-hand side is not finite after a breakpoint");
     }
   }
-  r.stats.rejected = evolve->failed_steps;
+  if (stop && o.record && r.samples.back().t < t) record(t, y);
+  r.stats.steps -= dense.retaken;  // counted above as accepted, then discarded
+  r.stats.retaken = dense.retaken;
+  r.stats.rejected = rejected + evolve->failed_steps + dense.retaken;
   r.stats.rhs_evaluations = ph.rhs;
   r.x_end = load<N>(y, dim);
   r.t_reached = t;
@@ -423,6 +482,7 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
   out.end = stick_slip_end(p, speed.omega(t), r.x_end, stuck);
   if (o.record) {
     r.summary = summarize(p, speed, r.samples, o);
+    dense.peaks.merge_into(r.summary);  // the maxima between the samples (model.md §15.4)
     if (r.summary.outcome == SimulationOutcome::rest && out.end.all_stuck)
       r.summary.note = fmt::format("every ball stuck (set-valued friction), max |s_i| = {:.4g} {} 1: {} the stick set "
                                    "(model.md §14.2)",

@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
+#include "abu/dynamics/simulation.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/input/scene.hpp"
 #include "abu/linear/spectrum.hpp"
@@ -103,6 +105,39 @@ void check_map_cell(const std::string& scene_file, int n) {
             " equilibria with their spectra): " + std::to_string(mallocs) + " mallocs");
 }
 
+// A simulation (model.md §15.1): GSL's stepper, control and evolve objects are allocated once,
+// the field, the Jacobian and the dense output's interpolant work on bounded storage, and the
+// samples' vector is reserved from t_end / every. So a run four times as long with the same
+// number of samples (more steps) makes exactly as many allocations: none per step. With
+// rk8pd: GSL 2.7's gsl_linalg_LU_decomp allocates its pivot vector (3 mallocs a call), so the
+// implicit steppers (bsimp: one LU per extrapolation stage) allocate inside GSL.
+void check_simulation(const std::string& scene_file, int n) {
+  abu::Scene scene = abu::load_scene(scene_file);
+  abu::set_ball_count(scene, n, "test");
+  const abu::ParamsN p = abu::params_of<abu::any_balls>(scene);
+  std::vector<double> beta;
+  for (int i = 0; i < n; ++i) beta.push_back(0.7 * i + 0.3);
+  const abu::State<double, abu::any_balls> x0 = abu::start_at_rest(p, beta);
+  // A run-up that ends (at 0.01 s) within both runs: the same breakpoints, the dense output across one.
+  const abu::SpeedProfile speed = abu::SpeedProfile::ramp(0.5 * p.omega, p.omega, 50 * p.omega);
+  for (bool record : {false, true}) {
+    long mallocs[2] = {0, 0};
+    unsigned long steps[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      abu::SimulationOptions o;
+      o.t_end = 0.02 * (1 + 3 * k);
+      o.every = o.t_end / 50;
+      o.record = record;
+      o.method = abu::IntegrationMethod::rk8pd;
+      mallocs[k] = mallocs_of([&] { steps[k] = abu::simulate(p, speed, x0, o).stats.steps; });
+    }
+    check(mallocs[0] == mallocs[1] && steps[1] > steps[0] + 10,
+          "n = " + std::to_string(n) + (record ? ", 50 samples" : ", nothing recorded") + ": simulate over " +
+              std::to_string(steps[0]) + " and " + std::to_string(steps[1]) + " steps: " + std::to_string(mallocs[0]) +
+              " and " + std::to_string(mallocs[1]) + " mallocs");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -116,6 +151,7 @@ int main(int argc, char** argv) {
   check(probe == 1, "the malloc counter sees a deliberate allocation (" + std::to_string(probe) + ")");
   for (int n : {3, 4, 12}) check_ball_count(argv[1], n);
   for (int n : {3, 5}) check_map_cell(argv[1], n);
+  for (int n : {2, 5}) check_simulation(argv[1], n);
   std::printf("%d passed, %d failed\n", passes, failures);
   return failures == 0 ? 0 : 1;
 }

@@ -96,7 +96,7 @@ check "SIGINT keeps the CSV" "[ \$(grep -v '^#' '$work/int/simulation.csv' | tai
 check "SIGINT keeps the summary, status interrupted" "grep -q '\"status\": \"interrupted\"' '$work/int.json'"
 
 # --- a run that cannot finish: exit 3, where and why, samples kept ---------------------------
-"$bin" simulate "$scene" --balls 2,4 --t-end 0.01 --max-steps 100 --no-chart --quiet -o "$work/fail" 2>"$work/fail.err"
+"$bin" simulate "$scene" --balls 2,4 --t-end 0.01 --max-steps 10 --no-chart --quiet -o "$work/fail" 2>"$work/fail.err"
 code=$?
 if [ $code -eq 3 ]; then
   pass "step budget exceeded exits 3 ($(grep -m1 'numerical failure' "$work/fail.err" | cut -c1-120))"
