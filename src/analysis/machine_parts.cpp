@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <vector>
+
 #include "abu/core/errors.hpp"
 
 namespace abu {
@@ -30,37 +32,69 @@ Route route_of(const Scene& scene) {
 }
 
 namespace {
+struct CommandParts {
+  std::string_view command;
+  Handles handles;
+};
+// Which command answers which part (docs/cli.md). sweep and continue take an unround race along
+// its own parameters; simulate and basin a LuGre or set-valued law by their own integrators.
+constexpr CommandParts kCommandParts[] = {
+    {"equilibria", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"sweep", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
+    {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"simulate", {.lugre = true, .set_valued = true, .unround = true}},
+    {"basin", {.lugre = true, .set_valued = true}},
+};
+}  // namespace
+
+Handles handles_of(std::string_view command) {
+  for (const auto& c : kCommandParts)
+    if (c.command == command) return c.handles;
+  return {};
+}
+
+std::string commands_handling(bool Handles::*part) {
+  std::vector<std::string_view> names;
+  for (const auto& c : kCommandParts)
+    if (c.handles.*part) names.push_back(c.command);
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += fmt::format("{}`{}`", i == 0 ? "" : i + 1 == names.size() ? " and " : ", ", names[i]);
+  return out;
+}
+
+namespace {
 void refuse_unround(const Scene& scene, std::string_view command) {
   if (!scene.race.round())
-    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only `equilibria`, "
-                                        "`sweep` and `continue --param unroundness` analyse it so far",
-                                        command, scene.file));
+    throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only {} analyse it so far",
+                                        command, scene.file, commands_handling(&Handles::unround)));
 }
 
 void refuse_anisotropic(const Scene& scene, std::string_view command) {
   if (scene.support)
     throw NotSupportedError(fmt::format(
-        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only `equilibria`, "
-        "`sweep`, `map` and `continue` handle it so far (the balanced states' Floquet multipliers)",
-        command, scene.file));
+        "{}: {} has an anisotropic support (stiffness_x, ... in [rotor], docs/model.md §10); only {} handle it so "
+        "far (the balanced states' Floquet multipliers)",
+        command, scene.file, commands_handling(&Handles::anisotropic)));
 }
 
 void refuse_lugre(const Scene& scene, std::string_view command) {
   if (scene.law != FrictionLaw::lugre) return;
   throw InputError(scene.file, scene.law_line, "friction.law",
                    fmt::format("friction law 'lugre' is not supported by '{}' yet (model.md §12: a 3n + 4 state whose "
-                               "equilibria form a family); use 'equilibria' (its z = 0 equilibria, and stuck states "
-                               "with --at-balls)",
-                               command));
+                               "equilibria form a family); use {} ('equilibria': its z = 0 equilibria, and stuck "
+                               "states with --at-balls)",
+                               command, commands_handling(&Handles::lugre)));
 }
 
 void refuse_set_valued(const Scene& scene, std::string_view command) {
   if (scene.law != FrictionLaw::coulomb_set) return;
   throw InputError(scene.file, scene.law_line, "friction.law",
                    fmt::format("friction law 'coulomb-set' is set-valued, not a vector field: `{}` needs one; "
-                               "`equilibria` computes its stick set and `simulate` and `basin` its stick-slip dynamics "
-                               "(model.md §14); use 'coulomb' with a large kappa here",
-                               command));
+                               "{} handle it (the stick set, the stick-slip dynamics: model.md §14); use 'coulomb' "
+                               "with a large kappa here",
+                               command, commands_handling(&Handles::set_valued)));
 }
 }  // namespace
 
@@ -85,9 +119,9 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   if (!handles.anisotropic) refuse_anisotropic(scene, command);
   if (!handles.set_valued) refuse_set_valued(scene, command);
   if (!handles.shaft && scene.shaft)
-    throw NotSupportedError(fmt::format("`{}` on a flexible shaft ([shaft] in {}, model.md §18): only `equilibria`, "
-                                        "`sweep --param omega` (its Campbell diagram) and `map` analyse it so far",
-                                        command, scene.file));
+    throw NotSupportedError(fmt::format("`{}` on a flexible shaft ([shaft] in {}, model.md §18): only {} analyse it so "
+                                        "far (sweep: its Campbell diagram in omega)",
+                                        command, scene.file, commands_handling(&Handles::shaft)));
 }
 
 }  // namespace abu

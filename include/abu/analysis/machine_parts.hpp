@@ -6,6 +6,7 @@
 //   switch (abu::route_of(scene)) { case abu::Route::shaft: ...; case abu::Route::rigid: ...; }
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "abu/input/scene.hpp"
@@ -39,6 +40,15 @@ struct Handles {
 /// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every
 /// command calls it (refuse_unmodelled does).
 void refuse_combined_extensions(const Scene& scene);
-void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles = {});
+
+/// The parts each command answers for, whatever its route: the one table the refusals quote
+/// (docs/cli.md, "Which command answers what"). Unknown commands handle the base model only.
+Handles handles_of(std::string_view command);
+/// The commands that handle a part, for a message: "`equilibria`, `sweep` and `map`".
+std::string commands_handling(bool Handles::*part);
+
+/// Refuses what `command` does not handle on the path it takes (`handles`, a subset of
+/// handles_of(command)), naming the commands that do.
+void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles);
 
 }  // namespace abu
