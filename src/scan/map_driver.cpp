@@ -15,6 +15,7 @@
 #include <exception>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <thread>
@@ -82,10 +83,10 @@ int MapJob::tile_columns() const {
 
 std::size_t map_bytes_per_cell(const MapJob& job) {
   if (job.stick_set) return stick_map_bytes_per_cell(job);
-  if (!job.any_balls) return kMapBytesPerCell;
+  if (!job.any_balls) return job.long_rows ? kMapBytesPerCell : kSummaryBytesPerCell;
   // n balls: up to 2^n aligned rows and the balanced samples, each with n angle columns.
   const int n = job.max_balls_in_map();
-  return std::size_t((64 + (1 << n)) * (100 + 25 * n));
+  return job.long_rows ? std::size_t((64 + (1 << n)) * (100 + 25 * n)) : std::size_t(kSummaryBytesPerCell + 50 * n);
 }
 
 int tile_count(const MapJob& job) { return (job.x.count + job.tile_columns() - 1) / job.tile_columns(); }
@@ -219,22 +220,29 @@ std::string summary_csv_header(const MapJob& job) {
 
 namespace {
 
-// The n-ball rows of one cell (the columns of map_csv_header_n / summary_csv_header_n).
+void append_facts(fmt::memory_buffer& grid, const MapCellFacts& facts) {
+  const char* bytes = reinterpret_cast<const char*>(&facts);
+  grid.append(bytes, bytes + sizeof facts);
+}
+
+// The n-ball rows of one cell (the columns of map_csv_header_n / summary_csv_header_n):
+// the long rows only with job.long_rows (their values are checked either way).
 void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y, const MapCellN& cell,
-                  fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
+                  fmt::memory_buffer& rows, fmt::memory_buffer& summary, fmt::memory_buffer& grid) {
   const int max_n = job.max_balls_in_map();
   int n_stable = 0;
   for (const MapEquilibriumN& e : cell.equilibria) {
     n_stable += e.stable;
     check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
     check_finite(e.q_abs, job, ix, iy, "|q|");
+    for (int i = 0; i < cell.n_balls; ++i) check_finite(e.beta[std::size_t(i)], job, ix, iy, "a ball angle");
+    if (!job.long_rows) continue;
     const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
     fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{},{}"), ix, iy, x, y,
                    cell.n_balls, to_string(e.family), pattern, e.member, int(e.stable), e.n_unstable,
                    e.n_structural, e.abscissa, e.q_abs);
     for (int i = 0; i < max_n; ++i) {
       if (i < cell.n_balls) {
-        check_finite(e.beta[std::size_t(i)], job, ix, iy, "a ball angle");
         fmt::format_to(fmt::appender(rows), FMT_COMPILE(",{}"), e.beta[std::size_t(i)]);
       } else {
         rows.push_back(',');
@@ -242,6 +250,15 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
     }
     rows.push_back('\n');
   }
+  MapCellFacts facts;
+  facts.balanced_stable_fraction = cell.balanced_samples > 0
+                                       ? double(cell.balanced_stable) / double(cell.balanced_samples)
+                                       : std::numeric_limits<double>::quiet_NaN();
+  if (cell.balanced_exists) {
+    const double f = facts.balanced_stable_fraction;
+    facts.category = f == 1 ? 3 : f > 0 ? 2 : 1;
+  }
+  facts.best_q_abs = std::numeric_limits<double>::quiet_NaN();
   check_finite(cell.capacity, job, ix, iy, "the capacity");
   fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},{},{},"), ix, iy, x, y, cell.n_balls,
                  cell.capacity, cell.unbalance, int(cell.balanced_exists), cell.balanced_samples);
@@ -258,6 +275,7 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
     const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
     fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{}"), to_string(e.family), pattern, e.member,
                    e.q_abs);
+    facts.best_q_abs = e.q_abs;
   } else {
     fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,,"));
   }
@@ -271,6 +289,7 @@ void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::st
       fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), rho_max);
   }
   summary.push_back('\n');
+  append_facts(grid, facts);
 }
 
 }  // namespace
@@ -281,85 +300,122 @@ namespace {
 // worker's memory does not grow with the y axis (issue 12: 2 GB at 8 threads, N_y = 20,000).
 constexpr std::size_t kSpillBytes = kTileSpillBytes;
 
-// The cells of `tile` into `rows` / `summary`. With `spill` set, whenever a buffer passes
-// kSpillBytes its text goes to `spill` and the buffers are emptied; without, everything
-// stays in the buffers. The bytes are the same either way.
-using Spill = std::function<void(fmt::memory_buffer& rows, fmt::memory_buffer& summary)>;
-TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace, fmt::memory_buffer& rows,
-                           fmt::memory_buffer& summary, const Spill& spill) {
+// The text of one tile: the long rows (job.long_rows), the summary rows and the grid block.
+struct TileBuffers {
+  fmt::memory_buffer rows, summary, grid;
+  std::size_t largest() const { return std::max({rows.size(), summary.size(), grid.size()}); }
+};
+
+// The axis values as the CSVs write them, formatted once per tile (not per cell: the
+// shortest round-trip form is most of a summary row's cost).
+struct AxisText {
+  std::string text;
+  std::vector<std::size_t> end;  // value i is text[end[i - 1] .. end[i])
+  explicit AxisText(const Axis& a, int first = 0, int last = -1) {
+    if (last < 0) last = a.count;
+    end.reserve(std::size_t(last - first));
+    for (int i = first; i < last; ++i) {
+      text += format_number(a.value(i), "axis value");
+      end.push_back(text.size());
+    }
+    first_ = first;
+  }
+  std::string_view operator[](int i) const {
+    const std::size_t k = std::size_t(i - first_);
+    const std::size_t from = k == 0 ? 0 : end[k - 1];
+    return std::string_view(text).substr(from, end[k] - from);
+  }
+
+ private:
+  int first_ = 0;
+};
+
+// The two-ball rows of one cell (the columns of map_csv_header / summary_csv_header): the
+// long rows only with job.long_rows (their values are checked either way).
+void write_cell(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y, const MapCell& cell,
+                TileBuffers& out) {
+  std::array<int, 3> members{};
+  int balanced_stable = -1, n_stable = 0;
+  for (int k = 0; k < cell.count; ++k) {
+    const MapEquilibrium& e = cell.equilibria[std::size_t(k)];
+    ++members[std::size_t(e.family)];
+    n_stable += e.stable;
+    if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
+    check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
+    check_finite(e.q_abs, job, ix, iy, "|q|");
+    check_finite(e.beta1, job, ix, iy, "beta1");
+    check_finite(e.beta2, job, ix, iy, "beta2");
+    if (job.long_rows)
+      fmt::format_to(fmt::appender(out.rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x, y,
+                     to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
+                     e.beta1, e.beta2);
+  }
+  fmt::memory_buffer& summary = out.summary;
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},"), ix, iy, x, y, members[0], members[1],
+                 members[2]);
+  if (balanced_stable >= 0) fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), balanced_stable);
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},"), n_stable);
+  MapCellFacts facts;
+  facts.category = members[0] == 0 ? 0 : balanced_stable == 1 ? 3 : 1;
+  facts.best_q_abs = std::numeric_limits<double>::quiet_NaN();
+  facts.balanced_stable_fraction = std::numeric_limits<double>::quiet_NaN();
+  if (const int best = cell.best_stable(); best >= 0) {
+    const MapEquilibrium& e = cell.equilibria[std::size_t(best)];
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{}"), to_string(e.family), int(e.member), e.q_abs);
+    facts.best_q_abs = e.q_abs;
+  } else {
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
+  }
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+  append_facts(out.grid, facts);
+}
+
+// The cells of `tile` into `out`. With `spill` set, whenever a buffer passes kSpillBytes
+// its contents go to `spill` and the buffers are emptied; without, everything stays in
+// the buffers. The bytes are the same either way.
+using Spill = std::function<void(TileBuffers& out)>;
+TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace, TileBuffers& out,
+                           const Spill& spill) {
   TileText text;
   const int first = tile * job.tile_columns(), last = std::min(job.x.count, first + job.tile_columns());
   const auto maybe_spill = [&] {
-    if (spill && (rows.size() >= kSpillBytes || summary.size() >= kSpillBytes)) spill(rows, summary);
+    if (spill && out.largest() >= kSpillBytes) spill(out);
   };
-  if (job.stick_set) {  // coulomb-set: the stick set of every cell (stick_map.hpp)
-    for (int ix = first; ix < last; ++ix) {
-      const std::string x_value = format_number(job.x.value(ix), "x value");
+  const AxisText xs(job.x, first, last), ys(job.y);
+  if (job.stick_set) {  // coulomb-set: the stick set of every cell (stick_map.hpp); no grid block
+    for (int ix = first; ix < last; ++ix)
       for (int iy = 0; iy < job.y.count; ++iy) {
         throw_if_stopped("a map tile");
         ++text.cells;
-        text.equilibria +=
-            write_stick_cell(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), rows, summary);
+        text.equilibria += write_stick_cell(job, ix, iy, xs[ix], ys[iy], out.rows, out.summary);
+        if (!job.long_rows) out.rows.clear();
         maybe_spill();
       }
-    }
     return text;
   }
   if (job.any_balls) {
-    for (int ix = first; ix < last; ++ix) {
-      const std::string x_value = format_number(job.x.value(ix), "x value");
+    for (int ix = first; ix < last; ++ix)
       for (int iy = 0; iy < job.y.count; ++iy) {
         throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
         workspace.any_balls->analyze(ix, iy, workspace.cell_n);
         ++text.cells;
         text.equilibria += long(workspace.cell_n.equilibria.size());
         text.fallbacks += long(workspace.cell_n.equilibria.size());  // every one by full eigenvalues
-        write_cell_n(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), workspace.cell_n, rows,
-                     summary);
+        write_cell_n(job, ix, iy, xs[ix], ys[iy], workspace.cell_n, out.rows, out.summary, out.grid);
         maybe_spill();
       }
-    }
     return text;
   }
   CellAnalyzer& analyzer = *workspace.two_balls;
   MapCell& cell = workspace.cell;
   for (int ix = first; ix < last; ++ix) {
-    const std::string x_value = format_number(job.x.value(ix), "x value");
     for (int iy = 0; iy < job.y.count; ++iy) {
       throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
       analyzer.analyze(ix, iy, cell);
       ++text.cells;
       text.equilibria += cell.count;
       text.fallbacks += cell.fallbacks;
-      // (formatted per cell, not cached per column: a cache would grow with the y axis)
-      const std::string y_value = format_number(job.y.value(iy), "y value");
-      const std::string_view x = x_value, y = y_value;
-      std::array<int, 3> members{};
-      int balanced_stable = -1, n_stable = 0;
-      for (int k = 0; k < cell.count; ++k) {
-        const MapEquilibrium& e = cell.equilibria[std::size_t(k)];
-        ++members[std::size_t(e.family)];
-        n_stable += e.stable;
-        if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
-        check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
-        check_finite(e.q_abs, job, ix, iy, "|q|");
-        check_finite(e.beta1, job, ix, iy, "beta1");
-        check_finite(e.beta2, job, ix, iy, "beta2");
-        fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x, y,
-                       to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
-                       e.beta1, e.beta2);
-      }
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},"), ix, iy, x, y, members[0],
-                     members[1], members[2]);
-      if (balanced_stable >= 0) fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), balanced_stable);
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},"), n_stable);
-      if (const int best = cell.best_stable(); best >= 0) {
-        const MapEquilibrium& e = cell.equilibria[std::size_t(best)];
-        fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{}"), to_string(e.family), int(e.member), e.q_abs);
-      } else {
-        fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
-      }
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+      write_cell(job, ix, iy, xs[ix], ys[iy], cell, out);
       maybe_spill();
     }
   }
@@ -371,10 +427,11 @@ TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace
 TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
   // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
   // and a format string parsed per row would be most of that.
-  fmt::memory_buffer rows, summary;
-  TileText text = compute_tile_text(job, tile, workspace, rows, summary, {});
-  text.rows.assign(rows.data(), rows.size());
-  text.summary.assign(summary.data(), summary.size());
+  TileBuffers out;
+  TileText text = compute_tile_text(job, tile, workspace, out, {});
+  text.rows.assign(out.rows.data(), out.rows.size());
+  text.summary.assign(out.summary.data(), out.summary.size());
+  text.grid.assign(out.grid.data(), out.grid.size());
   return text;
 }
 
@@ -387,7 +444,8 @@ namespace {
 // typed, the scene's path): a resumed run is the same map when the parameters, axes,
 // method and program are, however the scene path or the options were written.
 std::string manifest_of(const MapJob& job) {
-  std::string out = fmt::format("abu map tiles v2: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job));
+  std::string out = fmt::format("abu map tiles v3: {} columns per tile, {} tiles, {}\n", job.tile_columns(),
+                                tile_count(job), job.long_rows ? "with the long rows (--long)" : "without the long rows");
   std::istringstream headers(map_csv_header(job) + summary_csv_header(job));
   for (std::string line; std::getline(headers, line);)
     if (line.rfind("# command:", 0) != 0 && line.rfind("# scene:", 0) != 0) out += line + '\n';
@@ -404,7 +462,8 @@ std::string read_file(const fs::path& path) {
 
 // Writes under an exclusively created temporary (random name, registered so that a stop
 // removes it) and renames: a reader sees the whole file or none. Errors name errno.
-void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {}) {
+void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {},
+                      std::string_view d = {}) {
   int fd = -1;
   const fs::path part = create_temporary_next_to(path, "part", fd);
   const auto fail = [&](const char* what, int err) {
@@ -413,7 +472,7 @@ void write_atomically(const fs::path& path, std::string_view a, std::string_view
     unregister_temporary(part);
     throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(err)));
   };
-  for (std::string_view piece : {a, b, c}) {
+  for (std::string_view piece : {a, b, c, d}) {
     while (!piece.empty()) {
       const ssize_t n = ::write(fd, piece.data(), piece.size());
       if (n < 0 && errno == EINTR) continue;
@@ -526,10 +585,12 @@ std::vector<int> TileStore::missing() const {
   return out;
 }
 
-// A tile file: "<rows bytes> <summary bytes>\n" (each 20 digits, so that a streamed tile
-// can write it last, at the start), the rows, the summary rows.
+// A tile file: "<rows bytes> <summary bytes> <grid bytes>\n" (each 20 digits, so that a
+// streamed tile can write it last, at the start), the rows, the summary rows, the grid block.
 namespace {
-std::string tile_header(std::size_t rows, std::size_t summary) { return fmt::format("{:020} {:020}\n", rows, summary); }
+std::string tile_header(std::size_t rows, std::size_t summary, std::size_t grid) {
+  return fmt::format("{:020} {:020} {:020}\n", rows, summary, grid);
+}
 
 void write_all(int fd, std::string_view piece, const fs::path& path) {
   while (!piece.empty()) {
@@ -541,48 +602,62 @@ void write_all(int fd, std::string_view piece, const fs::path& path) {
   }
 }
 
-// The two temporaries of a streamed tile (rows; summary rows, appended at the end). On
-// any exit but commit() (a stop, an error) both are closed and removed.
+// The temporaries of a streamed tile (rows; summary rows and grid block, appended at the
+// end). On any exit but commit() (a stop, an error) all are closed and removed.
 class StreamedTile {
  public:
   explicit StreamedTile(fs::path path) : path_(std::move(path)) {
-    rows_part_ = create_temporary_next_to(path_, "part", rows_fd_);
-    summary_part_ = create_temporary_next_to(path_, "summary.part", summary_fd_);
-    write_all(rows_fd_, tile_header(0, 0), rows_part_);  // a placeholder, rewritten by commit()
+    part_[0] = create_temporary_next_to(path_, "part", fd_[0]);
+    part_[1] = create_temporary_next_to(path_, "summary.part", fd_[1]);
+    part_[2] = create_temporary_next_to(path_, "grid.part", fd_[2]);
+    write_all(fd_[0], tile_header(0, 0, 0), part_[0]);  // a placeholder, rewritten by commit()
   }
   ~StreamedTile() {
-    if (rows_fd_ >= 0) ::close(rows_fd_);
-    if (summary_fd_ >= 0) ::close(summary_fd_);
-    for (const fs::path* part : {&rows_part_, &summary_part_}) {
-      if (part->empty()) continue;
-      ::unlink(part->c_str());
-      unregister_temporary(*part);
+    for (int k = 0; k < 3; ++k) {
+      if (fd_[k] >= 0) ::close(fd_[k]);
+      if (part_[k].empty()) continue;
+      ::unlink(part_[k].c_str());
+      unregister_temporary(part_[k]);
     }
   }
   StreamedTile(const StreamedTile&) = delete;
   StreamedTile& operator=(const StreamedTile&) = delete;
-  void write(fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
-    write_all(rows_fd_, std::string_view(rows.data(), rows.size()), rows_part_);
-    write_all(summary_fd_, std::string_view(summary.data(), summary.size()), summary_part_);
-    rows_bytes_ += rows.size();
-    summary_bytes_ += summary.size();
-    rows.clear();
-    summary.clear();
+  void write(TileBuffers& out) {
+    fmt::memory_buffer* buffers[3] = {&out.rows, &out.summary, &out.grid};
+    for (int k = 0; k < 3; ++k) {
+      write_all(fd_[k], std::string_view(buffers[k]->data(), buffers[k]->size()), part_[k]);
+      bytes_[k] += buffers[k]->size();
+      buffers[k]->clear();
+    }
   }
   void commit() {
-    // The summary rows after the rows, through a fixed buffer; then the sizes at the start.
-    // (The temporary was opened write-only: read it through a second descriptor, checked
-    // to be the same file.)
-    const int reader = ::open(summary_part_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    // The summary rows and the grid block after the rows, through a fixed buffer; then the
+    // sizes at the start.
+    std::vector<char> buffer(kSpillBytes);
+    for (int k = 1; k < 3; ++k) copy_back(k, buffer);
+    const std::string header = tile_header(bytes_[0], bytes_[1], bytes_[2]);
+    if (::pwrite(fd_[0], header.data(), header.size(), 0) != ssize_t(header.size())) fail("write", part_[0]);
+    const int fd = fd_[0];
+    fd_[0] = -1;
+    if (::close(fd) != 0) fail("write", part_[0]);
+    if (::rename(part_[0].c_str(), path_.c_str()) != 0) fail("rename into place", path_);
+    unregister_temporary(part_[0]);
+    part_[0].clear();
+  }
+
+ private:
+  // Appends temporary k to the rows' temporary. (It was opened write-only: read it through
+  // a second descriptor, checked to be the same file.)
+  void copy_back(int k, std::vector<char>& buffer) {
+    const int reader = ::open(part_[k].c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     struct stat written {}, read_back {};
-    if (reader < 0) fail("read back", summary_part_);
-    if (::fstat(reader, &read_back) != 0 || ::fstat(summary_fd_, &written) != 0 ||
-        read_back.st_ino != written.st_ino || read_back.st_dev != written.st_dev) {
+    if (reader < 0) fail("read back", part_[k]);
+    if (::fstat(reader, &read_back) != 0 || ::fstat(fd_[k], &written) != 0 || read_back.st_ino != written.st_ino ||
+        read_back.st_dev != written.st_dev) {
       ::close(reader);
       errno = errno ? errno : EIO;
-      fail("read back", summary_part_);
+      fail("read back", part_[k]);
     }
-    std::vector<char> buffer(kSpillBytes);
     std::size_t copied = 0;
     for (;;) {
       const ssize_t n = ::read(reader, buffer.data(), buffer.size());
@@ -591,11 +666,11 @@ class StreamedTile {
         const int err = errno;
         ::close(reader);
         errno = err;
-        fail("read back", summary_part_);
+        fail("read back", part_[k]);
       }
       if (n == 0) break;
       try {
-        write_all(rows_fd_, std::string_view(buffer.data(), std::size_t(n)), rows_part_);
+        write_all(fd_[0], std::string_view(buffer.data(), std::size_t(n)), part_[0]);
       } catch (...) {
         ::close(reader);
         throw;
@@ -603,59 +678,50 @@ class StreamedTile {
       copied += std::size_t(n);
     }
     ::close(reader);
-    if (copied != summary_bytes_) {
+    if (copied != bytes_[k]) {
       errno = EIO;
-      fail("read back", summary_part_);
+      fail("read back", part_[k]);
     }
-    const std::string header = tile_header(rows_bytes_, summary_bytes_);
-    if (::pwrite(rows_fd_, header.data(), header.size(), 0) != ssize_t(header.size())) fail("write", rows_part_);
-    const int fd = rows_fd_;
-    rows_fd_ = -1;
-    if (::close(fd) != 0) fail("write", rows_part_);
-    if (::rename(rows_part_.c_str(), path_.c_str()) != 0) fail("rename into place", path_);
-    unregister_temporary(rows_part_);
-    rows_part_.clear();
   }
-
- private:
   [[noreturn]] static void fail(const char* what, const fs::path& path) {
     throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(errno)));
   }
-  fs::path path_, rows_part_, summary_part_;
-  int rows_fd_ = -1, summary_fd_ = -1;
-  std::size_t rows_bytes_ = 0, summary_bytes_ = 0;
+  fs::path path_, part_[3];
+  int fd_[3] = {-1, -1, -1};
+  std::size_t bytes_[3] = {0, 0, 0};
 };
 }  // namespace
 
 void TileStore::put(int tile, const TileText& text) const {
-  write_atomically(tile_path(tile), tile_header(text.rows.size(), text.summary.size()), text.rows, text.summary);
+  write_atomically(tile_path(tile), tile_header(text.rows.size(), text.summary.size(), text.grid.size()), text.rows,
+                   text.summary, text.grid);
 }
 
 TileText compute_tile_into(const MapJob& job, int tile, CellWorkspace& workspace, const TileStore& store) {
-  StreamedTile out(store.tile_path(tile));
-  fmt::memory_buffer rows, summary;
-  TileText text = compute_tile_text(job, tile, workspace, rows, summary,
-                                    [&out](fmt::memory_buffer& r, fmt::memory_buffer& s) { out.write(r, s); });
-  out.write(rows, summary);
-  out.commit();
+  StreamedTile file(store.tile_path(tile));
+  TileBuffers out;
+  TileText text = compute_tile_text(job, tile, workspace, out, [&file](TileBuffers& b) { file.write(b); });
+  file.write(out);
+  file.commit();
   return text;
 }
 
-void TileStore::append(int tile, std::ostream& rows, std::ostream& summary) const {
+void TileStore::append(int tile, std::ostream& rows, std::ostream& summary, std::ostream* grid) const {
   // Through a fixed buffer: assembling holds no tile in memory.
   const fs::path path = tile_path(tile);
   std::ifstream in(path, std::ios::binary);
   std::string first;
   std::getline(in, first);
-  std::size_t n_rows = 0, n_summary = 0;
+  std::size_t n_rows = 0, n_summary = 0, n_grid = 0;
   std::istringstream sizes(first);
-  sizes >> n_rows >> n_summary;
+  sizes >> n_rows >> n_summary >> n_grid;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
-  if (!in || !sizes || ec || first.size() + 1 + n_rows + n_summary != size)
+  if (!in || !sizes || ec || first.size() + 1 + n_rows + n_summary + n_grid != size)
     throw std::runtime_error(fmt::format("{}: damaged tile file; rerun with --fresh", path.string()));
-  std::vector<char> buffer(std::min<std::size_t>(kSpillBytes, std::max(n_rows, n_summary) + 1));
-  for (auto [out, left] : {std::pair<std::ostream*, std::size_t>{&rows, n_rows}, {&summary, n_summary}}) {
+  std::vector<char> buffer(std::min<std::size_t>(kSpillBytes, std::max({n_rows, n_summary, n_grid}) + 1));
+  for (auto [out, left] : {std::pair<std::ostream*, std::size_t>{&rows, n_rows}, {&summary, n_summary}, {grid, n_grid}}) {
+    if (!out) break;  // the grid block is last
     while (left > 0) {
       const std::size_t n = std::min(left, buffer.size());
       if (!in.read(buffer.data(), std::streamsize(n)))
@@ -787,10 +853,11 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
   return run_tile_pool(tiles, options, make_work, wait);
 }
 
-void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv) {
+void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv,
+              std::ostream* grid) {
   map_csv << map_csv_header(job);
   summary_csv << summary_csv_header(job);
-  for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv);
+  for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv, grid);
 }
 
 namespace {
