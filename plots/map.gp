@@ -33,6 +33,12 @@
 # - Speed (1000 x 1000 cells): the geometry comes from a few rows (row 0, the rows with
 #   ix = 0, every ny-th row), the summary is read once per chart (the first read also finds
 #   the |q| range), and each SVG is redrawn from the data already read (`refresh`).
+# - `stability-scan map` itself passes the compact grid instead of the summary (grid_file =
+#   a binary file of nx x ny records of three float64: category 0..3 as below, |q| of the
+#   best stable state (NaN: none is stable), balanced_stable_fraction (NaN: not defined);
+#   records in the summary's order, ix outer, iy inner) with the geometry and the |q|
+#   range (grid_nx, grid_ny, grid_x0, grid_y0, grid_x1, grid_y1, grid_qlo, grid_qhi,
+#   grid_low): no CSV is read, the same pictures.
 if (!exists("summary")) summary = 'out/map/summary_omega_mu.csv'
 if (!exists("curves")) curves = ''
 if (!exists("png_stability")) png_stability = 'stability.png'
@@ -49,7 +55,9 @@ if (!exists("title")) title = ''
 if (!exists("nballs")) nballs = '0'
 if (!exists("png_fraction")) png_fraction = 'fraction.png'
 if (!exists("svg_fraction")) svg_fraction = 'fraction.svg'
+if (!exists("grid_file")) grid_file = ''
 nb = (nballs eq '1')
+bin = (strlen(grid_file) > 0)
 
 set datafile separator ','
 set datafile commentschars '#'
@@ -70,36 +78,47 @@ qfloor = 1e-15          # |q| at or below this [m] counts as 0
 header_of(f) = system(sprintf("grep -m1 -v '^#' '%s' | tr ',\\r' '  '", f))
 COL = "H = header_of(file); c = 0; do for [i = 1 : words(H)] { if (word(H, i) eq name) { c = i } }; " . \
       "if (c == 0) { print sprintf('map.gp: %s has no column %s', file, name); exit status 1 }"
-file = summary
-name = 'ix'; eval COL; c_ix = c
-name = 'iy'; eval COL; c_iy = c
-name = xname; eval COL; c_x = c
-name = yname; eval COL; c_y = c
-name = 'n_stable'; eval COL; c_nstable = c
-name = 'best_q_abs'; eval COL; c_q = c
-if (nb) {
-  name = 'balanced_exists'; eval COL; c_bal = c
-  name = 'balanced_stable_fraction'; eval COL; c_balst = c
-} else {
-  name = 'balanced'; eval COL; c_bal = c
-  name = 'balanced_stable'; eval COL; c_balst = c
+if (!bin) {
+  file = summary
+  name = 'ix'; eval COL; c_ix = c
+  name = 'iy'; eval COL; c_iy = c
+  name = xname; eval COL; c_x = c
+  name = yname; eval COL; c_y = c
+  name = 'n_stable'; eval COL; c_nstable = c
+  name = 'best_q_abs'; eval COL; c_q = c
+  if (nb) {
+    name = 'balanced_exists'; eval COL; c_bal = c
+    name = 'balanced_stable_fraction'; eval COL; c_balst = c
+  } else {
+    name = 'balanced'; eval COL; c_bal = c
+    name = 'balanced_stable'; eval COL; c_balst = c
+  }
 }
 
 # ---- grid geometry -------------------------------------------------------------------
-K = 256
-more = 1
-while (more) {
-  stats summary every ::0::(K-1) using (column(c_ix)) nooutput
-  more = (STATS_max == 0 && STATS_records == K)
-  if (more) { K = 2 * K }
+if (bin) {
+  nx = int(grid_nx + 0)
+  ny = int(grid_ny + 0)
+  x0 = grid_x0 + 0
+  y0 = grid_y0 + 0
+  x1 = grid_x1 + 0
+  y1 = grid_y1 + 0
+} else {
+  K = 256
+  more = 1
+  while (more) {
+    stats summary every ::0::(K-1) using (column(c_ix)) nooutput
+    more = (STATS_max == 0 && STATS_records == K)
+    if (more) { K = 2 * K }
+  }
+  # the first K rows hold all rows with ix = 0: x0 y0 from iy = 0, y1 from the last of them
+  stats summary every ::0::(K-1) using (column(c_ix) == 0 ? (column(c_iy) == 0 ? (x0 = column(c_x), y0 = column(c_y)) : 0, \
+    y1 = column(c_y), column(c_iy)) : NaN) nooutput
+  ny = int(STATS_max) + 1
+  # rows iy = 0, one per ix: x1 from the last
+  stats summary every ny using (x1 = column(c_x), column(c_ix)) nooutput
+  nx = int(STATS_max) + 1
 }
-# the first K rows hold all rows with ix = 0: x0 y0 from iy = 0, y1 from the last of them
-stats summary every ::0::(K-1) using (column(c_ix) == 0 ? (column(c_iy) == 0 ? (x0 = column(c_x), y0 = column(c_y)) : 0, \
-  y1 = column(c_y), column(c_iy)) : NaN) nooutput
-ny = int(STATS_max) + 1
-# rows iy = 0, one per ix: x1 from the last
-stats summary every ny using (x1 = column(c_x), column(c_ix)) nooutput
-nx = int(STATS_max) + 1
 grid = (nx > 1 && ny > 1)
 
 # index <-> value: T(value at index i) = a + i d, with T(v) = v or log10(v)
@@ -240,6 +259,23 @@ scan(q) = q > qfloor ? (q < qlo ? qlo = q : 0, q > qhi ? qhi = q : 0) : (q <= qf
 vibration(n_stable, q) = n_stable > 0 && q > qfloor ? (q < cbmin ? cbmin : q) : NaN
 # a stable state with |q| = 0 (balanced): its own colour, drawn over the colour scale
 zero(n_stable, q) = n_stable > 0 && q <= qfloor
+SRC = 'summary'
+if (bin) {
+  # the grid's records, the pixel values themselves (an expression per pixel would cost
+  # gnuplot more than the drawing): 1 category; 2 |q| where a state with |q| > qfloor is
+  # stable, else NaN; 3 balanced_stable_fraction (NaN: not defined); 4 255 where a state
+  # with |q| <= qfloor is stable, else 0 (the white overlay: r = g = b = alpha)
+  if (!grid) { print 'map.gp: grid_file needs a grid of nx > 1 and ny > 1 cells'; exit status 1 }
+  qlo = grid_qlo + 0
+  qhi = grid_qhi + 0
+  low = int(grid_low + 0)
+  SRC = sprintf("grid_file binary array=(%d,%d) scan=yx format='%%4double'", nx, ny)
+  USE1 = '1'
+  USE2 = '2'
+  USE3 = '3'
+  WITH = 'with image'
+  ZERO = SRC . " using 4:4:4:4 with rgbalpha notitle"
+} else {
 VAL1 = sprintf('(scan(column(%d)) + category(column(%d), column(%d)))', c_q, c_bal, c_balst)
 VAL2 = sprintf('(vibration(column(%d), column(%d)))', c_nstable, c_q)
 VAL3 = sprintf('(column(%d) == 0 ? NaN : column(%d))', c_bal, c_balst)
@@ -258,6 +294,7 @@ if (grid) {
   ZERO = sprintf("summary using %d:(zero(column(%d), column(%d)) ? column(%d) : NaN):(0.5):(0.5) " . \
                  "with boxxyerror lc rgb c_zero fs solid 1.0 border notitle", c_ix, c_nstable, c_q, c_iy)
 }
+}
 # SVG viewers smooth an enlarged bitmap: browsers and Inkscape honour this mark
 heading(what) = strlen(title) > 0 ? sprintf("%s\n%s", what, title) : what
 
@@ -268,7 +305,7 @@ set palette defined (0 c_none, 1 c_unstable, 2 c_partly, 3 c_stable)
 set cbrange [0:3]
 unset colorbox
 PARTLY = nb ? ", keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_partly title 'balanced set partly stable'" : ''
-plot summary using @USE1 @WITH notitle, \
+plot @SRC using @USE1 @WITH notitle, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_none title 'no balanced state', \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_unstable title 'balanced exists, unstable' \
      @PARTLY, \
@@ -308,7 +345,7 @@ low_title = low ? 'balanced: |q| = 0' : ''
 set terminal pngcairo size 1200,800 enhanced font 'DejaVu Sans,10'
 set output png_vibration
 set title heading('residual vibration of the best stable state') noenhanced
-plot summary using @USE2 @WITH notitle, \
+plot @SRC using @USE2 @WITH notitle, \
      @ZERO, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_nostable title nostable_title, \
      keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_zero title low_title \
@@ -329,7 +366,7 @@ if (nb) {
   set terminal pngcairo size 1200,800 enhanced font 'DejaVu Sans,10'
   set output png_fraction
   set title heading('fraction of the balanced set that is stable') noenhanced
-  plot summary using @USE3 @WITH notitle, \
+  plot @SRC using @USE3 @WITH notitle, \
        keyentry with boxes fs solid 1.0 border lc rgb '#606060' fc rgb c_none title 'no balanced state' \
        @CURVES
   set terminal svg size 1200,800 enhanced font 'DejaVu Sans,13' background rgb 'white'

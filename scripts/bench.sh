@@ -82,7 +82,7 @@ build/tests/benchmarks/bench_map data/scenes/default.toml --nx 1000 --ny 1000 --
 omega_grid=omega:49.98625566927664:1999.4502267710656   # 0.2 .. 8 omega_n, the baseline's grid
 t0=$(date +%s%N)
 build/stability-scan map data/scenes/default.toml --x $omega_grid:1000 --y mu:1e-4:1e-1:1000:log --no-boundaries \
-  -o "$stiff.map" 2>&1 | tail -1
+  --long -o "$stiff.map" 2>&1 | tail -1
 map_ms=$(( ($(date +%s%N) - t0) / 1000000 ))
 echo "whole 'stability-scan map' 1000 x 1000, $(nproc) threads, CSVs (long + summary) and 4 charts: ${map_ms} ms"
 peers=${ABU_PEERS:-../shared/peers/numpy}
@@ -97,10 +97,20 @@ if [ -n "$peers" ] && [ -f "$peers/stability_map.py" ]; then
   (cd "$peers" && /usr/bin/python3 stability_map.py --nx 300 --ny 300 --law coulomb --kappa 1e6 --out "$stiff.np.csv" |
     grep -E "eigenproblems per second|sign not trustworthy")
   build/stability-scan map data/scenes/default.toml --set kappa=1e6 --x $omega_grid:300 --y mu:1e-4:1e-1:300:log \
-    --no-boundaries --no-chart --quiet --fresh -o "$stiff.map"
+    --no-boundaries --no-chart --long --quiet --fresh -o "$stiff.map"
   /usr/bin/python3 tests/benchmarks/compare_numpy_map.py "$stiff.np.csv" "$stiff.map/map_omega_mu.csv" \
     --binary build/stability-scan --scene data/scenes/default.toml --verify 5
   rm -f "$stiff.np.csv"
+  echo "## 7b. the whole 'map' command, 300 x 300 with its charts, against the baseline's computation (alternating)"
+  for run in 1 2 3; do
+    (cd "$peers" && /usr/bin/python3 stability_map.py --nx 300 --ny 300 --law coulomb --out - | grep "wall time")
+    for chart in "" --no-chart; do
+      rm -rf "$stiff.map"
+      /usr/bin/time -f "map 300 x 300 ${chart:-with charts}: %e s wall, %U s user, %S s sys" build/stability-scan map \
+        data/scenes/default.toml --x $omega_grid:300 --y mu:1e-4:1e-1:300:log --no-boundaries $chart --quiet \
+        -o "$stiff.map"
+    done
+  done
 fi
 rm -rf "$stiff.map"
 echo "## 8. cost per equilibrium against the number of balls (ring scene, n = 2 .. 12), against numpy on the same Jacobians"

@@ -10,6 +10,10 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/equilibria/stick_set.hpp"
+#include "abu/input/scene.hpp"
+
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -82,4 +86,65 @@ TEST_CASE("stick set: n = 3 on a grid, large mu", "[stick_set]") {
 
 TEST_CASE("stick set: mu = 0 has no area and is refused", "[stick_set]") {
   CHECK_THROWS_AS(abu::stick_set(rotor(2, 0.0)), abu::NotSupportedError);
+}
+
+// The dry-friction verdict (StickSetOptions::verdict_only, model.md §14.10) against the full
+// stick-set scan: where the bound |G| (U + sum m l) <= min mu l decides E = T^n, by the
+// closed form; elsewhere by the same column scan without the |q| integrals and spreads.
+namespace {
+abu::StickSet verdict(const abu::ParamsN& p, abu::StickSetOptions o = {}) {
+  o.trace = false;
+  o.verdict_only = true;
+  return abu::stick_set(p, o);
+}
+void check_same_verdict(const abu::StickSet& v, const abu::StickSet& full, double tolerance) {
+  CHECK(v.whole_torus == full.whole_torus);
+  CHECK(v.components.size() == full.components.size());
+  CHECK(v.balanced_exists == full.balanced_exists);
+  CHECK(v.area == Approx(full.area).epsilon(tolerance));
+  CHECK(v.area_fraction == Approx(full.area_fraction).epsilon(tolerance));
+  CHECK(v.worst_q_abs == Approx(full.worst_q_abs).epsilon(tolerance));
+  CHECK(v.worst_q_abs_any == Approx(full.worst_q_abs_any).epsilon(tolerance));
+  CHECK(v.bare_rotor_q_abs == full.bare_rotor_q_abs);
+}
+}  // namespace
+
+TEST_CASE("stick set verdict: the bound decides the whole torus as the full scan finds it", "[stick_set]") {
+  // mu = 0.002: |G| (U + 2 m l) / (mu l) = 0.45 <= 1. The scan's area sums columns of
+  // exactly 2 pi (rounding) and its V is the refined maximum at beta = 0, the closed
+  // form's value (the first test: 1e-12): tolerance 1e-12.
+  for (int n : {2, 3}) {
+    const abu::ParamsN p = rotor(n, 0.002);
+    abu::StickSetOptions o;
+    o.trace = false;
+    o.grid_budget = 1L << 15;
+    const abu::StickSet full = abu::stick_set(p, o), v = verdict(p);
+    CHECK(v.whole_torus);
+    CHECK(v.resolution == 0.0);  // no scan ran
+    check_same_verdict(v, full, 1e-12);
+  }
+}
+
+TEST_CASE("stick set verdict: where the bound does not decide, the full scan's figures", "[stick_set]") {
+  // mu = 0.0008: the bound is 1.12 > 1, yet max |s| = 0.76 (the scan finds E = T^2); the
+  // scene of tests/scenes/stick with two merged components (`several`: the doc, §14.10).
+  // The verdict runs the same column scan and maxima: equal to the last bit, whatever the
+  // resolution (a coarse one here: the test's time).
+  std::vector<abu::ParamsN> cases{rotor(2, 0.0008)};
+  for (const char* name : {"merged"}) {
+    const abu::Scene scene =
+        abu::load_scene(std::string(ABU_SOURCE_DIR) + "/tests/scenes/stick/" + name + ".toml");
+    cases.push_back(abu::params_of<abu::any_balls>(scene));
+  }
+  abu::StickSetOptions o;
+  o.trace = false;
+  o.columns = 128;
+  o.samples = 256;
+  for (const abu::ParamsN& p : cases) {
+    const abu::StickSet full = abu::stick_set(p, o), v = verdict(p, o);
+    check_same_verdict(v, full, 0.0);
+    CHECK(v.resolution > 0.0);   // the scan ran
+    CHECK(v.mean_q_abs == 0.0);  // not computed
+  }
+  CHECK(verdict(cases[0], o).whole_torus);
 }

@@ -15,6 +15,7 @@ DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOpt
     for (auto& b : p.balls) b.mu = b.mu_s;  // the breakaway level holds a ball at rest
   StickSetOptions o = options;
   o.trace = false;
+  o.verdict_only = true;  // area, components, V, V_E: the same values, not the |q| integrals nor the spreads
   out.which = smooth.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
   try {
     out.set = stick_set(p, o);

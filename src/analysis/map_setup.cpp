@@ -3,26 +3,22 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cstdio>
-#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include <sys/statvfs.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/escaped.hpp"
 #include "abu/core/suggest.hpp"
-#include "abu/output/format.hpp"
-#include "abu/output/files.hpp"
-#include "abu/output/gnuplot.hpp"
-#include "abu/output/provenance.hpp"
 #include "abu/input/ranges.hpp"
-#include "abu/output/report.hpp"
 #include "abu/scan/map_mpi.hpp"
 #include "abu/scan/stick_map.hpp"
 
@@ -145,6 +141,7 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
                                  job.x.count, job.y.count, kMaxCells));
   job.method = request.method;
   job.sampling = request.sampling;
+  job.long_rows = request.long_rows;
   if (scene.law == FrictionLaw::coulomb_set) {  // the stick set per cell (model.md §14, stick_map.hpp)
     if (job.x.ball_count || job.y.ball_count)
       throw InputError(job.x.ball_count ? "--x" : "--y", 0, "n",
@@ -152,12 +149,11 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
     job.stick_set = true;
     job.stick = request.stick;
     job.params_n = params_of<any_balls>(scene);
-    const std::string line =
+    job.command_line =
         request.command_line + (scene.balls.size() == 2
                                     ? fmt::format(" --stick-columns {} --stick-area-tolerance {}", request.stick.columns,
-                                                  format_number(request.stick.area_tolerance))
+                                                  request.stick.area_tolerance)
                                     : fmt::format(" --stick-grid {}", request.stick.grid_budget));
-    job.provenance = provenance_header(line, scene.file, job.params_n);
     // Every cell's set must be defined (mu > 0, not K = C = 0) before any work.
     for (int ix = 0; ix < job.x.count; ++ix)
       for (int iy = 0; iy < job.y.count; ++iy) {
@@ -177,12 +173,12 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
   job.any_balls = count_axis || scene.balls.size() != 2 || scene.law == FrictionLaw::lugre || scene.support;
   if (!job.any_balls) {
     job.params = params_of<2>(scene);
-    job.provenance = provenance_header(request.command_line, scene.file, job.params);
+    job.command_line = request.command_line;
     return job;
   }
   if (const auto rule = options_violation(request.sampling)) throw InputError("--set-samples", 0, "samples", *rule);
   job.params_n = params_of<any_balls>(scene);
-  std::string line = request.command_line + fmt::format(" --set-samples {}", request.sampling.samples_per_sheet);
+  job.command_line = request.command_line + fmt::format(" --set-samples {}", request.sampling.samples_per_sheet);
   if (count_axis) {
     // The other axis must hold on every ball count (a per-ball symbol such as m3 needs 3
     // balls); each count's ring is the scene's, rebuilt (scene.hpp, set_ball_count).
@@ -194,17 +190,14 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
       parse_axis(other_spec, s, other_is_x ? "--x" : "--y");
       job.by_count.push_back(params_of<any_balls>(s));
     }
-    job.provenance = provenance_header(line, scene.file, job.params_n) +
-                     (scene.ring->total_mass_held
-                          ? fmt::format("# ball-count axis: the ring's total mass {} kg held (m = total_mass / n)\n",
-                                        format_number(scene.ring->total_mass))
-                          : fmt::format("# ball-count axis: the ring's per-ball mass {} kg held\n",
-                                        format_number(scene.ring->ball.mass)));
-  } else {
-    job.provenance = provenance_header(line, scene.file, job.params_n);
+    job.provenance_notes =
+        scene.ring->total_mass_held
+            ? fmt::format("# ball-count axis: the ring's total mass {} kg held (m = total_mass / n)\n",
+                          scene.ring->total_mass)
+            : fmt::format("# ball-count axis: the ring's per-ball mass {} kg held\n", scene.ring->ball.mass);
   }
   if (scene.law == FrictionLaw::lugre)
-    job.provenance += "# friction lugre (model.md §12.8): the z = 0 equilibria (the frictionless model's), each judged by "
+    job.provenance_notes += "# friction lugre (model.md §12.8): the z = 0 equilibria (the frictionless model's), each judged by "
                       "the spectrum of (12.10) with c = 1, where both one-sided Jacobians coincide (never non-smooth); "
                       "the n zeros along the family are not counted\n";
   return job;
@@ -260,10 +253,12 @@ std::string check_map_fits(const MapJob& job, const MapOutput& output) {
 }  // namespace
 
 MapRunReport run_map(const MapJob& job, const MapOutput& output) {
+  if (job.provenance.empty())
+    throw std::logic_error("run_map: the job has no provenance (output/map_files.hpp, map_provenance)");
   MapRunReport report;
   const std::filesystem::path& dir = output.directory;
   const bool root = mpi_rank() == 0;
-  std::optional<TileStore> store;
+  std::shared_ptr<TileStore> store;
   std::optional<std::vector<int>> missing;
   {
     std::exception_ptr failure;
@@ -271,7 +266,7 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
       if (root) {
         const std::string estimate = check_map_fits(job, output);
         if (output.progress) std::fputs(estimate.c_str(), stderr);
-        store.emplace(dir / tile_directory_name(job), job, output.mode);
+        store = std::make_shared<TileStore>(dir / tile_directory_name(job), job, output.mode);
         missing = store->missing();
       }
     } catch (...) {
@@ -291,7 +286,7 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
   run_options.stop = output.stop;
   run_options.progress = &meter;
   try {
-    report.stats = compute_distributed(job, *missing, run_options, store ? &*store : nullptr);
+    report.stats = compute_distributed(job, *missing, run_options, store.get());
   } catch (const InputError&) {
     throw;
   } catch (const NumericalError&) {
@@ -314,40 +309,20 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
     report.outcome = MapRunReport::Outcome::other_rank;
     return report;
   }
-
-  OutputTransaction out;
-  // The long CSV (a row per equilibrium per cell: ~800 bytes a cell) only on request.
-  const auto map_path = output.long_csv ? out.reserve(dir / map_file_name(job)) : std::filesystem::path();
-  const auto summary_path = out.reserve(dir / summary_file_name(job));
-  {
-    std::ofstream summary_csv(summary_path, std::ios::binary);
-    std::ofstream map_csv;
-    std::ostream no_rows(nullptr);  // discards what is written to it
-    if (output.long_csv) map_csv.open(map_path, std::ios::binary);
-    std::ostream& rows = output.long_csv ? static_cast<std::ostream&>(map_csv) : no_rows;
-    assemble(job, *store, rows, summary_csv);
-    summary_csv.close();
-    if (output.long_csv) map_csv.close();
-    if ((output.long_csv && !map_csv) || !summary_csv)
-      throw std::runtime_error(fmt::format("{}: cannot write the map: {}; the tiles are kept in {}, rerun the same "
-                                           "command with --resume",
-                                           escaped(dir.string()), errno ? std::strerror(errno) : "write error",
-                                           escaped(store->directory().string())));
-  }
-  const std::string x = job.x.name(), y = job.y.name();
-  std::filesystem::path curves;
+  report.store = store;
   const bool lugre = job.any_balls && job.params_n.law == FrictionLaw::lugre;
   if (output.boundaries && lugre) {
     report.boundary_note = "no fold/Hopf boundaries for friction law 'lugre': continuation of its z = 0 branches "
                            "with the spectra of (12.10) is not implemented (model.md §12.8)";
   } else if (output.boundaries) {
     const auto started = std::chrono::steady_clock::now();
-    if (const auto run = map_boundaries(job)) {
-      curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run, job.provenance));
-      report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    } else if (const auto run_n = map_boundaries_n(job)) {
-      curves = out.stage(dir / fmt::format("boundary_{}_{}.csv", x, y), boundary_csv(*run_n, job.provenance));
-      report.boundary_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    };
+    if ((report.boundaries = map_boundaries(job))) {
+      report.boundary_seconds = seconds();
+    } else if ((report.boundaries_n = map_boundaries_n(job))) {
+      report.boundary_seconds = seconds();
     } else if (job.stick_set) {
       report.boundary_note = "no fold/Hopf boundaries: a coulomb-set map has stick sets, not isolated equilibria";
     } else {
@@ -357,54 +332,11 @@ MapRunReport run_map(const MapJob& job, const MapOutput& output) {
                                            "(continuation needs one ball count)";
     }
   }
-  if (output.chart && job.stick_set) {
-    // V and the area of the stick set per cell (plots/stick_set_map.gp)
-    const auto name = [&](const char* kind) { return out.reserve(dir / fmt::format("{}_{}_{}.png", kind, x, y)).string(); };
-    run_gnuplot(plots_dir() / "stick_set_map.gp",
-                {{"summary", summary_path.string()},
-                 {"png_worst", name("stick_worst")},
-                 {"png_area", name("stick_area")},
-                 {"xname", x},
-                 {"xunit", std::string(unit(job.x.param.quantity))},
-                 {"yname", y},
-                 {"yunit", std::string(unit(job.y.param.quantity))},
-                 {"logx", job.x.logarithmic ? "1" : "0"},
-                 {"logy", job.y.logarithmic ? "1" : "0"},
-                 {"title", output.title}});
-  } else if (output.chart) {
-    const auto name = [&](const char* kind, const char* ext) {
-      return out.reserve(dir / fmt::format("{}_{}_{}.{}", kind, x, y, ext)).string();
-    };
-    const auto axis_unit = [](const Axis& a) {
-      return a.ball_count ? std::string() : std::string(unit(a.param.quantity));
-    };
-    std::vector<std::pair<std::string, std::string>> variables{{"summary", summary_path.string()},
-                                                               {"curves", curves.string()},
-                                                               {"png_stability", name("stability", "png")},
-                                                               {"svg_stability", name("stability", "svg")},
-                                                               {"png_vibration", name("vibration", "png")},
-                                                               {"svg_vibration", name("vibration", "svg")},
-                                                               {"xname", x},
-                                                               {"xunit", axis_unit(job.x)},
-                                                               {"yname", y},
-                                                               {"yunit", axis_unit(job.y)},
-                                                               {"logx", job.x.logarithmic ? "1" : "0"},
-                                                               {"logy", job.y.logarithmic ? "1" : "0"},
-                                                               {"title", output.title}};
-    if (job.any_balls) {
-      variables.emplace_back("nballs", "1");
-      variables.emplace_back("png_fraction", name("fraction", "png"));
-      variables.emplace_back("svg_fraction", name("fraction", "svg"));
-    }
-    run_gnuplot(plots_dir() / "map.gp", variables);
-  }
   if (stopped()) {
-    report.outcome = MapRunReport::Outcome::interrupted;  // `out` removes its temporaries
+    report.outcome = MapRunReport::Outcome::interrupted;
     report.tiles_kept = report.tiles_total;
     return report;
   }
-  out.commit();
-  store->remove();
   report.outcome = MapRunReport::Outcome::done;
   return report;
 }

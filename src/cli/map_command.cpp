@@ -2,7 +2,8 @@
 // parameters (or a parameter and a ring's ball count, `n:FROM:TO:COUNT`), every
 // equilibrium of every cell; tiles on all threads (and MPI ranks), resumable; CSVs, heat
 // maps and the fold/Hopf boundaries drawn on top. The work is the library's
-// (io/map_setup.hpp); this file is options, signals and messages.
+// (analysis/map_setup.hpp runs it, output/map_files.hpp writes it); this file is options,
+// signals and messages.
 #include <fmt/format.h>
 
 #include <thread>
@@ -14,6 +15,7 @@
 #include "abu/output/format.hpp"
 #include "abu/output/files.hpp"
 #include "abu/analysis/map_setup.hpp"
+#include "abu/output/map_files.hpp"
 #include "abu/scan/map_driver.hpp"
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
@@ -123,7 +125,9 @@ Action add_map_command(CLI::App& app) {
     request.sampling = o->sampling;
     request.stick = stick_resolution(o->stick);
     request.command_line = canonical_command_line(*o);
-    const MapJob job = map_job(scene, request);
+    request.long_rows = o->long_csv;
+    MapJob job = map_job(scene, request);
+    job.provenance = map_provenance(job, scene.file);
     for (const Axis* a : {&job.x, &job.y})
       if (a->from > a->to && !o->quiet)
         fmt::print(stderr, "stability-scan: note: {} runs downward, from {} to {} (index 0 at {})\n",
@@ -135,13 +139,18 @@ Action add_map_command(CLI::App& app) {
     output.threads = o->threads;
     output.stop = &stop_flag();  // set by the CLI's signal thread (cli.cpp)
     output.progress = !o->quiet && (o->progress || isatty(STDERR_FILENO));
-    output.chart = o->chart;
     output.boundaries = o->boundaries;
-    output.long_csv = o->long_csv;
-    output.title = scene.file;
     set_interrupt_note(fmt::format("the finished tiles are kept in {}; rerun the same command with --resume",
                                    escaped((std::filesystem::path(o->output_dir) / tile_directory_name(job)).string())));
-    const MapRunReport r = run_map(job, output);
+    MapRunReport r = run_map(job, output);
+    MapFilesReport files;
+    if (r.outcome == MapRunReport::Outcome::done) {
+      files = write_map_files(job, r, {o->output_dir, o->chart, scene.file, &stop_flag()});
+      if (!files.written) {
+        r.outcome = MapRunReport::Outcome::interrupted;
+        r.tiles_kept = r.tiles_total;
+      }
+    }
     set_interrupt_note({});
     switch (r.outcome) {
       case MapRunReport::Outcome::refused: return exit_bad_input;
@@ -163,8 +172,8 @@ Action add_map_command(CLI::App& app) {
     const std::filesystem::path dir(o->output_dir);
     // The stable speed ranges per value of the other axis (docs/views.md), from the summary.
     if (!stick)  // a stick-set map has no stability verdicts to turn into speed ranges
-      write_map_ranges(dir, o->x.substr(0, o->x.find(':')), o->y.substr(0, o->y.find(':')), scene, o->scene,
-                       canonical_command_line(*o), o->quiet);
+      write_map_ranges(dir, o->x.substr(0, o->x.find(':')), o->y.substr(0, o->y.find(':')), files.verdicts, scene,
+                       o->scene, canonical_command_line(*o), o->quiet);
     if (!o->quiet && r.boundary_seconds >= 0) fmt::print(stderr, "boundaries: {:.2f} s\n", r.boundary_seconds);
     if (!o->quiet && !r.boundary_note.empty()) fmt::print(stderr, "{}\n", r.boundary_note);
     if (!o->quiet)

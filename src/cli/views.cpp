@@ -109,15 +109,11 @@ std::string omega_axis_input(const SceneOptions& options, const std::string& axi
   return out;
 }
 
-void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y, const Scene& scene,
-                      const SceneOptions& options, const std::string& command, bool quiet) {
+void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y,
+                      const MapVerdicts& verdicts, const Scene& scene, const SceneOptions& options,
+                      const std::string& command, bool quiet) {
   if (x != "omega" && y != "omega") return;
-  const auto csv_path = dir / fmt::format("summary_{}_{}.csv", x, y);
-  std::ifstream in(csv_path);
-  if (!in) return;
-  std::stringstream text;
-  text << in.rdbuf();
-  const MapRangesOutput r = map_ranges(text.str(), x, y, command, scene.file, params_of<any_balls>(scene),
+  const MapRangesOutput r = map_ranges(verdicts, x, y, command, scene.file, params_of<any_balls>(scene),
                                        options.speed_unit(), 10);
   if (r.json.empty()) return;
   OutputTransaction out;

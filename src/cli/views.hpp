@@ -36,10 +36,11 @@ std::vector<std::filesystem::path> stage_views(OutputTransaction& out, const Vie
 std::string omega_axis_input(const SceneOptions& options, const std::string& axis);
 
 /// After a map: summary_<x>_<y>.json with the omega ranges per value of the other axis,
-/// read from the map's summary_<x>_<y>.csv (nothing when no axis is omega); the ranges on
-/// stderr unless `quiet`. `command`: the map's canonical command line (the same bytes for
-/// any thread or rank count).
-void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y, const Scene& scene,
-                      const SceneOptions& options, const std::string& command, bool quiet);
+/// from the map's verdicts (output/map_files.hpp; nothing when no axis is omega or the map
+/// has no verdicts); the ranges on stderr unless `quiet`. `command`: the map's canonical
+/// command line (the same bytes for any thread or rank count).
+void write_map_ranges(const std::filesystem::path& dir, const std::string& x, const std::string& y,
+                      const MapVerdicts& verdicts, const Scene& scene, const SceneOptions& options,
+                      const std::string& command, bool quiet);
 
 }  // namespace abu::cli

@@ -3,6 +3,9 @@
 // n-ball grid (stick_set_model.hpp lists the files). See the header for the method.
 #include "abu/equilibria/stick_set.hpp"
 
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "abu/equilibria/equilibria.hpp"
@@ -20,6 +23,52 @@ StickPoint stick_point(const ParamsN& p, const std::vector<double>& beta) {
   for (int i = 0; i < m.n; ++i) out.s.push_back(m.s(q, i, beta[std::size_t(i)]));
   return out;
 }
+
+namespace {
+// The stick set when a bound proves it is the whole torus (model.md §14.10): |s_i| <=
+// |q| / (mu_i l_i) and |q| = |G| |W(beta)| <= |G| (U + sum a_i), so if |G| (U + sum a_i) <=
+// min_i mu_i l_i every arrangement sticks: E = T^n, one component holding every smooth
+// equilibrium, and max |q| over it is |G| (U + sum a_i), at beta = 0 (every ball with the
+// unbalance). nullopt when the bound does not decide.
+std::optional<StickSet> whole_torus_by_bound(const StickModel& m, const std::vector<StickSeed>& seeds) {
+  double w_max = m.U, min_bound = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < m.n; ++i) {
+    w_max += m.a[std::size_t(i)];
+    min_bound = std::min(min_bound, m.bound[std::size_t(i)]);
+  }
+  // a margin of 1e-12 for the rounding of the two sides: the bound decides only clear cases
+  if (!(std::abs(m.G) * w_max * (1 + 1e-12) <= min_bound)) return std::nullopt;
+  StickSet S;
+  S.n_balls = m.n;
+  S.seeds = seeds;
+  S.area = std::pow(two_pi, m.n);
+  S.area_fraction = 1.0;
+  S.whole_torus = true;
+  StickComponent c;
+  c.area = S.area;
+  c.beta_at_max.assign(std::size_t(m.n), 0.0);
+  c.q_abs_max = std::abs(m.q(c.beta_at_max.data()));
+  c.wraps = true;
+  for (std::size_t k = 0; k < S.seeds.size(); ++k) {
+    S.seeds[k].component = 0;
+    c.seeds.push_back(int(k));
+    if (S.seeds[k].family == "balanced") c.balanced_points.push_back(int(k));
+  }
+  c.spread.assign(std::size_t(m.n), 0.0);
+  S.worst_q_abs_any = c.q_abs_max;
+  S.worst_beta_any = c.beta_at_max;
+  S.balanced_exists = !c.balanced_points.empty();
+  if (S.balanced_exists) {
+    S.worst_q_abs = c.q_abs_max;
+    S.worst_beta = c.beta_at_max;
+  } else {
+    S.status = Status{Outcome::not_converged, "no balanced state in the stick set"};
+  }
+  S.spread.assign(std::size_t(m.n), 0.0);
+  S.components.push_back(std::move(c));
+  return S;
+}
+}  // namespace
 
 StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
   const StickModel m(p);
@@ -51,6 +100,11 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
       seeds.push_back(sd);
     }
   }
+  if (options.verdict_only)
+    if (auto whole = whole_torus_by_bound(m, seeds)) {
+      whole->bare_rotor_q_abs = std::abs(m.G) * m.U;
+      return *whole;
+    }
   StickSet S = m.n == 2 ? two_ball_set(m, options, std::move(seeds)) : sampled_set(m, options, std::move(seeds));
   const double bare = std::abs(m.G) * m.U;
   S.bare_rotor_q_abs = bare;

@@ -35,11 +35,13 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
   S.resolution = smallest_width;
 
   // --- area and integral of |q|: adaptive Simpson over beta_1 on each panel.
+  // (verdict_only: the |q| integral, v[1], stays 0; the area's panels are the same)
+  const bool integrals = !o.verdict_only;
   auto column_values = [&](double c) {
     std::array<double, 2> v{0.0, 0.0};
     for (const auto& arc : scan1.arcs(wrap(c))) {
       v[0] += arc.length();
-      v[1] += scan1.q_abs_integral(wrap(c), arc);
+      if (integrals) v[1] += scan1.q_abs_integral(wrap(c), arc);
     }
     return v;
   };
@@ -54,7 +56,8 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
     double L = 0.0;
     for (const auto& arc : A.columns[j].arcs) L += arc.length();
     at_column[j] = {L, 0.0};
-    for (const auto& arc : A.columns[j].arcs) at_column[j][1] += scan1.q_abs_integral(A.columns[j].column, arc);
+    if (integrals)
+      for (const auto& arc : A.columns[j].arcs) at_column[j][1] += scan1.q_abs_integral(A.columns[j].column, arc);
   }
   for (std::size_t j = 0; j < A.columns.size(); ++j) {
     throw_if_stopped("stick set");
@@ -123,7 +126,7 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
     for (std::size_t k = 0; k < col.arcs.size(); ++k) {
       const int c = comp_of_root[A.uf.find(col.node[k])];
       comp_area[std::size_t(c)] += weight * col.arcs[k].length();
-      comp_q[std::size_t(c)] += weight * scan1.q_abs_integral(col.column, col.arcs[k]);
+      if (integrals) comp_q[std::size_t(c)] += weight * scan1.q_abs_integral(col.column, col.arcs[k]);
       const auto [w2, along] = scan1.max_w2(col.column, col.arcs[k]);
       if (w2 > best[std::size_t(c)].w2) best[std::size_t(c)] = {w2, int(j), int(k), along};
     }
@@ -162,10 +165,14 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
 
   // spreads of the balanced components: beta_1 from these columns, beta_2 from the transposed scan
   const TwoBallScan scan2(m, 1, sample_positions(o.samples, win1));
-  AxisAnalysis B = analyze_axis(scan2, sample_positions(o.columns, win2));
+  AxisAnalysis B = o.verdict_only ? AxisAnalysis{} : analyze_axis(scan2, sample_positions(o.columns, win2));
   for (std::size_t c = 0; c < S.components.size(); ++c) {
     auto& comp = S.components[c];
     if (comp.balanced_points.empty()) continue;
+    if (o.verdict_only) {
+      comp.spread = {0.0, 0.0};
+      continue;
+    }
     throw_if_stopped("stick set");
     const double s1 = column_extent(scan1, A, root_of_comp[c]);
     const auto& sd = S.seeds[std::size_t(comp.balanced_points.front())];
@@ -193,11 +200,12 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
   }
   if (o.trace) S.boundary = trace_boundary(m, A, std::min(0.01, 0.25 * S.resolution * 24.0 / 4.0));
   double mx = 0.0;
-  for (const auto& col : A.columns)
-    for (double x : samp2) {
-      const double b[2] = {col.column, x};
-      mx = std::max(mx, m.excess(b) + 1.0);
-    }
+  if (!o.verdict_only)
+    for (const auto& col : A.columns)
+      for (double x : samp2) {
+        const double b[2] = {col.column, x};
+        mx = std::max(mx, m.excess(b) + 1.0);
+      }
   S.max_abs_s = mx;
   if (!S.balanced_exists) S.status = Status{Outcome::not_converged, "no balanced state in the stick set"};
   return S;

@@ -41,7 +41,7 @@ std::string rigid_text(const States& s, std::string_view format, const OutputCon
       return equilibria_csv(a, header, p.n_balls());
     }
   }
-  if (format == "json") return equilibria_json(a, c.command_line, c.scene_file, p, s.kappa);
+  if (format == "json") return equilibria_json(a, c.command_line, c.scene_file, p, s.kappa, s.dry);
   return equilibria_report(a, p, c.unit, s.kappa, s.dry);  // ends with the dry-friction verdict
 }
 

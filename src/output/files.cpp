@@ -128,6 +128,8 @@ fs::path OutputTransaction::reserve(const fs::path& target) {
   return tmp;
 }
 
+fs::path OutputTransaction::reserve_data(const fs::path& target) { return temporary_for(target); }
+
 namespace {
 // Copies a staged file into a target written in place (a character device or a FIFO).
 void copy_in_place(const fs::path& from, const fs::path& to) {

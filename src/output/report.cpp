@@ -201,7 +201,8 @@ std::string kappa_json(const KappaSensitivity<N>& ks, std::size_t k) {
 
 template <class A, int N>
 std::string equilibria_json(const A& a, std::string_view command_line, std::string_view scene_file,
-                            const ParamsT<double, N>& p, const std::vector<KappaSensitivity<N>>& ks) {
+                            const ParamsT<double, N>& p, const std::vector<KappaSensitivity<N>>& ks,
+                            const DryFrictionVerdict& dry) {
   std::string out = fmt::format("{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n",
                                 ABU_VERSION, json_string(command_line), json_string(scene_file));
   out += fmt::format("  \"parameters\": {},\n  \"balls\": {},\n  \"units\": {},\n", json_string(describe_parameters(p)),
@@ -230,6 +231,7 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
         st.samples ? num(st.min_abscissa, "abscissa") : std::string("null"),
         st.samples ? num(st.max_abscissa, "abscissa") : std::string("null"));
   }
+  out += dry_friction_json(dry);
   out += "  \"equilibria\": [";
   const auto points = a.equilibria.points();
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -271,12 +273,14 @@ std::string equilibria_json(const A& a, std::string_view command_line, std::stri
 }
 
 std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
-                            const Params& p, const std::vector<KappaSensitivity<2>>& kappa) {
-  return equilibria_json<Analysis, 2>(a, command_line, scene_file, p, kappa);
+                            const Params& p, const std::vector<KappaSensitivity<2>>& kappa,
+                            const DryFrictionVerdict& dry) {
+  return equilibria_json<Analysis, 2>(a, command_line, scene_file, p, kappa, dry);
 }
 std::string equilibria_json(const AnalysisN& a, std::string_view command_line, std::string_view scene_file,
-                            const ParamsN& p, const std::vector<KappaSensitivity<any_balls>>& kappa) {
-  return equilibria_json<AnalysisN, any_balls>(a, command_line, scene_file, p, kappa);
+                            const ParamsN& p, const std::vector<KappaSensitivity<any_balls>>& kappa,
+                            const DryFrictionVerdict& dry) {
+  return equilibria_json<AnalysisN, any_balls>(a, command_line, scene_file, p, kappa, dry);
 }
 
 template <class A, int N>

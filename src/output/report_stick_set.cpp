@@ -220,6 +220,24 @@ std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view pre
   return out;
 }
 
+std::string dry_friction_json(const DryFrictionVerdict& d) {
+  if (!d.applies) return {};
+  std::string out = fmt::format("  \"dry_friction\": {{\"law\": \"coulomb-set\", \"coefficients\": {}, \"model\": "
+                                "\"model.md §14\", ",
+                                json_string(d.which));
+  if (!d.set) return out + fmt::format("\"defined\": false, \"not_defined\": {}}},\n", json_string(d.not_defined));
+  const StickSet& s = *d.set;
+  out += fmt::format("\"defined\": true, \"area\": {}, \"area_unit\": \"rad^{}\", \"area_fraction\": {}, "
+                     "\"whole_torus\": {}, \"components\": {}, \"balanced_in_set\": {}, ",
+                     num(s.area, "area"), s.n_balls, num(s.area_fraction, "area fraction"), s.whole_torus,
+                     s.components.size(), s.balanced_exists);
+  out += fmt::format("\"worst_q_abs\": {}, \"worst_q_abs_any\": {}, \"bare_rotor_q_abs\": {}, \"status\": {}}},\n",
+                     s.balanced_exists ? num(s.worst_q_abs, "V") : std::string("null"), num(s.worst_q_abs_any, "V_E"),
+                     num(s.bare_rotor_q_abs, "bare rotor |q|"),
+                     s.balanced_exists ? std::string("null") : json_string(std::string(s.status.reason)));
+  return out;
+}
+
 std::string stick_raster_dat(const ParamsN& p, int cells) {
   std::string out;
   for (int i = 0; i < cells; ++i) {

@@ -710,63 +710,31 @@ std::string summary_json(std::string_view command_line, std::string_view scene_f
   out += critical.empty() ? "]\n}\n" : "\n  ]\n}\n";
   return out;
 }
-namespace {
-std::vector<std::string> split_csv_line(std::string_view line) {
-  std::vector<std::string> cells;
-  std::size_t pos = 0;
-  while (true) {
-    const auto end = line.find(',', pos);
-    cells.emplace_back(line.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos));
-    if (end == std::string_view::npos) break;
-    pos = end + 1;
-  }
-  return cells;
-}
-}  // namespace
-
 template <int N>
-MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std::string_view y,
+MapRangesOutput map_ranges(const MapVerdicts& v, std::string_view x, std::string_view y,
                            std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p,
                            SpeedUnit unit, int max_lines) {
   MapRangesOutput result;
-  if (x != "omega" && y != "omega") return result;
+  if ((x != "omega" && y != "omega") || v.cells.empty() || v.cells.size() != v.x.size() * v.y.size()) return result;
   const std::string_view other = x == "omega" ? y : x;
-  std::vector<std::string> header;
-  // per value of the other axis (in file order of first appearance): omega values and flags
-  std::vector<double> others;
-  std::map<double, std::vector<std::array<double, 3>>> rows;  // other -> (omega, balanced stable, any stable)
-  std::size_t pos = 0;
-  int i_omega = -1, i_other = -1, i_bal = -1, i_n = -1;
-  while (pos < summary_csv.size()) {
-    const auto end = summary_csv.find('\n', pos);
-    const std::string_view line = summary_csv.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos);
-    pos = end == std::string_view::npos ? summary_csv.size() : end + 1;
-    if (line.empty() || line.front() == '#') continue;
-    const auto cells = split_csv_line(line);
-    if (header.empty()) {
-      header = cells;
-      for (std::size_t k = 0; k < header.size(); ++k) {
-        if (header[k] == "omega") i_omega = int(k);
-        if (header[k] == other) i_other = int(k);
-        if (header[k] == "balanced_stable") i_bal = int(k);
-        if (header[k] == "n_stable") i_n = int(k);
-      }
-      if (i_omega < 0 || i_other < 0 || i_bal < 0 || i_n < 0) return result;
-      continue;
-    }
-    const auto at = [&](int k) { return std::size_t(k) < cells.size() ? cells[std::size_t(k)] : std::string(); };
-    const double o = std::stod(at(i_other));
-    if (!rows.count(o)) others.push_back(o);
-    rows[o].push_back({std::stod(at(i_omega)), at(i_bal) == "1" ? 1.0 : 0.0, at(i_n).empty() || at(i_n) == "0" ? 0.0 : 1.0});
-  }
+  const bool omega_is_x = x == "omega";
+  const std::vector<double>& omegas = omega_is_x ? v.x : v.y;
+  const std::vector<double>& others = omega_is_x ? v.y : v.x;
+  // omega ascending, whichever way the axis runs
+  std::vector<std::size_t> order(omegas.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return omegas[a] < omegas[b]; });
+  std::vector<double> omega(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) omega[k] = omegas[order[k]];
+  std::vector<bool> balanced(order.size()), none(order.size());
   std::string json_rows;
   int lines = 0;
   for (std::size_t r = 0; r < others.size(); ++r) {
-    auto cells = rows[others[r]];
-    std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a[0] < b[0]; });
-    std::vector<double> omega;
-    std::vector<bool> balanced, none;
-    for (const auto& c : cells) omega.push_back(c[0]), balanced.push_back(c[1] > 0), none.push_back(c[2] == 0);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::size_t cell = omega_is_x ? order[k] * v.y.size() + r : r * v.y.size() + order[k];
+      balanced[k] = (v.cells[cell] & MapVerdicts::balanced_stable) != 0;
+      none[k] = (v.cells[cell] & MapVerdicts::some_stable) == 0;
+    }
     StabilityRanges ranges;
     ranges.balanced_stable = runs(omega, balanced);
     ranges.nothing_stable = runs(omega, none);
@@ -801,10 +769,10 @@ MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std
                              json_rows);
   return result;
 }
-template MapRangesOutput map_ranges<2>(std::string_view, std::string_view, std::string_view, std::string_view,
+template MapRangesOutput map_ranges<2>(const MapVerdicts&, std::string_view, std::string_view, std::string_view,
                                        std::string_view, const Params&, SpeedUnit, int);
-template MapRangesOutput map_ranges<any_balls>(std::string_view, std::string_view, std::string_view, std::string_view,
-                                               std::string_view, const ParamsN&, SpeedUnit, int);
+template MapRangesOutput map_ranges<any_balls>(const MapVerdicts&, std::string_view, std::string_view,
+                                               std::string_view, std::string_view, const ParamsN&, SpeedUnit, int);
 
 template std::string summary_json<2>(std::string_view, std::string_view, const Params&, std::string_view,
                                      std::string_view, double, double, const StabilityRanges&,

@@ -15,62 +15,23 @@
 #include <exception>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <thread>
 
-#include "abu/continuation/continuation.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/temp_files.hpp"
 #include "abu/scan/stick_map.hpp"
+#include "map_rows.hpp"
 
 namespace abu {
 
+using map_rows::AxisText;
+using map_rows::TileBuffers;
+
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string axis_name(const Axis& a) { return a.name(); }
-
-// Shortest round-trip form, as io's format_number (scan sits below io, so it does not
-// call it): a non-finite value is a numerical failure, never a "nan" in a file.
-std::string format_number(double value, std::string_view what = "value") {
-  if (!std::isfinite(value)) throw NumericalError(fmt::format("non-finite {} ({}) would be written", what, value));
-  return fmt::format("{}", value);
-}
-
-// No NaN reaches a file: a non-finite value is a numerical failure naming its cell.
-void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
-  if (!std::isfinite(value))
-    throw NumericalError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {} is not finite", ix, iy,
-                                     axis_name(job.x), job.x.value(ix), axis_name(job.y), job.y.value(iy), what));
-}
-
-std::string_view axis_unit(const Axis& a) { return a.ball_count ? std::string_view("-") : unit(a.param.quantity); }
-
-std::string axis_description(const Axis& a) {
-  if (a.ball_count)
-    return fmt::format("n [-]: the number of balls, every integer from {} to {}", format_number(a.from),
-                       format_number(a.to));
-  return fmt::format("{} [{}]: {} values from {} to {}{}", axis_name(a), unit(a.param.quantity), a.count,
-                     format_number(a.from), format_number(a.to), a.logarithmic ? ", evenly spaced in log" : "");
-}
-
-std::string common_header(const MapJob& job) {
-  if (job.any_balls)
-    return job.provenance +
-           fmt::format("# map: x = {}\n#      y = {}\n#      every cell by the full n-ball analysis (model.md §13.8): "
-                       "every aligned equilibrium and refined eigenvalues, the balanced set sampled with {} samples "
-                       "per sheet (§13.5) and judged by its normal spectrum\n",
-                       axis_description(job.x), axis_description(job.y), job.sampling.samples_per_sheet);
-  return job.provenance + fmt::format("# map: x = {}\n#      y = {}\n#      stability decided by the {} method\n",
-                                      axis_description(job.x), axis_description(job.y),
-                                      job.method == CellMethod::fast ? "fast (characteristic polynomial, Routh)"
-                                                                     : "full (refined eigenvalues)");
-}
-
-}  // namespace
 
 // A worker holds one tile's text in memory: with a long y axis fewer columns per tile keep
 // that under kTileBudgetBytes (the maps of up to ~5000 rows keep kTileColumns).
@@ -82,87 +43,23 @@ int MapJob::tile_columns() const {
 
 std::size_t map_bytes_per_cell(const MapJob& job) {
   if (job.stick_set) return stick_map_bytes_per_cell(job);
-  if (!job.any_balls) return kMapBytesPerCell;
+  if (!job.any_balls) return job.long_rows ? kMapBytesPerCell : kSummaryBytesPerCell;
   // n balls: up to 2^n aligned rows and the balanced samples, each with n angle columns.
   const int n = job.max_balls_in_map();
-  return std::size_t((64 + (1 << n)) * (100 + 25 * n));
+  return job.long_rows ? std::size_t((64 + (1 << n)) * (100 + 25 * n)) : std::size_t(kSummaryBytesPerCell + 50 * n);
 }
 
 int tile_count(const MapJob& job) { return (job.x.count + job.tile_columns() - 1) / job.tile_columns(); }
 
 std::string map_file_name(const MapJob& job) {
-  return fmt::format("map_{}_{}.csv", axis_name(job.x), axis_name(job.y));
+  return fmt::format("map_{}_{}.csv", job.x.name(), job.y.name());
 }
 std::string summary_file_name(const MapJob& job) {
-  return fmt::format("summary_{}_{}.csv", axis_name(job.x), axis_name(job.y));
+  return fmt::format("summary_{}_{}.csv", job.x.name(), job.y.name());
 }
 std::string tile_directory_name(const MapJob& job) {
-  return fmt::format(".map_{}_{}.tiles", axis_name(job.x), axis_name(job.y));
+  return fmt::format(".map_{}_{}.tiles", job.x.name(), job.y.name());
 }
-
-namespace {
-
-// An anisotropic support changes what the n-ball columns mean (model.md §10.12).
-std::string floquet_note(const MapJob& job) {
-  if (!job.support) return {};
-  return "# anisotropic support (model.md §10.12): only the balanced states, which stay equilibria; the mean "
-         "system's other equilibria are pi/omega-periodic orbits and have no row (aligned = 0). stable, n_unstable, "
-         "n_structural_zero (the deflated unit multipliers) and spectral_abscissa (the Floquet decay rate "
-         "(omega/pi) ln max|rho|, rotating frame, 1/s) come from the Floquet multipliers rho over pi/omega; the "
-         "summary's rho_abs_max = max |rho| over the cell's balanced states\n";
-}
-
-// The n-ball CSVs' columns (one place: this file writes and documents both).
-std::string map_csv_header_n(const MapJob& job) {
-  const std::string x = axis_name(job.x), y = axis_name(job.y);
-  std::string betas;
-  for (int i = 1; i <= job.max_balls_in_map(); ++i) betas += fmt::format(",beta{}", i);
-  return common_header(job) +
-         fmt::format(
-             "# one row per equilibrium per cell (balanced samples, then aligned), cells in order ix outer, iy inner\n"
-             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balls = n; family = balanced|aligned "
-             "(two balls: balanced|together|opposite, model.md §13.2); pattern = the ball signs along q ('+-+'), "
-             "empty for balanced;\n"
-             "#   member = root of the pattern (1 or 2) or the balanced sample's index; stable = 1 if every "
-             "eigenvalue but the structural zeros has negative real part, else 0; n_unstable = eigenvalues right "
-             "of the axis;\n"
-             "#   n_structural_zero = eigenvalues zero by construction (the balanced set's directions, §13.4), "
-             "left out of stable and the abscissa; spectral_abscissa [1/s] = largest real part (normal to the "
-             "set on it);\n"
-             "#   q_abs [m] = |q|, the residual vibration; beta_i [rad] in [0, 2 pi), empty beyond the cell's "
-             "ball count\n"
-             "{5}"
-             "ix,iy,{0},{1},balls,family,pattern,member,stable,n_unstable,n_structural_zero,spectral_abscissa,q_abs"
-             "{4}\n",
-             x, y, axis_unit(job.x), axis_unit(job.y), betas, floquet_note(job));
-}
-
-std::string summary_csv_header_n(const MapJob& job) {
-  const std::string x = axis_name(job.x), y = axis_name(job.y);
-  return common_header(job) +
-         fmt::format(
-             "# one row per cell, in order ix outer, iy inner; an empty field: not applicable (no such state)\n"
-             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balls = n; capacity [kg m] = sum m_i l_i, "
-             "against U [kg m];\n"
-             "#   balanced_exists = 1 if the balanced set exists (polygon inequality, model.md §13.4.2); "
-             "balanced_samples = its samples (§13.5);\n"
-             "#   balanced_stable_fraction = the fraction of samples normally stable (a marginal sample, an eigenvalue "
-             "inside its error band, is not stable), normal_abscissa_max [1/s] = the least stable sample's normal "
-             "spectral abscissa (both empty without samples);\n"
-             "#   aligned = isolated equilibria with q != 0 (§13.2, at most 2^n), aligned_stable = how many are "
-             "stable; n_stable = stable equilibria (samples included);\n"
-             "#   best_family, best_pattern, best_member, best_q_abs [m] = the stable state of least |q| (empty if "
-             "none is stable);\n"
-             "#   degenerate = bit flags (equilibria.hpp, Degeneracy): 1 U = 0, 8 K = C = 0, 64 a pattern's double "
-             "root (fold), 128 a pattern with S = 0, 256 a collinear point of the balanced set, 512 no balanced set\n"
-             "{4}"
-             "ix,iy,{0},{1},balls,capacity,U,balanced_exists,balanced_samples,balanced_stable_fraction,"
-             "normal_abscissa_max,aligned,aligned_stable,n_stable,best_family,best_pattern,best_member,best_q_abs,"
-             "degenerate{5}\n",
-             x, y, axis_unit(job.x), axis_unit(job.y), floquet_note(job), job.support ? ",rho_abs_max" : "");
-}
-
-}  // namespace
 
 int MapJob::max_balls_in_map() const {
   if (x.ball_count) return int(x.to);
@@ -178,188 +75,58 @@ CellWorkspace::CellWorkspace(const MapJob& job) {
     two_balls.emplace(job.params, job.x, job.y, job.method);
 }
 
-std::string map_csv_header(const MapJob& job) {
-  if (job.stick_set) return stick_map_csv_header(job);
-  if (job.any_balls) return map_csv_header_n(job);
-  const std::string x = axis_name(job.x), y = axis_name(job.y);
-  return common_header(job) +
-         fmt::format(
-             "# one row per equilibrium per cell, cells in order ix (x index) outer, iy inner; a family absent "
-             "from a cell has no row (summary_{0}_{1}.csv counts them)\n"
-             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; family = balanced|together|opposite "
-             "(model.md §5); member = which root of the family's closed form (1 or 2);\n"
-             "#   stable = 1 if every eigenvalue has negative real part, else 0; n_unstable = eigenvalues with "
-             "positive real part; spectral_abscissa [1/s] = largest real part;\n"
-             "#   q_abs [m] = |q|, the residual vibration: the rotor centre's whirl radius, which is also the "
-             "amplitude in the fixed frame (x_fixed = R(omega t) q, model.md §2);\n"
-             "#   beta1, beta2 [rad] ball angles from the unbalance direction, in [0, 2 pi)\n"
-             "ix,iy,{0},{1},family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2\n",
-             x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
-}
-
-std::string summary_csv_header(const MapJob& job) {
-  if (job.stick_set) return stick_summary_csv_header(job);
-  if (job.any_balls) return summary_csv_header_n(job);
-  const std::string x = axis_name(job.x), y = axis_name(job.y);
-  return common_header(job) +
-         fmt::format(
-             "# one row per cell, in order ix outer, iy inner\n"
-             "# columns: ix, iy grid indices; {0} [{2}], {1} [{3}]; balanced, together, opposite = how many "
-             "equilibria of the family exist (0 = none);\n"
-             "#   balanced_stable = 1 if a balanced equilibrium is stable, 0 if none is, empty if there is no "
-             "balanced state; n_stable = stable equilibria in the cell;\n"
-             "#   best_family, best_member, best_q_abs [m] = the stable equilibrium with the least residual "
-             "vibration |q| (empty if none is stable);\n"
-             "#   degenerate = bit flags: 1 U = 0 (circle of balanced states), 2 balanced merges with together, "
-             "4 balanced merges with opposite, 8 K = C = 0, 16 together double root, 32 opposite double root\n"
-             "ix,iy,{0},{1},balanced,together,opposite,balanced_stable,n_stable,best_family,best_member,best_q_abs,"
-             "degenerate\n",
-             x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
-}
-
-namespace {
-
-// The n-ball rows of one cell (the columns of map_csv_header_n / summary_csv_header_n).
-void write_cell_n(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y, const MapCellN& cell,
-                  fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
-  const int max_n = job.max_balls_in_map();
-  int n_stable = 0;
-  for (const MapEquilibriumN& e : cell.equilibria) {
-    n_stable += e.stable;
-    check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
-    check_finite(e.q_abs, job, ix, iy, "|q|");
-    const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
-    fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{},{}"), ix, iy, x, y,
-                   cell.n_balls, to_string(e.family), pattern, e.member, int(e.stable), e.n_unstable,
-                   e.n_structural, e.abscissa, e.q_abs);
-    for (int i = 0; i < max_n; ++i) {
-      if (i < cell.n_balls) {
-        check_finite(e.beta[std::size_t(i)], job, ix, iy, "a ball angle");
-        fmt::format_to(fmt::appender(rows), FMT_COMPILE(",{}"), e.beta[std::size_t(i)]);
-      } else {
-        rows.push_back(',');
-      }
-    }
-    rows.push_back('\n');
-  }
-  check_finite(cell.capacity, job, ix, iy, "the capacity");
-  fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},{},{},"), ix, iy, x, y, cell.n_balls,
-                 cell.capacity, cell.unbalance, int(cell.balanced_exists), cell.balanced_samples);
-  if (cell.balanced_samples > 0) {
-    check_finite(cell.normal_abscissa_max, job, ix, iy, "the normal abscissa");
-    fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{}"),
-                   double(cell.balanced_stable) / double(cell.balanced_samples), cell.normal_abscissa_max);
-  } else {
-    summary.push_back(',');
-  }
-  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},{},{},"), cell.aligned, cell.aligned_stable, n_stable);
-  if (const int best = cell.best_stable(); best >= 0) {
-    const MapEquilibriumN& e = cell.equilibria[std::size_t(best)];
-    const std::string pattern = e.family == Family::balanced ? std::string() : pattern_string(e.pattern, cell.n_balls);
-    fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{}"), to_string(e.family), pattern, e.member,
-                   e.q_abs);
-  } else {
-    fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,,"));
-  }
-  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), cell.degeneracy);
-  if (job.support) {  // max |rho| over the balanced states (model.md §10.12); empty without one
-    double rho_max = 0.0;
-    for (const MapEquilibriumN& e : cell.equilibria) rho_max = std::max(rho_max, e.rho_abs_max);
-    if (cell.equilibria.empty())
-      summary.push_back(',');
-    else
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), rho_max);
-  }
-  summary.push_back('\n');
-}
-
-}  // namespace
-
 namespace {
 
 // Text buffered per worker before it goes to the tile's temporaries (streamed tiles): the
 // worker's memory does not grow with the y axis (issue 12: 2 GB at 8 threads, N_y = 20,000).
 constexpr std::size_t kSpillBytes = kTileSpillBytes;
 
-// The cells of `tile` into `rows` / `summary`. With `spill` set, whenever a buffer passes
-// kSpillBytes its text goes to `spill` and the buffers are emptied; without, everything
-// stays in the buffers. The bytes are the same either way.
-using Spill = std::function<void(fmt::memory_buffer& rows, fmt::memory_buffer& summary)>;
-TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace, fmt::memory_buffer& rows,
-                           fmt::memory_buffer& summary, const Spill& spill) {
+// The cells of `tile` into `out`. With `spill` set, whenever a buffer passes kSpillBytes
+// its contents go to `spill` and the buffers are emptied; without, everything stays in
+// the buffers. The bytes are the same either way.
+using Spill = std::function<void(TileBuffers& out)>;
+TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace, TileBuffers& out,
+                           const Spill& spill) {
   TileText text;
   const int first = tile * job.tile_columns(), last = std::min(job.x.count, first + job.tile_columns());
   const auto maybe_spill = [&] {
-    if (spill && (rows.size() >= kSpillBytes || summary.size() >= kSpillBytes)) spill(rows, summary);
+    if (spill && out.largest() >= kSpillBytes) spill(out);
   };
-  if (job.stick_set) {  // coulomb-set: the stick set of every cell (stick_map.hpp)
-    for (int ix = first; ix < last; ++ix) {
-      const std::string x_value = format_number(job.x.value(ix), "x value");
+  const AxisText xs(job.x, first, last), ys(job.y);
+  if (job.stick_set) {  // coulomb-set: the stick set of every cell (stick_map.hpp); no grid block
+    for (int ix = first; ix < last; ++ix)
       for (int iy = 0; iy < job.y.count; ++iy) {
         throw_if_stopped("a map tile");
         ++text.cells;
-        text.equilibria +=
-            write_stick_cell(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), rows, summary);
+        text.equilibria += write_stick_cell(job, ix, iy, xs[ix], ys[iy], out.rows, out.summary);
+        if (!job.long_rows) out.rows.clear();
         maybe_spill();
       }
-    }
     return text;
   }
   if (job.any_balls) {
-    for (int ix = first; ix < last; ++ix) {
-      const std::string x_value = format_number(job.x.value(ix), "x value");
+    for (int ix = first; ix < last; ++ix)
       for (int iy = 0; iy < job.y.count; ++iy) {
         throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
         workspace.any_balls->analyze(ix, iy, workspace.cell_n);
         ++text.cells;
         text.equilibria += long(workspace.cell_n.equilibria.size());
         text.fallbacks += long(workspace.cell_n.equilibria.size());  // every one by full eigenvalues
-        write_cell_n(job, ix, iy, x_value, format_number(job.y.value(iy), "y value"), workspace.cell_n, rows,
-                     summary);
+        map_rows::write_cell_n(job, ix, iy, xs[ix], ys[iy], workspace.cell_n, out);
         maybe_spill();
       }
-    }
     return text;
   }
   CellAnalyzer& analyzer = *workspace.two_balls;
   MapCell& cell = workspace.cell;
   for (int ix = first; ix < last; ++ix) {
-    const std::string x_value = format_number(job.x.value(ix), "x value");
     for (int iy = 0; iy < job.y.count; ++iy) {
       throw_if_stopped("a map tile");  // the tile under way is not written; --resume redoes it
       analyzer.analyze(ix, iy, cell);
       ++text.cells;
       text.equilibria += cell.count;
       text.fallbacks += cell.fallbacks;
-      // (formatted per cell, not cached per column: a cache would grow with the y axis)
-      const std::string y_value = format_number(job.y.value(iy), "y value");
-      const std::string_view x = x_value, y = y_value;
-      std::array<int, 3> members{};
-      int balanced_stable = -1, n_stable = 0;
-      for (int k = 0; k < cell.count; ++k) {
-        const MapEquilibrium& e = cell.equilibria[std::size_t(k)];
-        ++members[std::size_t(e.family)];
-        n_stable += e.stable;
-        if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
-        check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
-        check_finite(e.q_abs, job, ix, iy, "|q|");
-        check_finite(e.beta1, job, ix, iy, "beta1");
-        check_finite(e.beta2, job, ix, iy, "beta2");
-        fmt::format_to(fmt::appender(rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x, y,
-                       to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
-                       e.beta1, e.beta2);
-      }
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},"), ix, iy, x, y, members[0],
-                     members[1], members[2]);
-      if (balanced_stable >= 0) fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), balanced_stable);
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},"), n_stable);
-      if (const int best = cell.best_stable(); best >= 0) {
-        const MapEquilibrium& e = cell.equilibria[std::size_t(best)];
-        fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{}"), to_string(e.family), int(e.member), e.q_abs);
-      } else {
-        fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
-      }
-      fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+      map_rows::write_cell(job, ix, iy, xs[ix], ys[iy], cell, out);
       maybe_spill();
     }
   }
@@ -371,10 +138,11 @@ TileText compute_tile_text(const MapJob& job, int tile, CellWorkspace& workspace
 TileText compute_tile(const MapJob& job, int tile, CellWorkspace& workspace) {
   // Compiled formats into fmt's buffers: half the cost of a map's cells is writing them,
   // and a format string parsed per row would be most of that.
-  fmt::memory_buffer rows, summary;
-  TileText text = compute_tile_text(job, tile, workspace, rows, summary, {});
-  text.rows.assign(rows.data(), rows.size());
-  text.summary.assign(summary.data(), summary.size());
+  TileBuffers out;
+  TileText text = compute_tile_text(job, tile, workspace, out, {});
+  text.rows.assign(out.rows.data(), out.rows.size());
+  text.summary.assign(out.summary.data(), out.summary.size());
+  text.grid.assign(out.grid.data(), out.grid.size());
   return text;
 }
 
@@ -387,7 +155,8 @@ namespace {
 // typed, the scene's path): a resumed run is the same map when the parameters, axes,
 // method and program are, however the scene path or the options were written.
 std::string manifest_of(const MapJob& job) {
-  std::string out = fmt::format("abu map tiles v2: {} columns per tile, {} tiles\n", job.tile_columns(), tile_count(job));
+  std::string out = fmt::format("abu map tiles v3: {} columns per tile, {} tiles, {}\n", job.tile_columns(),
+                                tile_count(job), job.long_rows ? "with the long rows (--long)" : "without the long rows");
   std::istringstream headers(map_csv_header(job) + summary_csv_header(job));
   for (std::string line; std::getline(headers, line);)
     if (line.rfind("# command:", 0) != 0 && line.rfind("# scene:", 0) != 0) out += line + '\n';
@@ -404,7 +173,8 @@ std::string read_file(const fs::path& path) {
 
 // Writes under an exclusively created temporary (random name, registered so that a stop
 // removes it) and renames: a reader sees the whole file or none. Errors name errno.
-void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {}) {
+void write_atomically(const fs::path& path, std::string_view a, std::string_view b = {}, std::string_view c = {},
+                      std::string_view d = {}) {
   int fd = -1;
   const fs::path part = create_temporary_next_to(path, "part", fd);
   const auto fail = [&](const char* what, int err) {
@@ -413,7 +183,7 @@ void write_atomically(const fs::path& path, std::string_view a, std::string_view
     unregister_temporary(part);
     throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(err)));
   };
-  for (std::string_view piece : {a, b, c}) {
+  for (std::string_view piece : {a, b, c, d}) {
     while (!piece.empty()) {
       const ssize_t n = ::write(fd, piece.data(), piece.size());
       if (n < 0 && errno == EINTR) continue;
@@ -526,10 +296,12 @@ std::vector<int> TileStore::missing() const {
   return out;
 }
 
-// A tile file: "<rows bytes> <summary bytes>\n" (each 20 digits, so that a streamed tile
-// can write it last, at the start), the rows, the summary rows.
+// A tile file: "<rows bytes> <summary bytes> <grid bytes>\n" (each 20 digits, so that a
+// streamed tile can write it last, at the start), the rows, the summary rows, the grid block.
 namespace {
-std::string tile_header(std::size_t rows, std::size_t summary) { return fmt::format("{:020} {:020}\n", rows, summary); }
+std::string tile_header(std::size_t rows, std::size_t summary, std::size_t grid) {
+  return fmt::format("{:020} {:020} {:020}\n", rows, summary, grid);
+}
 
 void write_all(int fd, std::string_view piece, const fs::path& path) {
   while (!piece.empty()) {
@@ -541,48 +313,62 @@ void write_all(int fd, std::string_view piece, const fs::path& path) {
   }
 }
 
-// The two temporaries of a streamed tile (rows; summary rows, appended at the end). On
-// any exit but commit() (a stop, an error) both are closed and removed.
+// The temporaries of a streamed tile (rows; summary rows and grid block, appended at the
+// end). On any exit but commit() (a stop, an error) all are closed and removed.
 class StreamedTile {
  public:
   explicit StreamedTile(fs::path path) : path_(std::move(path)) {
-    rows_part_ = create_temporary_next_to(path_, "part", rows_fd_);
-    summary_part_ = create_temporary_next_to(path_, "summary.part", summary_fd_);
-    write_all(rows_fd_, tile_header(0, 0), rows_part_);  // a placeholder, rewritten by commit()
+    part_[0] = create_temporary_next_to(path_, "part", fd_[0]);
+    part_[1] = create_temporary_next_to(path_, "summary.part", fd_[1]);
+    part_[2] = create_temporary_next_to(path_, "grid.part", fd_[2]);
+    write_all(fd_[0], tile_header(0, 0, 0), part_[0]);  // a placeholder, rewritten by commit()
   }
   ~StreamedTile() {
-    if (rows_fd_ >= 0) ::close(rows_fd_);
-    if (summary_fd_ >= 0) ::close(summary_fd_);
-    for (const fs::path* part : {&rows_part_, &summary_part_}) {
-      if (part->empty()) continue;
-      ::unlink(part->c_str());
-      unregister_temporary(*part);
+    for (int k = 0; k < 3; ++k) {
+      if (fd_[k] >= 0) ::close(fd_[k]);
+      if (part_[k].empty()) continue;
+      ::unlink(part_[k].c_str());
+      unregister_temporary(part_[k]);
     }
   }
   StreamedTile(const StreamedTile&) = delete;
   StreamedTile& operator=(const StreamedTile&) = delete;
-  void write(fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
-    write_all(rows_fd_, std::string_view(rows.data(), rows.size()), rows_part_);
-    write_all(summary_fd_, std::string_view(summary.data(), summary.size()), summary_part_);
-    rows_bytes_ += rows.size();
-    summary_bytes_ += summary.size();
-    rows.clear();
-    summary.clear();
+  void write(TileBuffers& out) {
+    fmt::memory_buffer* buffers[3] = {&out.rows, &out.summary, &out.grid};
+    for (int k = 0; k < 3; ++k) {
+      write_all(fd_[k], std::string_view(buffers[k]->data(), buffers[k]->size()), part_[k]);
+      bytes_[k] += buffers[k]->size();
+      buffers[k]->clear();
+    }
   }
   void commit() {
-    // The summary rows after the rows, through a fixed buffer; then the sizes at the start.
-    // (The temporary was opened write-only: read it through a second descriptor, checked
-    // to be the same file.)
-    const int reader = ::open(summary_part_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    // The summary rows and the grid block after the rows, through a fixed buffer; then the
+    // sizes at the start.
+    std::vector<char> buffer(kSpillBytes);
+    for (int k = 1; k < 3; ++k) copy_back(k, buffer);
+    const std::string header = tile_header(bytes_[0], bytes_[1], bytes_[2]);
+    if (::pwrite(fd_[0], header.data(), header.size(), 0) != ssize_t(header.size())) fail("write", part_[0]);
+    const int fd = fd_[0];
+    fd_[0] = -1;
+    if (::close(fd) != 0) fail("write", part_[0]);
+    if (::rename(part_[0].c_str(), path_.c_str()) != 0) fail("rename into place", path_);
+    unregister_temporary(part_[0]);
+    part_[0].clear();
+  }
+
+ private:
+  // Appends temporary k to the rows' temporary. (It was opened write-only: read it through
+  // a second descriptor, checked to be the same file.)
+  void copy_back(int k, std::vector<char>& buffer) {
+    const int reader = ::open(part_[k].c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     struct stat written {}, read_back {};
-    if (reader < 0) fail("read back", summary_part_);
-    if (::fstat(reader, &read_back) != 0 || ::fstat(summary_fd_, &written) != 0 ||
-        read_back.st_ino != written.st_ino || read_back.st_dev != written.st_dev) {
+    if (reader < 0) fail("read back", part_[k]);
+    if (::fstat(reader, &read_back) != 0 || ::fstat(fd_[k], &written) != 0 || read_back.st_ino != written.st_ino ||
+        read_back.st_dev != written.st_dev) {
       ::close(reader);
       errno = errno ? errno : EIO;
-      fail("read back", summary_part_);
+      fail("read back", part_[k]);
     }
-    std::vector<char> buffer(kSpillBytes);
     std::size_t copied = 0;
     for (;;) {
       const ssize_t n = ::read(reader, buffer.data(), buffer.size());
@@ -591,11 +377,11 @@ class StreamedTile {
         const int err = errno;
         ::close(reader);
         errno = err;
-        fail("read back", summary_part_);
+        fail("read back", part_[k]);
       }
       if (n == 0) break;
       try {
-        write_all(rows_fd_, std::string_view(buffer.data(), std::size_t(n)), rows_part_);
+        write_all(fd_[0], std::string_view(buffer.data(), std::size_t(n)), part_[0]);
       } catch (...) {
         ::close(reader);
         throw;
@@ -603,59 +389,50 @@ class StreamedTile {
       copied += std::size_t(n);
     }
     ::close(reader);
-    if (copied != summary_bytes_) {
+    if (copied != bytes_[k]) {
       errno = EIO;
-      fail("read back", summary_part_);
+      fail("read back", part_[k]);
     }
-    const std::string header = tile_header(rows_bytes_, summary_bytes_);
-    if (::pwrite(rows_fd_, header.data(), header.size(), 0) != ssize_t(header.size())) fail("write", rows_part_);
-    const int fd = rows_fd_;
-    rows_fd_ = -1;
-    if (::close(fd) != 0) fail("write", rows_part_);
-    if (::rename(rows_part_.c_str(), path_.c_str()) != 0) fail("rename into place", path_);
-    unregister_temporary(rows_part_);
-    rows_part_.clear();
   }
-
- private:
   [[noreturn]] static void fail(const char* what, const fs::path& path) {
     throw std::runtime_error(fmt::format("{}: cannot {}: {}", path.string(), what, std::strerror(errno)));
   }
-  fs::path path_, rows_part_, summary_part_;
-  int rows_fd_ = -1, summary_fd_ = -1;
-  std::size_t rows_bytes_ = 0, summary_bytes_ = 0;
+  fs::path path_, part_[3];
+  int fd_[3] = {-1, -1, -1};
+  std::size_t bytes_[3] = {0, 0, 0};
 };
 }  // namespace
 
 void TileStore::put(int tile, const TileText& text) const {
-  write_atomically(tile_path(tile), tile_header(text.rows.size(), text.summary.size()), text.rows, text.summary);
+  write_atomically(tile_path(tile), tile_header(text.rows.size(), text.summary.size(), text.grid.size()), text.rows,
+                   text.summary, text.grid);
 }
 
 TileText compute_tile_into(const MapJob& job, int tile, CellWorkspace& workspace, const TileStore& store) {
-  StreamedTile out(store.tile_path(tile));
-  fmt::memory_buffer rows, summary;
-  TileText text = compute_tile_text(job, tile, workspace, rows, summary,
-                                    [&out](fmt::memory_buffer& r, fmt::memory_buffer& s) { out.write(r, s); });
-  out.write(rows, summary);
-  out.commit();
+  StreamedTile file(store.tile_path(tile));
+  TileBuffers out;
+  TileText text = compute_tile_text(job, tile, workspace, out, [&file](TileBuffers& b) { file.write(b); });
+  file.write(out);
+  file.commit();
   return text;
 }
 
-void TileStore::append(int tile, std::ostream& rows, std::ostream& summary) const {
+void TileStore::append(int tile, std::ostream& rows, std::ostream& summary, std::ostream* grid) const {
   // Through a fixed buffer: assembling holds no tile in memory.
   const fs::path path = tile_path(tile);
   std::ifstream in(path, std::ios::binary);
   std::string first;
   std::getline(in, first);
-  std::size_t n_rows = 0, n_summary = 0;
+  std::size_t n_rows = 0, n_summary = 0, n_grid = 0;
   std::istringstream sizes(first);
-  sizes >> n_rows >> n_summary;
+  sizes >> n_rows >> n_summary >> n_grid;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
-  if (!in || !sizes || ec || first.size() + 1 + n_rows + n_summary != size)
+  if (!in || !sizes || ec || first.size() + 1 + n_rows + n_summary + n_grid != size)
     throw std::runtime_error(fmt::format("{}: damaged tile file; rerun with --fresh", path.string()));
-  std::vector<char> buffer(std::min<std::size_t>(kSpillBytes, std::max(n_rows, n_summary) + 1));
-  for (auto [out, left] : {std::pair<std::ostream*, std::size_t>{&rows, n_rows}, {&summary, n_summary}}) {
+  std::vector<char> buffer(std::min<std::size_t>(kSpillBytes, std::max({n_rows, n_summary, n_grid}) + 1));
+  for (auto [out, left] : {std::pair<std::ostream*, std::size_t>{&rows, n_rows}, {&summary, n_summary}, {grid, n_grid}}) {
+    if (!out) break;  // the grid block is last
     while (left > 0) {
       const std::size_t n = std::min(left, buffer.size());
       if (!in.read(buffer.data(), std::streamsize(n)))
@@ -787,96 +564,11 @@ MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, cons
   return run_tile_pool(tiles, options, make_work, wait);
 }
 
-void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv) {
+void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv,
+              std::ostream* grid) {
   map_csv << map_csv_header(job);
   summary_csv << summary_csv_header(job);
-  for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv);
-}
-
-namespace {
-// The fold and Hopf curves of the map's plane from the continuations in x along its bottom
-// and top edges (`trace(p, to2)`: the branches at p, their points continued in y to to2).
-// Two points of boundary curves are one point of the plane: both parameters within 1e-8
-// of the map's extent (a curve's end on an edge and the special point located there each
-// solve an augmented system, to ~1e-12). The configuration is not compared: a curve and
-// its mirror image (equal balls swapped) are one boundary in the plane, and the curves of
-// distinct equilibria (n balls: the samples of the balanced set) lie ~1e-5 apart or more.
-template <class Point>
-bool same_point(const Point& a, const Point& b, const MapJob& job) {
-  using std::abs;
-  const double sx = abs(job.x.to - job.x.from), sy = abs(job.y.to - job.y.from);
-  return abs(double(a.parameter - b.parameter)) <= 1e-8 * sx && abs(double(a.parameter2 - b.parameter2)) <= 1e-8 * sy;
-}
-
-// A curve traced from the top edge that a curve from the bottom edge already crossed the
-// map with (it starts where that one ends, or ends where it starts) is the same curve:
-// written once.
-template <class Curve>
-bool already_traced(const Curve& c, const std::vector<Curve>& bottom, const MapJob& job) {
-  if (c.points.empty()) return false;
-  for (const auto& k : bottom) {
-    if (k.kind != c.kind || k.points.empty()) continue;
-    for (const auto* end : {&k.points.front(), &k.points.back()})
-      if (same_point(c.points.front(), *end, job) || same_point(c.points.back(), *end, job)) return true;
-  }
-  return false;
-}
-
-template <class BoundaryRunT, class P, class Trace>
-BoundaryRunT along_edges(const MapJob& job, const P& base, Trace trace) {
-  BoundaryRunT all;
-  all.param = job.x.param;
-  all.param2 = job.y.param;
-  all.from = job.x.from, all.to = job.x.to, all.from2 = job.y.from, all.to2 = job.y.to;
-  std::size_t duplicates = 0;
-  decltype(all.curves) bottom;  // the curves from the bottom edge
-  for (const auto& [at, to] : {std::pair{job.y.from, job.y.to}, std::pair{job.y.to, job.y.from}}) {
-    P p = base;
-    set(p, job.x.param, job.x.from);
-    set(p, job.y.param, at);
-    BoundaryRunT part = trace(p, to);
-    const bool top = at != job.y.from;
-    for (auto& c : part.curves) {
-      if (top && already_traced(c, bottom, job)) {
-        ++duplicates;
-        continue;
-      }
-      if (!top) bottom.push_back(c);
-      all.curves.push_back(std::move(c));
-    }
-    for (auto& n : part.notes) all.notes.push_back(std::move(n));
-  }
-  if (duplicates > 0)
-    all.notes.push_back(fmt::format("{} curves traced from the top edge crossed the map along a curve from the "
-                                    "bottom edge: each curve is written once",
-                                    duplicates));
-  all.notes.push_back(
-      "curves found from the fold and Hopf points on the bottom and top edges of the map; a closed curve "
-      "inside the map touching neither edge is not drawn");
-  return all;
-}
-}  // namespace
-
-std::optional<BoundaryRun> map_boundaries(const MapJob& job) {
-  if (job.any_balls || job.stick_set) return std::nullopt;
-  const ContinuationOptions options;
-  return along_edges<BoundaryRun>(job, job.params, [&](const Params& p, double to2) {
-    const ContinuationRun run = continue_branches(p, job.x.param, job.x.to, options, StartSelection{});
-    return continue_boundaries(p, run, job.y.param, to2, options);
-  });
-}
-
-std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job) {
-  if (!job.any_balls || job.stick_set || job.support || job.x.ball_count || job.y.ball_count ||
-      job.params_n.n_balls() < 3)
-    return std::nullopt;
-  const ContinuationOptions options;
-  BoundaryRunN all = along_edges<BoundaryRunN>(job, job.params_n, [&](const ParamsN& p, double to2) {
-    const ContinuationRunN run = continue_branches(p, job.x.param, job.x.to, options, job.sampling);
-    return continue_boundaries(p, run, job.y.param, to2, options);
-  });
-  all.n_balls = job.params_n.n_balls();
-  return all;
+  for (int t = 0; t < tile_count(job); ++t) store.append(t, map_csv, summary_csv, grid);
 }
 
 }  // namespace abu

@@ -45,23 +45,25 @@ namespace {
 
 constexpr int kTagTile = 1, kTagDone = 2;
 
-// A tile on the wire: "tile rows summary cells equilibria fallbacks\n" + rows + summary.
+// A tile on the wire: "tile rows summary grid cells equilibria fallbacks\n" + rows + summary
+// + grid block.
 std::string encode(int tile, const TileText& t) {
-  return fmt::format("{} {} {} {} {} {}\n", tile, t.rows.size(), t.summary.size(), t.cells, t.equilibria,
-                     t.fallbacks) +
-         t.rows + t.summary;
+  return fmt::format("{} {} {} {} {} {} {}\n", tile, t.rows.size(), t.summary.size(), t.grid.size(), t.cells,
+                     t.equilibria, t.fallbacks) +
+         t.rows + t.summary + t.grid;
 }
 
 int decode(const std::string& message, TileText& t) {
   const auto newline = message.find('\n');
   std::istringstream head(message.substr(0, newline));
   int tile = -1;
-  std::size_t rows = 0, summary = 0;
-  head >> tile >> rows >> summary >> t.cells >> t.equilibria >> t.fallbacks;
-  if (newline == std::string::npos || !head || newline + 1 + rows + summary != message.size())
+  std::size_t rows = 0, summary = 0, grid = 0;
+  head >> tile >> rows >> summary >> grid >> t.cells >> t.equilibria >> t.fallbacks;
+  if (newline == std::string::npos || !head || newline + 1 + rows + summary + grid != message.size())
     throw std::runtime_error("MPI: damaged tile message");
   t.rows = message.substr(newline + 1, rows);
   t.summary = message.substr(newline + 1 + rows, summary);
+  t.grid = message.substr(newline + 1 + rows + summary, grid);
   return tile;
 }
 

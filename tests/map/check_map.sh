@@ -131,6 +131,20 @@ for f in stability_omega_mu.png stability_omega_mu.svg vibration_omega_mu.png vi
   check "writes $f" "[ -s '$work/c/$f' ]"
 done
 check "the balanced Hopf curve crosses the map" "grep -v '^#' '$work/c/boundary_omega_mu.csv' | grep -q ',HB,'"
+# The map draws its charts from a compact binary grid; plots/map.gp run by hand on the
+# summary CSV (the other route: gnuplot reads the columns and finds the geometry and the
+# |q| range itself) must give the same pictures, byte for byte.
+if command -v gnuplot >/dev/null; then
+  (cd "$work/c" && gnuplot -e "summary='summary_omega_mu.csv'; curves='boundary_omega_mu.csv'; png_stability='s.png'; \
+svg_stability='s.svg'; png_vibration='v.png'; svg_vibration='v.svg'; xname='omega'; xunit='rad/s'; yname='mu'; \
+yunit='-'; logx='0'; logy='1'; title='$scene'" "$src/plots/map.gp")
+  for f in stability:s vibration:v; do
+    for e in png svg; do
+      check "${f%%:*}.$e from the grid is the chart from the summary" \
+        "cmp -s '$work/c/${f%%:*}_omega_mu.$e' '$work/c/${f##*:}.$e'"
+    done
+  done
+fi
 
 # --- bad input: exit 2, the rule named, nothing written ---------------------------------
 bad() {  # name, expected message fragment, axes...

@@ -1,15 +1,19 @@
 // A stability map from a scene: its axes parsed and checked against the scene's rules
 // (the ball count as an axis on a [balls] ring), the job built (map_driver.hpp), and the
-// whole run: tiles on every thread and MPI rank, resume, the assembled CSVs, the fold /
-// Hopf boundaries and the heat maps, written together (OutputTransaction) or not at all.
-// The command line (src/cli/map_command.cpp) only adds options and signals.
+// run: tiles on every thread and MPI rank, resume, and the fold / Hopf boundaries. The
+// files (the CSVs from the tiles, the boundary CSV, the heat maps) are the output layer's
+// (output/map_files.hpp); the command line (src/cli/map_command.cpp) adds options and signals.
 //
-//   abu::MapJob job = abu::map_job(scene, "omega:50:2000:400", "mu:1e-4:0.1:300:log", request);
-//   abu::MapRunReport r = abu::run_map(job, scene.file, output);
+//   abu::MapJob job = abu::map_job(scene, request);
+//   job.provenance = abu::map_provenance(job, scene.file);        // output/map_files.hpp
+//   abu::MapRunReport r = abu::run_map(job, output);
+//   if (r.outcome == abu::MapRunReport::Outcome::done) abu::write_map_files(job, r, files);
 #pragma once
 
 #include <atomic>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -33,11 +37,13 @@ struct MapRequest {
   /// The command line that determines the output (without threads, resume, output
   /// directory), for the provenance header; n-ball maps get " --set-samples S" added.
   std::string command_line;
+  bool long_rows = false;  ///< map_X_Y.csv, a row per equilibrium per cell (MapJob::long_rows)
 };
 
 /// The map's job: both axes checked (a per-ball axis on every ball count of a ball-count
-/// axis), the cell limit, the parameters (two balls, n balls, or one ring per count).
-/// Throws InputError before any work.
+/// axis), the cell limit, the parameters (two balls, n balls, or one ring per count), the
+/// provenance's command line and notes (the block itself: output/map_files.hpp,
+/// map_provenance). Throws InputError before any work.
 MapJob map_job(const Scene& scene, const MapRequest& request);
 
 struct MapOutput {
@@ -46,14 +52,12 @@ struct MapOutput {
   int threads = 1;
   const std::atomic<bool>* stop = nullptr;  ///< set by a signal: stop after the tiles in progress
   bool progress = false;                    ///< the progress line on stderr (rank 0)
-  bool chart = true, boundaries = true;
-  bool long_csv = false;  ///< map_X_Y.csv, a row per equilibrium per cell (the summary is always written)
-  std::string title;  ///< the charts' subtitle (the scene file)
+  bool boundaries = true;                   ///< the fold/Hopf curves (continuation)
 };
 
 struct MapRunReport {
   enum class Outcome {
-    done,         ///< every file written
+    done,         ///< every tile on disk (and the boundaries): the files can be written
     interrupted,  ///< stopped; the finished tiles stay in `tile_directory`
     refused,      ///< rank > 0: rank 0 refused the input (it says why)
     other_rank,   ///< rank > 0: done, rank 0 writes
@@ -61,12 +65,16 @@ struct MapRunReport {
   MapRunStats stats;
   int tiles_total = 0, tiles_kept = 0;
   std::filesystem::path tile_directory;
+  std::shared_ptr<TileStore> store;           ///< done: the finished tiles (rank 0), locked
+  std::optional<BoundaryRun> boundaries;      ///< two balls, when asked for
+  std::optional<BoundaryRunN> boundaries_n;   ///< n >= 3 balls, when asked for
   double boundary_seconds = -1;  ///< < 0: no boundaries computed
   std::string boundary_note;     ///< why there are none, if not asked-for-and-done
 };
 
-/// Runs the map (every rank calls it in an MPI build). Throws InputError (tile store
-/// rules), NumericalError, std::runtime_error (I/O, gnuplot).
+/// Runs the map (every rank calls it in an MPI build): the tiles, then (rank 0, if asked
+/// for) the boundaries. `job.provenance` must be set. Throws InputError (tile store rules),
+/// NumericalError, std::runtime_error (I/O).
 MapRunReport run_map(const MapJob& job, const MapOutput& output);
 
 }  // namespace abu

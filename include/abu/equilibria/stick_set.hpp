@@ -34,6 +34,12 @@ struct StickSetOptions {
   double area_tolerance = 1e-10;  ///< absolute [rad^2] per unit beta_1, adaptive Simpson
   bool trace = true;           ///< trace the boundary curves (two balls)
   long grid_budget = 1L << 21;  ///< n >= 3: at most this many grid points, G = floor(budget^(1/n))
+  /// Only what a verdict reads (area, area_fraction, whole_torus, the components,
+  /// balanced_exists, V and V_E with where they are attained): E = T^n when the bound
+  /// |G| (U + sum m_i l_i) <= min mu_i l_i proves it (any n, no scan); else, two balls,
+  /// computed exactly as without it, the integrals of |q| (mean_q_abs, each component's
+  /// q_abs_integral), the spreads and max_abs_s left 0 (model.md §14.10).
+  bool verdict_only = false;
 };
 
 /// One traced piece of the boundary of E: a curve s_ball = sign on which the other

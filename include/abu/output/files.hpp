@@ -42,6 +42,9 @@ class OutputTransaction {
   /// An (empty, exclusively created) temporary next to `target` for another program
   /// (gnuplot) or a stream to write. A chart that failed is not committed (run_gnuplot).
   std::filesystem::path reserve(const std::filesystem::path& target);
+  /// The same for a data file a stream writes here (a CSV): never taken for a chart's
+  /// output, so a chart that fails to draw from it does not keep it from being committed.
+  std::filesystem::path reserve_data(const std::filesystem::path& target);
   void commit();
 
  private:

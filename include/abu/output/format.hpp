@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "abu/core/escaped.hpp"  // escaped(): terminal text
+
 namespace abu {
 
 /// Shortest decimal that reads back to the same double (fmt's "{}", locale-free).
@@ -15,8 +17,5 @@ std::string format_number(double value, std::string_view what = "value");
 /// character as \u00XX, so that a scene path or command line with any byte is valid JSON.
 std::string json_string(std::string_view s);
 
-/// `text` with every control character (and DEL) written as an escape (\n, \t, \xHH), for
-/// terminal messages and CSV comment lines: a scene string or path cannot start a line.
-std::string escaped(std::string_view text);
 
 }  // namespace abu

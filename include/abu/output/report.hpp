@@ -41,11 +41,14 @@ std::string equilibria_report(const AnalysisN& a, const ParamsN& p, SpeedUnit un
 template <class A, int N>
 std::string creep_lines(const A& a, const std::vector<KappaSensitivity<N>>& kappa, std::string_view prefix);
 
-/// The JSON form; kappa: per equilibrium, as analyze_equilibria computed it.
+/// The JSON form; kappa: per equilibrium, as analyze_equilibria computed it; `dry` the
+/// dry-friction verdict as the table and the CSV carry it (dry_friction_json).
 std::string equilibria_json(const Analysis& a, std::string_view command_line, std::string_view scene_file,
-                            const Params& p, const std::vector<KappaSensitivity<2>>& kappa);
+                            const Params& p, const std::vector<KappaSensitivity<2>>& kappa,
+                            const DryFrictionVerdict& dry = {});
 std::string equilibria_json(const AnalysisN& a, std::string_view command_line, std::string_view scene_file,
-                            const ParamsN& p, const std::vector<KappaSensitivity<any_balls>>& kappa);
+                            const ParamsN& p, const std::vector<KappaSensitivity<any_balls>>& kappa,
+                            const DryFrictionVerdict& dry = {});
 std::string equilibria_table(const Analysis& a, const Params& p);
 std::string equilibria_table(const AnalysisN& a, const ParamsN& p);
 

@@ -11,6 +11,7 @@
 //   std::string csv = abu::campbell_csv(samples, header, abu::SpeedUnit::rpm);
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -137,16 +138,24 @@ StabilityRanges stability_ranges(const ContinuationRun& run);
 /// Maximal runs of consecutive grid values where `flag` holds, with grid-bracketed ends.
 std::vector<Range> grid_ranges(const std::vector<double>& values, const std::vector<bool>& flag);
 
-/// A map with an omega axis (`map`'s summary_X_Y.csv text, read by column names
-/// `balanced_stable` and `n_stable`): per value of the other axis, the omega ranges where
-/// a balanced state is stable and where nothing is. `summary_<x>_<y>.json` and stderr
-/// lines (at most `max_lines` rows). Empty strings when the CSV lacks those columns or
-/// neither axis is omega.
+/// What the speed ranges of a two-ball map read per cell (output/map_files.hpp builds it
+/// from the tiles' grid blocks): the axes' values and, per cell at ix * y.size() + iy,
+/// bit 0 = a balanced state is stable (the summary's balanced_stable = 1), bit 1 = some
+/// state is stable (n_stable > 0). Empty for the other maps.
+struct MapVerdicts {
+  std::vector<double> x, y;
+  std::vector<std::uint8_t> cells;
+  static constexpr std::uint8_t balanced_stable = 1, some_stable = 2;
+};
+
+/// A map with an omega axis: per value of the other axis, the omega ranges where a
+/// balanced state is stable and where nothing is. `summary_<x>_<y>.json` and stderr lines
+/// (at most `max_lines` rows). Empty strings when `v` is empty or neither axis is omega.
 struct MapRangesOutput {
   std::string json, text;
 };
 template <int N>
-MapRangesOutput map_ranges(std::string_view summary_csv, std::string_view x, std::string_view y,
+MapRangesOutput map_ranges(const MapVerdicts& v, std::string_view x, std::string_view y,
                            std::string_view command_line, std::string_view scene_file, const ParamsT<double, N>& p,
                            SpeedUnit unit, int max_lines);
 

@@ -10,7 +10,7 @@
 //   abu::TileStore store(dir / abu::tile_directory_name(job), job, abu::TileStore::Mode::fresh);
 //   abu::MapRunStats stats = abu::compute_tiles(job, store.missing(), options,
 //       [&](int tile, abu::TileText&& text) { store.put(tile, text); });
-//   abu::assemble(job, store, long_csv_stream, summary_csv_stream);
+//   abu::assemble(job, store, long_csv_stream, summary_csv_stream, &grid_stream);
 #pragma once
 
 #include <atomic>
@@ -45,14 +45,21 @@ inline constexpr std::size_t kWorkerBaseBytes = std::size_t(16) << 20;
 /// Bytes of CSV per cell of a two-ball map (long rows and summary, measured on the default
 /// scene, rounded up): the up-front disk and memory estimate (docs/robustness.md).
 inline constexpr std::size_t kMapBytesPerCell = 900;
+/// The same without the long rows: the summary row and the grid block (map --long not given).
+inline constexpr std::size_t kSummaryBytesPerCell = 160;
 
 /// Everything that determines a map's output.
 struct MapJob {
   Params params;  ///< two balls (any_balls false)
   Axis x, y;
   CellMethod method = CellMethod::fast;
-  /// Provenance comment block ("# " lines) on top of both CSVs.
+  /// Provenance comment block ("# " lines) on top of both CSVs: output/map_files.hpp,
+  /// map_provenance(), writes it from the two fields below and the parameters.
   std::string provenance;
+  /// The command line the provenance names (the request's, with the options the job adds).
+  std::string command_line;
+  /// Comment lines after the provenance block (the ball-count axis, lugre).
+  std::string provenance_notes;
   /// Any ball count: a scene with n != 2 balls, or the ball count as an axis. Cells by
   /// CellAnalyzerN (model.md §13.8), the n-ball CSV columns; `method` is not used.
   bool any_balls = false;
@@ -64,6 +71,9 @@ struct MapJob {
   /// count (no ball-count axis), any_balls false, `method` and `sampling` not used.
   bool stick_set = false;
   StickSetOptions stick;
+  /// The long CSV's rows (a row per equilibrium per cell, ~0.8 kB a cell) are formatted
+  /// and kept in the tiles only when asked for (`map --long`); part of the tiles' manifest.
+  bool long_rows = false;
   /// An anisotropic support (model.md §10): `params_n` carries its mean, `any_balls` is set,
   /// cells hold the balanced states judged by Floquet multipliers (§10.12), the summary
   /// gains rho_abs_max, and there are no fold/Hopf boundaries (they are the mean system's).
@@ -86,9 +96,23 @@ struct CellWorkspace {
   MapCellN cell_n;
 };
 
-/// The computed text of one tile: its rows of the long CSV and of the summary CSV.
+/// What the charts and the speed ranges need of one cell (two-ball and n-ball maps; a
+/// stick-set map has none), in a tile's grid block: three float64 per cell in the summary's
+/// order (ix outer, iy inner), the same values the summary writes, in this machine's byte
+/// order.
+struct MapCellFacts {
+  /// 0 no balanced state, 1 exists but unstable, 2 partly stable (n balls: some samples
+  /// of the balanced set), 3 stable (two balls: balanced_stable = 1; n balls: every sample)
+  double category = 0;
+  double best_q_abs = 0;  ///< |q| of the stable state of least |q| [m]; NaN: nothing is stable
+  double balanced_stable_fraction = 0;  ///< n balls; NaN: two balls, or no samples
+};
+static_assert(sizeof(MapCellFacts) == 3 * sizeof(double));
+
+/// The computed text of one tile: its rows of the long CSV (empty unless job.long_rows),
+/// of the summary CSV, and its grid block (MapCellFacts per cell, as bytes).
 struct TileText {
-  std::string rows, summary;
+  std::string rows, summary, grid;
   long cells = 0, equilibria = 0, fallbacks = 0;
 };
 
@@ -137,8 +161,9 @@ class TileStore {
   /// Tiles not on disk yet, ascending.
   std::vector<int> missing() const;
   void put(int tile, const TileText& text) const;
-  /// Appends tile `tile`'s long rows to `rows` and its summary rows to `summary`.
-  void append(int tile, std::ostream& rows, std::ostream& summary) const;
+  /// Appends tile `tile`'s long rows to `rows`, its summary rows to `summary` and its grid
+  /// block to `grid` (if not null).
+  void append(int tile, std::ostream& rows, std::ostream& summary, std::ostream* grid = nullptr) const;
   /// Removes the directory (after the assembled files are in place).
   void remove() const;
   const std::filesystem::path& directory() const { return directory_; }
@@ -221,7 +246,9 @@ std::optional<BoundaryRun> map_boundaries(const MapJob& job);
 /// Empty for two-ball jobs and ball-count axes.
 std::optional<BoundaryRunN> map_boundaries_n(const MapJob& job);
 
-/// Writes the two CSVs: headers, then every tile's rows in tile order.
-void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv);
+/// Writes the two CSVs: headers, then every tile's rows in tile order; and, if `grid` is
+/// not null, every tile's grid block (the MapCellFacts of every cell, in the summary's order).
+void assemble(const MapJob& job, const TileStore& store, std::ostream& map_csv, std::ostream& summary_csv,
+              std::ostream* grid = nullptr);
 
 }  // namespace abu
