@@ -2,17 +2,19 @@
 // orbits: benchmark", model.md §17.9): the viscous two-ball scene (the default rotor, viscous
 // d = 1e-4), the cycle branch of its Hopf point at omega_H = 281.31 rad/s.
 //
-// 1. A reference branch (M = 40, every tolerance 1e-14, chord corrector) of `steps` steps;
-//    the reference orbit is its orbit number `steps / 2` (away from the fold of cycles, where
-//    an orbit at a fixed parameter is ill-conditioned).
-// 2. Per configuration (intervals, Newton, tolerances of the state, of the Newton matrix's
-//    and of the Floquet transition matrices): CPU time per orbit over a branch of `steps`
-//    steps, and the same configuration's orbit at the reference orbit's parameter
+// 1. A reference branch (every tolerance 1e-14, full Newton) of `steps` steps; the reference
+//    orbit is its orbit number `steps / 2`.
+// 2. Per configuration (intervals at the first orbit, Newton, tolerances of the state, of the
+//    Newton matrix's and of the Floquet transition matrices): CPU time per orbit over a branch
+//    of `steps` steps, and the same configuration's orbit at the reference orbit's parameter
 //    (correct_cycle from the reference orbit): its period's and its multipliers' errors
-//    against the reference orbit. AUTO-07p's figure for comparison: 7.7 ms per orbit (NTST = 50,
-//    NCOL = 4, one thread, period to 1e-11; issue 14, not rebuilt here).
-// Process CPU time (the machine is shared). Optional second argument: one configuration.
-//   build/tests/benchmarks/bench_cycles [steps] [configuration, -1 all] [light]
+//    against the reference orbit.
+// Third argument "light": the lightly damped support of model.md §17.10; "long": the branch
+// followed from the Hopf point until its period exceeds 7 s (the homoclinic approach of
+// model.md §17.9), CPU time per orbit and the mesh at the end, no reference.
+// Process CPU time (the machine is shared). AUTO-07p's figures, measured beside it on the
+// same branch, are in docs/developers.md.
+//   build/tests/benchmarks/bench_cycles [steps] [configuration, -1 all] [light | long]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -56,13 +58,39 @@ double multiplier_error(const abu::CycleOrbit& a, const abu::CycleOrbit& ref) {
   return worst;
 }
 
+// The branch from the Hopf point until the period exceeds 7 s (the branch ends there: the
+// period bound of CycleOptions), in the fast configuration (0) or the defaults (1).
+int long_run(const abu::Params& p, abu::ParamRef omega, const abu::SpecialPoint& hb, int steps, int only) {
+  fmt::print("| configuration | orbits | CPU [s] | ms CPU per orbit | last period [s] | last omega [rad/s] | meshes "
+             "re-chosen, intervals at the end | LPC, PD, NS |\n|---|---|---|---|---|---|---|---|\n");
+  const Config configs[] = {{5, true, 1e-10, 1e-4, 1e-8}, {5, true, 1e-13, 1e-6, 1e-11}};
+  const char* names[] = {"fast (1e-10 / 1e-4 / 1e-8)", "defaults (1e-13 / 1e-6 / 1e-11)"};
+  for (int ci = 0; ci < 2; ++ci) {
+    if (only >= 0 && ci != only) continue;
+    abu::CycleOptions o = options(configs[ci], steps);
+    o.max_period_factor = 7.0 / (2 * 3.14159265358979323846 / hb.frequency);
+    const std::clock_t c0 = std::clock();
+    const abu::CycleBranch c = abu::continue_cycles(p, omega, hb, 50.0, 900.0, o);
+    const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+    if (c.orbits.empty()) return fmt::print(stderr, "{}: {}\n", names[ci], c.reason), 1;
+    std::string specials;
+    for (const auto& sp : c.specials) specials += fmt::format("{}{} {:.10g}", specials.empty() ? "" : ", ", sp.label, sp.parameter);
+    fmt::print("| {} | {} | {:.2f} | {:.2f} | {:.4f} | {:.12g} | {}, {} | {} |\n", names[ci], c.orbits.size(), cpu,
+               1e3 * cpu / double(c.orbits.size()), c.orbits.back().period, c.orbits.back().parameter, c.remeshes,
+               c.intervals, specials);
+    if (c.orbits.back().period < 6.5) fmt::print(stderr, "{}: stopped at T = {} s: {}\n", names[ci], c.orbits.back().period, c.reason);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   abu::Params p;
   // Third argument "light": the lightly damped support of model.md §17.10 (c = 0.05 N s/m),
   // whose orbits are well conditioned at a fixed omega (no fold of cycles nearby).
-  const bool light = argc > 3 && std::string(argv[3]) == "light";
+  const std::string mode = argc > 3 ? std::string(argv[3]) : std::string();
+  const bool light = mode == "light", long_branch = mode == "long";
   p.rotor = {0.12, 7500.0, light ? 0.05 : 2.0, 6e-7};
   p.omega = light ? 2000.0 : 900.0;
   p.law = abu::FrictionLaw::viscous;
@@ -83,6 +111,7 @@ int main(int argc, char** argv) {
   // Full Newton: the reference orbit does not depend on the chord corrector's stopping rule.
   const Config reference{40, false, 1e-14, 1e-14, 1e-14};
   abu::CycleOrbit ref;
+  if (long_branch) return long_run(p, omega, *hb, steps, only);
   if (only < 0) {
     const abu::CycleBranch r = abu::continue_cycles(p, omega, *hb, 50.0, 900.0, options(reference, steps));
     if (r.orbits.size() < 3) return fmt::print(stderr, "reference branch: {}\n", r.reason), 1;
@@ -117,9 +146,9 @@ int main(int argc, char** argv) {
       {40, true, 1e-13, 1e-6, 1e-11, false},  // 2 without it (the defaults of stop 23)
       {5, true, 1e-10, 1e-4, 1e-8, true, false},  // 12 with the branch's LPC interpolated, not located
   };
-  fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | x AUTO 7.7 ms | period error | "
+  fmt::print("\n| M | Newton | rtol state / Newton matrix / Floquet | ms CPU per orbit | period error | "
              "multiplier error | steps per orbit (state / Newton / Floquet) | Newton it. per orbit | orbits |\n"
-             "|---|---|---|---|---|---|---|---|---|---|\n");
+             "|---|---|---|---|---|---|---|---|---|\n");
   for (int ci = 0; ci < int(std::size(configs)); ++ci) {
     if (only >= 0 && ci != only) continue;
     const Config& cf = configs[ci];
@@ -141,9 +170,9 @@ int main(int argc, char** argv) {
                                : cf.extrapolate ? fmt::format("chord, {} extrap.", c.extrapolated_matrices)
                                                 : std::string("chord");
     const std::string specials = cf.locate ? "" : ", LPC interp.";
-    fmt::print("| {} | {} | {:.0e} / {:.0e} / {:.0e} | {:.2f} | {:.2f} | {} | {} | {:.0f} / {:.0f} / {:.0f} | {:.1f} | {} |\n",
+    fmt::print("| {} | {} | {:.0e} / {:.0e} / {:.0e} | {:.2f} | {} | {} | {:.0f} / {:.0f} / {:.0f} | {:.1f} | {} |\n",
                cf.intervals, newton + specials, cf.rtol, cf.chord ? cf.newton_rtol : cf.rtol,
-               cf.chord ? cf.floquet_rtol : cf.rtol, 1e3 * cpu / n, 1e3 * cpu / n / 7.7, period_error, mult_error,
+               cf.chord ? cf.floquet_rtol : cf.rtol, 1e3 * cpu / n, period_error, mult_error,
                double(c.state_steps) / n, double(c.newton_steps) / n, double(c.floquet_steps) / n, double(c.newton_iterations) / n, c.orbits.size());
   }
   return 0;
