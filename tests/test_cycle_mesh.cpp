@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../src/dynamics/cycle_mesh.hpp"
+#include "../src/dynamics/cycle_period_shift.hpp"
 #include "../src/dynamics/cyclic_jacobian.hpp"
 
 namespace {
@@ -97,4 +98,47 @@ TEST_CASE("cycle shooting: the mesh spreads the growth evenly, with hysteresis",
   for (std::size_t i = 1; i < theta.size(); ++i) CHECK(theta[i] > theta[i - 1]);
   // At most m_max intervals.
   CHECK(abu::detail::equidistributed_nodes(uniform, {0, 0, 20, 0, 0}, 20.0, 3.0, 2, 4).size() == 4);
+}
+
+TEST_CASE("cycle shooting: the Newton matrix carried to another period by the linearized flow", "[periodic_orbits]") {
+  // A linear flow y' = A y + g s (A with a fast lightly damped pair like the rotor's, -8 +- 530i
+  // 1/s, and slow entries; s the scaled parameter): Phi(h) = e^{A h}, the parameter column
+  // z(h) = int_0^h e^{A t} g dt and f(phi(h)) = A phi(h) y0 + ... are known at any h. Blocks
+  // integrated at h (here: the exact exponentials at h, weighted 1/w) carried by dh = 1e-3 s
+  // must equal those at h + dh: for a linear flow the carried blocks are exact, so the
+  // agreement is the exponentials' rounding (1e-12 relative, asserted 1e-10); the unshifted
+  // blocks differ by ~|A| dh ~ 0.5 (the fast pair's rotation), which is what the shift removes.
+  using abu::cycle_problem::Generator;
+  constexpr int n = abu::cycle_flow::kDim;
+  Generator a = Generator::Zero();
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) a(i, j) = 0.3 * g(rng);
+  a(0, 0) = a(1, 1) = -8.0;
+  a(0, 1) = 530.0;
+  a(1, 0) = -530.0;
+  for (int i = 0; i < n; ++i) a(i, n) = g(rng);
+  Eigen::Matrix<double, n, 1> y0;
+  for (int i = 0; i < n; ++i) y0(i) = g(rng);
+  const double w = 0.7, h = 0.12, dh = 1e-3;
+  // The blocks at length x: Phi / w, the period column A phi + g s (s = 0: the field at the end
+  // is A Phi y0, its scale factor 1 here), the parameter column z.
+  const auto blocks = [&](double x) {
+    abu::detail::CyclicJacobian<n> J;
+    J.resize(1);
+    const Generator e = Generator(a * x).exp();
+    J.diag[0] = e.topLeftCorner<n, n>() / w;
+    J.border[0].col(0) = a.topLeftCorner<n, n>() * (e.topLeftCorner<n, n>() * y0);
+    J.border[0].col(1) = e.topRightCorner<n, 1>();
+    return J;
+  };
+  const abu::detail::CyclicJacobian<n> at_h = blocks(h), want = blocks(h + dh);
+  const abu::detail::CyclicJacobian<n> got = abu::cycle_problem::shift_periods(at_h, {a}, {dh});
+  CHECK((got.diag[0] - want.diag[0]).norm() <= 1e-10 * want.diag[0].norm());
+  CHECK((got.border[0] - want.border[0]).norm() <= 1e-10 * want.border[0].norm());
+  CHECK((at_h.diag[0] - want.diag[0]).norm() > 0.1 * want.diag[0].norm());
+  // dh = 0 leaves the blocks as they are.
+  const abu::detail::CyclicJacobian<n> same = abu::cycle_problem::shift_periods(at_h, {a}, {0.0});
+  CHECK(same.diag[0] == at_h.diag[0]);
 }

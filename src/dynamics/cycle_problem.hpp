@@ -32,6 +32,7 @@
 #include "abu/model/model.hpp"
 #include "cycle_flow.hpp"
 #include "cycle_mesh.hpp"
+#include "cycle_period_shift.hpp"
 #include "cyclic_jacobian.hpp"
 #include "shooting_flow.hpp"
 #include "stiff_cycles.hpp"
@@ -462,7 +463,7 @@ class CycleProblem {
     // at hand (the last accepted orbit's kept, the pending one's cached); else integrated.
     if (Chord && o_.extrapolate_newton_matrix && !radau_ && kept_count_ >= 1 && kept_[2].u.size() == seg.from.size() &&
         kept_[2].u == seg.from && cache_accurate_ && cache_.u.size() == seg.to.size() && cache_.u == seg.to)
-      segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian});
+      segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian, {}, {}});
     struct Context {
       CycleProblem* self;
       unsigned k;
@@ -543,8 +544,7 @@ class CycleProblem {
     // for the next predicted orbit's extrapolation.
     if (Chord && cache_accurate_ && cache_.ok && cache_.u.size() == u.size() && cache_.u == u) {
       std::rotate(kept_.begin(), kept_.begin() + 1, kept_.end());
-      kept_.back().u = u;
-      kept_.back().jacobian = cache_.jacobian;
+      kept_.back() = kept_at(u, cache_.jacobian);
       kept_count_ = std::min(kept_count_ + 1, int(kept_.size()));
     } else {
       kept_count_ = 0;
@@ -628,7 +628,7 @@ class CycleProblem {
         t = arclength::tangent(*this, full.jacobian, previous);
         u = v;
         kept_count_ = 1;
-        kept_.back() = Kept{v, full.jacobian};
+        kept_.back() = kept_at(v, full.jacobian);
         set_phase(u);
         ++remeshes_;
         return;
@@ -662,10 +662,11 @@ class CycleProblem {
       const double w0 = (x - s1) * (x - s2) / ((s0 - s1) * (s0 - s2));
       const double w1 = (x - s0) * (x - s2) / ((s1 - s0) * (s1 - s2));
       const double w2 = (x - s0) * (x - s1) / ((s2 - s0) * (s2 - s1));
-      e.jacobian = Jacobian::combination(w0, a.jacobian, w1, b.jacobian, w2, &c.jacobian);
+      const Jacobian ja = shifted(a, u), jb = shifted(b, u), jc = shifted(c, u);
+      e.jacobian = Jacobian::combination(w0, ja, w1, jb, w2, &jc);
     } else {
       const double theta = s2 > s1 ? (x - s2) / (s2 - s1) : 0.0;
-      e.jacobian = Jacobian::combination(1 + theta, c.jacobian, -theta, b.jacobian);
+      e.jacobian = Jacobian::combination(1 + theta, shifted(c, u), -theta, shifted(b, u));
     }
     return finish_estimate(e, u);
   }
@@ -838,7 +839,27 @@ class CycleProblem {
   struct Kept {
     Vec u;
     Jacobian jacobian;
+    std::vector<double> lengths;          // its intervals' lengths h_j [s]
+    std::vector<Generator> generators;    // at its intervals' ends (cycle_period_shift.hpp)
   };
+  // An accepted orbit's Newton matrix with what moves it to another period.
+  Kept kept_at(const Vec& u, const Jacobian& J) const {
+    Kept k{u, J, {}, {}};
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    for (int j = 0; j < m_; ++j) {
+      k.lengths.push_back(interval_length(u, j));
+      k.generators.push_back(period_shift_generator(ctx_, point(u, (j + 1) % m_)));
+    }
+    return k;
+  }
+  // Kept k's Newton matrix at the intervals' lengths of u.
+  Jacobian shifted(const Kept& k, const Vec& u) const {
+    std::vector<double> dh(static_cast<std::size_t>(m_));
+    for (int j = 0; j < m_; ++j)
+      dh[std::size_t(j)] = o_.shift_newton_matrix ? interval_length(u, j) - k.lengths[std::size_t(j)] : 0.0;
+    return shift_periods(k.jacobian, k.generators, dh);
+  }
   std::array<Kept, 3> kept_;
   int kept_count_ = 0;
   mutable Evaluated extrapolation_;

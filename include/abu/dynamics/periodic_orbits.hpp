@@ -43,6 +43,10 @@ struct CycleOptions {
   /// Newton's matrix kept from the predicted orbit, the iterations integrating the state
   /// only (model.md §17.7); false: full Newton, the variational equations every iteration.
   bool chord_corrector = true;
+  /// The kept Newton matrices moved to the predicted orbit's period by the linearized flow at
+  /// each interval's end before they are extrapolated (model.md §17.7, the fast modes'
+  /// rotation with the period).
+  bool shift_newton_matrix = true;
   double rtol = 1e-13;         ///< integrator tolerance on the scaled state (the residuals: the orbit's accuracy)
   /// Tolerances of the variational equations (model.md §17.8), never tighter than rtol:
   /// the chord corrector's Newton matrix at the predicted orbit (it sets only the corrector's
