@@ -348,6 +348,11 @@ class CycleProblem {
     }
     orbit.state0.resize(kDim);
     for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = point(u, 0)(i) * ctx_.scale(i);
+    for (int j = 0; j < m_; ++j) {
+      std::vector<double> row{mesh_.node(j)};
+      for (int i = 0; i < kDim; ++i) row.push_back(point(u, j)(i) * ctx_.scale(i));
+      orbit.profile.push_back(std::move(row));
+    }
     pending_ = orbit;
     pending_trivial_ = tv.trivial;
     pending_tests_ = out.tests;

@@ -105,6 +105,9 @@ struct CycleOrbit {
   int unresolved_multipliers = 0;
   double liouville_error = 0;
   std::vector<double> state0;   ///< x(0) in SI (model.md (2.2)), the orbit's phase origin
+  /// The shooting points: per point its phase theta_j in [0, 1) and x(theta_j T) in SI (the
+  /// start of an independent recomputation, tests/reference/cycle_orbit_reference.py).
+  std::vector<std::vector<double>> profile;
 };
 
 /// A located special point of a cycle branch: LPC (fold of cycles), PD (a multiplier
