@@ -51,6 +51,7 @@ struct Case {
   std::vector<Eigen::MatrixXd> factors;
   std::vector<std::complex<double>> directions;  // exact eigenvalues: exp(log_modulus) * direction
   std::vector<double> log_moduli;
+  std::vector<Eigen::MatrixXd> bases;  // Z_k: column i is the chain of the i-th diagonal entry
 };
 
 Case build(const std::vector<Block>& blocks, int m, unsigned seed) {
@@ -78,6 +79,7 @@ Case build(const std::vector<Block>& blocks, int m, unsigned seed) {
     const Eigen::MatrixXd& next = z[std::size_t((k + 1) % m)];
     c.factors.push_back(next * d * z[std::size_t(k)].inverse());
   }
+  c.bases = z;
   for (const Block& b : blocks) {
     const double total = std::remainder(m * b.angle, 2 * std::numbers::pi);
     const std::complex<double> dir = std::polar(1.0, total);
@@ -171,4 +173,51 @@ TEST_CASE("product eigenvalues: bad factors are refused with a reason") {
   const abu::ProductEigenvalues e = abu::product_eigenvalues({bad});
   CHECK(e.status.outcome == abu::Outcome::numerical_issue);
   CHECK_FALSE(e.status.reason.empty());
+}
+
+TEST_CASE("deflated product eigenvalues: the known chain's multiplier apart, the others as the product's") {
+  // The products of the first test case's kind with a trivial multiplier 1 whose eigenvector
+  // chain Z_k e_0 is given (an orbit's flow direction at its shooting points), beside e^60, a
+  // complex pair and small ones. Deflated along the exact chain, every eigenvalue comes out as
+  // product_eigenvalues gets it (1e-9 in log modulus and direction), the trivial one at its
+  // index after e^60, and the dropped part (the chain's mismatch) is at rounding.
+  const int m = 30;
+  const std::vector<Block> blocks = {
+      {0.0, 0.0, false},
+      {60.0 / m, 0.0, false},
+      {std::log(0.5) / m, 0.07, true},
+      {std::log(1e-3) / m, 0.0, false},
+      {std::log(1e-12) / m, 1.1, true},
+  };
+  const Case c = build(blocks, m, 17);
+  // The chain: A_k (Z_k e_0) = Z_{k+1} D_k e_0 = Z_{k+1} e_0 (the first block is 1 per factor),
+  // exact by construction (an explicit product could not give it: its rounding, eps e^60, is
+  // larger than the eigenvalue).
+  const Eigen::Index n = c.factors.front().rows();
+  std::vector<Eigen::VectorXd> chain;
+  for (int k = 0; k < m; ++k) chain.push_back(c.bases[std::size_t(k)].col(0).normalized());
+  const abu::DeflatedProductEigenvalues d = abu::deflated_product_eigenvalues(c.factors, chain);
+  check(c, d.eigen, 1e-9);
+  CHECK(d.trivial == 1);
+  CHECK(std::abs(d.eigen.values[d.trivial] - 1.0) < 1e-9);
+  CHECK(d.chain_error < 1e-12);
+  // A chain vector off by 1e-6 rad (the flow vector at a point of an orbit with a residual):
+  // that much is dropped, reported as chain_error, and the eigenvalues move by about as much.
+  std::vector<Eigen::VectorXd> off = chain;
+  Eigen::VectorXd tilt = Eigen::VectorXd::Unit(n, 2);
+  tilt -= tilt.dot(off[5]) * off[5];
+  off[5] = (off[5] + 1e-6 * tilt.normalized()).normalized();
+  const abu::DeflatedProductEigenvalues e = abu::deflated_product_eigenvalues(c.factors, off);
+  CHECK(e.chain_error > 1e-8);
+  CHECK(e.chain_error < 1e-4);
+  check(c, e.eigen, 1e-4);
+}
+
+TEST_CASE("deflated product eigenvalues: bad chains are refused with a reason") {
+  const std::vector<Eigen::MatrixXd> f(2, Eigen::MatrixXd::Identity(3, 3));
+  CHECK_FALSE(abu::deflated_product_eigenvalues(f, {Eigen::VectorXd::Ones(3)}).eigen.status.ok());
+  CHECK_FALSE(abu::deflated_product_eigenvalues(f, {Eigen::VectorXd::Ones(3), Eigen::VectorXd::Zero(3)}).eigen.status.ok());
+  const abu::DeflatedProductEigenvalues ok = abu::deflated_product_eigenvalues(f, {Eigen::VectorXd::Ones(3), Eigen::VectorXd::Ones(3)});
+  REQUIRE(ok.eigen.status.ok());
+  for (const auto& v : ok.eigen.values) CHECK(std::abs(v - 1.0) < 1e-14);
 }

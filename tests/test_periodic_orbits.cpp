@@ -46,9 +46,10 @@ TEST_CASE("periodic orbits: viscous cycles from the Hopf point, trivial multipli
   REQUIRE(hb.lyapunov > 0);
   abu::CycleOptions o;
   o.first_amplitude = 2e-2;
-  o.continuation.max_steps = 20;
+  // 14 steps of the default length (the orbit's L2 norm, model.md §17.7) reach T = 1.011 T_H.
+  o.continuation.max_steps = 14;
   const abu::CycleBranch c = abu::continue_cycles(viscous_params(), *abu::parse_param("omega", 2), hb, 50.0, 900.0, o);
-  REQUIRE(c.orbits.size() >= 15);
+  REQUIRE(c.orbits.size() >= 12);
   const double pH = c.hopf_parameter;
   for (const abu::CycleOrbit& orbit : c.orbits) {
     INFO("omega " << orbit.parameter << " period " << orbit.period);
@@ -141,12 +142,14 @@ TEST_CASE("periodic orbits: the peak of cyclic samples from values and rates (qu
 
 TEST_CASE("periodic orbits: the extrapolated Newton matrix gives the integrated one's orbits") {
   // The chord corrector's Newton matrix at a predicted orbit, extrapolated from the last
-  // three accepted orbits (model.md §17.6), changes only the corrector's contraction, not
+  // three accepted orbits (model.md §17.7), changes only the corrector's contraction, not
   // the orbits it converges to: the same branch (the fast configuration of model.md §17.9,
   // M = 5, state 1e-10, Newton matrix 1e-4, Floquet 1e-8) with and without it. Each orbit is
   // converged to Newton steps of 10 rtol = 1e-9 (scaled unknowns), so parameter and period
-  // agree to 1e-8 relative, the multipliers (integrated to 1e-8) to 1e-6 relative to
-  // max(|mu|, 1e-3); a wrong matrix (a sign, a stale phase row) would make the chord fail or
+  // agree to 1e-8 relative. The multipliers are integrated to 1e-8 relative to each factor
+  // (|Phi_j| ~ 1 here), so each carries ~1e-8 absolute error; the two runs stop their Newton
+  // iterations at different iterates (the extrapolated matrix contracts faster), so those errors
+  // are independent: 1e-5 relative to max(|mu|, 1e-3) (1e-8 / 1e-3). A wrong matrix (a sign, a stale phase row) would make the chord fail or
   // stall, and the iterations per orbit are held to 1.5 times the integrated matrix's.
   const abu::SpecialPoint hb = viscous_hopf();
   const abu::ParamRef omega = *abu::parse_param("omega", 2);
@@ -181,7 +184,7 @@ TEST_CASE("periodic orbits: the extrapolated Newton matrix gives the integrated 
   INFO("parameter " << worst_parameter << ", period " << worst_period << ", multipliers " << worst_multiplier);
   CHECK(worst_parameter < 1e-8);
   CHECK(worst_period < 1e-8);
-  CHECK(worst_multiplier < 1e-6);
+  CHECK(worst_multiplier < 1e-5);
   CHECK(extrapolated.specials.size() == integrated.specials.size());
   // Make the figures visible in the test log.
   WARN("extrapolated against integrated: parameter " << worst_parameter << ", period " << worst_period

@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -29,6 +31,9 @@
 #include "abu/linear/floquet.hpp"
 #include "abu/model/model.hpp"
 #include "cycle_flow.hpp"
+#include "cycle_mesh.hpp"
+#include "cycle_period_shift.hpp"
+#include "cyclic_jacobian.hpp"
 #include "shooting_flow.hpp"
 #include "stiff_cycles.hpp"
 
@@ -61,14 +66,24 @@ inline ShootingSetup shooting_setup(const Params& p0, ParamRef ref, const Specia
   return s;
 }
 
-using Evaluated = detail::ShootingEvaluation;
+using CycleJacobian = detail::CyclicJacobian<kDim>;
+
+// One evaluation of the shooting problem at its unknowns u: the residuals, the Newton matrix
+// in its block structure and the intervals' transition matrices (the Floquet factors).
+struct Evaluated {
+  Eigen::VectorXd u;
+  Eigen::VectorXd residual;
+  CycleJacobian jacobian;
+  std::vector<Eigen::MatrixXd> transitions;
+  bool ok = false;
+  std::string_view why;
+};
 
 template <bool Chord>
-class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
+class CycleProblem {
  public:
-  using Base = detail::ShootingSystem<CycleProblem<Chord>>;
-  using Vec = typename Base::Vec;
-  using Jacobian = typename Base::Jacobian;
+  using Vec = Eigen::VectorXd;
+  using Jacobian = CycleJacobian;
   static constexpr std::size_t test_count = 3;  // LPC, PD, NS
   static constexpr bool tangent_at_solution = true;
   // The corrector keeps the Newton matrix of the predicted orbit (model.md §17.7): its
@@ -77,8 +92,8 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
 
   CycleProblem(const Params& p, ParamRef ref, double from, double to, double period_h, const CycleOptions& o,
                const gsl_odeiv2_step_type* type, const Eigen::Matrix<double, kDim, 1>& scale, bool radau = false)
-      : detail::ShootingSystem<CycleProblem<Chord>>(o.rtol, 1e3), o_(o), from_(from), to_(to), period_h_(period_h),
-        m_(radau ? o.stiff_intervals : o.intervals),
+      : o_(o), from_(from), to_(to), period_h_(period_h), m_(radau ? o.stiff_intervals : o.intervals),
+        mesh_(detail::CycleMesh::uniform(m_, !radau)),
         // Full Newton takes its residuals from the variational pass: one tolerance then.
         newton_(type, kAugmented, Chord ? std::max(o.newton_rtol, o.rtol) : o.rtol, radau),
         floquet_(type, kAugmented, Chord ? std::max(o.floquet_rtol, o.rtol) : o.rtol, radau),
@@ -91,6 +106,18 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
 
   int size() const { return kDim * m_ + 2; }
   int intervals() const { return m_; }
+  /// The mesh (model.md §17.2): point j's phase theta_j in [0, 1) and the weight of its
+  /// unknowns (u_j = weight_j y_j).
+  double node(int j) const { return mesh_.node(j); }
+  double weight(int j) const { return mesh_.weight(j); }
+  /// The scaled state y_j at point j of u.
+  Eigen::Matrix<double, kDim, 1> point(const Vec& u, int j) const {
+    return u.template segment<kDim>(kDim * j) / mesh_.weight(j);
+  }
+  double interval_length(const Vec& u, int j) const { return of_interval(period(u), j); }
+  /// x times interval j's fraction of the period (x / M on a uniform mesh, as before meshes
+  /// were chosen: the stiff route's steps keep their bits).
+  double of_interval(double x, int j) const { return mesh_.is_uniform() ? x / m_ : x * mesh_.fraction(j); }
   /// The stiff route's Radau steps per shooting interval (model.md §17.11).
   int steps_per_interval() const { return radau_ ? steps_ : 0; }
   void set_steps_per_interval(int steps) {
@@ -105,7 +132,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   double period(const Vec& u) const { return u(period_index()) * period_h_; }
 
   void set_phase(const Vec& u) {
-    y_ref_ = u.template head<kDim>();
+    y_ref_ = point(u, 0);
     ctx_.variational = false;
     set(ctx_.p, ctx_.ref, parameter(u));
     double f[kDim];
@@ -126,7 +153,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     ctx_.variational = variational;
     set(ctx_.p, ctx_.ref, parameter(u));
     const double h = period(u) / m_;
-    ctx_.radau_step = h / steps_;
+    ctx_.radau_step = h / steps_;  // the stiff route's mesh is uniform
     if (h > 0 && std::isfinite(h)) return true;
     e.ok = false;
     e.why = "the period is not positive";
@@ -154,32 +181,35 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     Integrator& full = accurate ? floquet_ : newton_;
     Evaluated& e = cache_;
     const int n = size();
-    e.jacobian = Jacobian::Zero(n - 1, n);
+    e.jacobian.resize(m_);
     e.transitions.assign(std::size_t(m_), Eigen::MatrixXd::Identity(kDim, kDim));
     if (!begin(e, u, true)) return e;
-    const double h = period(u) / m_;
     std::vector<double> y(kAugmented);
     for (int j = 0; j < m_; ++j) {
+      const double h = interval_length(u, j);
       std::fill(y.begin(), y.end(), 0.0);
-      for (int i = 0; i < kDim; ++i) y[std::size_t(i)] = u(kDim * j + i), y[std::size_t(kDim * (1 + i) + i)] = 1.0;
+      const Eigen::Matrix<double, kDim, 1> yj = point(u, j);
+      for (int i = 0; i < kDim; ++i) y[std::size_t(i)] = yj(i), y[std::size_t(kDim * (1 + i) + i)] = 1.0;
       std::string_view why;
       if (!full.run(ctx_, y.data(), h, {h}, {}, why)) return failed(e, why);
-      const int next = (j + 1) % m_;
       interval_residual(e, u, j, y.data(), full);
       const Eigen::Map<const Eigen::Matrix<double, kDim, kDim>> phi(y.data() + kDim);
       e.transitions[std::size_t(j)] = phi;
-      e.jacobian.block(kDim * j, kDim * j, kDim, kDim) = phi;
-      e.jacobian.block(kDim * j, kDim * next, kDim, kDim) -= Eigen::MatrixXd::Identity(kDim, kDim);
-      // d/d(T / T_H): the field at the end times dh/d(T/T_H) = T_H / M.
+      // The unknowns are weighted (u_j = w_j y_j): d r_j / d u_j = Phi_j / w_j, d r_j / d u_{j+1} = -I / w_{j+1}.
+      e.jacobian.diag[std::size_t(j)] = phi / mesh_.weight(j);
+      e.jacobian.next[std::size_t(j)].setConstant(-1.0 / mesh_.weight(j + 1));
+      // d/d(T / T_H): the field at the end times dh/d(T/T_H) = T_H (theta_{j+1} - theta_j).
       double f[kDim];
       ctx_.variational = false;
       flow_rhs(0, y.data(), f, &ctx_);
       ctx_.variational = true;
-      for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, period_index()) = f[i] * period_h_ / m_;
-      for (int i = 0; i < kDim; ++i) e.jacobian(kDim * j + i, param_index()) = y[std::size_t(kDim * kColumns + i)];
+      for (int i = 0; i < kDim; ++i) {
+        e.jacobian.border[std::size_t(j)](i, 0) = of_interval(f[i] * period_h_, j);
+        e.jacobian.border[std::size_t(j)](i, 1) = y[std::size_t(kDim * kColumns + i)];
+      }
     }
-    e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
-    e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
+    e.residual(n - 2) = (point(u, 0) - y_ref_).dot(f_ref_);
+    e.jacobian.phase = f_ref_ / mesh_.weight(0);
     flows_ += m_;
     return e;
   }
@@ -187,10 +217,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   // Interval j's residual rows: its flow's end minus the next point (on the stiff route the
   // increment summed apart from the state, model.md §17.11).
   void interval_residual(Evaluated& e, const Vec& u, int j, const double* end, const Integrator& flow) const {
-    const int next = (j + 1) % m_;
+    const Eigen::Matrix<double, kDim, 1> here = point(u, j), there = point(u, (j + 1) % m_);
     for (int i = 0; i < kDim; ++i)
-      e.residual(kDim * j + i) = flow.radau() ? (u(kDim * j + i) - u(kDim * next + i)) + flow.increment()(i)
-                                              : end[i] - u(kDim * next + i);
+      e.residual(kDim * j + i) = flow.radau() ? (here(i) - there(i)) + flow.increment()(i) : end[i] - there(i);
   }
   static const Evaluated& failed(Evaluated& e, std::string_view why) {
     e.ok = false;
@@ -212,21 +241,26 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     Evaluated& e = plain_;
     if (!begin(e, u, false)) return e;
     const int n = size();
-    const double h = period(u) / m_;
-    const std::vector<double> targets = sampling ? sample_times(h) : std::vector<double>{h};
-    std::function<void(const double*)> keep;
-    if (sampling) {
-      clear_samples();
-      keep = [this](const double* x) { keep_sample(x); };
-    }
+    if (sampling) clear_samples();
     for (int j = 0; j < m_; ++j) {
+      const double h = interval_length(u, j);
+      std::vector<double> targets{h};
+      std::vector<char> is_sample;
+      if (sampling) sample_plan(u, j, targets, is_sample);
+      std::size_t at_target = 0;
+      std::function<void(const double*)> keep;
+      if (sampling)
+        keep = [&](const double* x) {
+          if (is_sample[at_target++]) keep_sample(x);
+        };
       double y[kDim];
-      for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
+      const Eigen::Matrix<double, kDim, 1> yj = point(u, j);
+      for (int i = 0; i < kDim; ++i) y[i] = yj(i);
       std::string_view why;
       if (!state_.run(ctx_, y, h, targets, keep, why)) return failed(e, why);
       interval_residual(e, u, j, y, state_);
     }
-    e.residual(n - 2) = (u.template head<kDim>() - y_ref_).dot(f_ref_);
+    e.residual(n - 2) = (point(u, 0) - y_ref_).dot(f_ref_);
     state_flows_ += m_;
     if (sampling) sampled_u_ = u;
     return e;
@@ -234,6 +268,10 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
 
   Vec residual(const Vec& u) const { return residual_at(u).residual; }
   Jacobian jacobian(const Vec& u) const { return at(u).jacobian; }
+  /// The bordered system's LU in the Newton matrix's block structure (cyclic_jacobian.hpp).
+  detail::CyclicBorderedLu<kDim> factor_bordered(const Jacobian& J, const Vec& d) const {
+    return detail::CyclicBorderedLu<kDim>(J, d);
+  }
   // Asked by the corrector only at the iterate it is about to accept: sampled as well,
   // except on the stiff route, whose fixed Radau steps would be split at the sample times
   // (another discrete map than the one the corrector solved, model.md §17.11).
@@ -278,7 +316,8 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     orbit.parameter = parameter(u);
     orbit.period = period(u);
     const bool sampled = sample(u, orbit);
-    const ProductEigenvalues f = product_eigenvalues(e.transitions);
+    std::size_t trivial = 0;
+    const ProductEigenvalues f = multipliers(e, u, trivial);
     orbit.floquet_status = f.status;
     orbit.multipliers = f.values;
     orbit.log_moduli = f.log_moduli;
@@ -289,14 +328,15 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       if (orbit.unresolved_multipliers < 0)
         orbit.floquet_status.merge(Outcome::numerical_issue, "the frozen spectra along the orbit failed");
     }
-    const CycleTestValues tv = cycle_test_values(orbit.multipliers, orbit.log_moduli);
+    const CycleTestValues tv = radau_ ? cycle_test_values(orbit.multipliers, orbit.log_moduli)
+                                      : cycle_test_values(orbit.multipliers, orbit.log_moduli, trivial);
     orbit.trivial_distance = tv.trivial_distance;
     orbit.unstable = tv.unstable;
     out.tests = {t(param_index()), tv.period_doubling, tv.neimark_sacker};
     // A step on which a multiplier moved far could have carried a test function across
     // zero and back: shorter (model.md §17.5, "whatever the step").
     if (!orbits_.empty() && o_.max_multiplier_jump > 0) {
-      const double jump = multiplier_jump(last_.multipliers, orbit.multipliers);
+      const double jump = multiplier_jump(nontrivial(last_.multipliers, last_trivial_), nontrivial(orbit.multipliers, tv.trivial));
       if (jump > o_.max_multiplier_jump) {
         out.retry = true;
         out.reason = "a Floquet multiplier moved farther than max_multiplier_jump in one step";
@@ -307,11 +347,52 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       out.reason = "the orbit could not be sampled for its amplitude (the integrator failed)";
     }
     orbit.state0.resize(kDim);
-    for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = u(i) * ctx_.scale(i);
+    for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = point(u, 0)(i) * ctx_.scale(i);
+    for (int j = 0; j < m_; ++j) {
+      std::vector<double> row{mesh_.node(j)};
+      for (int i = 0; i < kDim; ++i) row.push_back(point(u, j)(i) * ctx_.scale(i));
+      orbit.profile.push_back(std::move(row));
+    }
     pending_ = orbit;
+    pending_trivial_ = tv.trivial;
     pending_tests_ = out.tests;
     pending_pair_ = tv.complex_pair_near_circle;
     return out;
+  }
+
+  // The multipliers without the trivial one (the step's jump check, model.md §17.6: near a
+  // homoclinic end the trivial one is determined only to the flow speed's accuracy there).
+  static std::vector<std::complex<double>> nontrivial(std::vector<std::complex<double>> m, std::size_t trivial) {
+    if (trivial < m.size()) m.erase(m.begin() + long(trivial));
+    return m;
+  }
+
+  // The orbit's multipliers from its transition matrices (model.md §17.4), `trivial` the flow
+  // direction's index: the product's eigenvalues, the trivial one the closest to 1. Where that
+  // one is farther than 1e-3 from 1 (a strongly unstable orbit near a homoclinic end: its
+  // eigenvector nearly the largest multiplier's, its value lost to the factors' errors times
+  // e^{ln |mu_max|}), the product deflated along the flow direction f(y_j) instead: the other
+  // multipliers then keep the factors' accuracy (perturbed by the flow vectors' mismatch at the
+  // points, |J r| / |f| for a residual r, which is why it is not used everywhere: on small orbits
+  // near a Hopf point that is 1e-6 where the plain product is right to 1e-9). On the stiff route
+  // the plain product always (its fast factors are R(h lambda)^N, §17.13).
+  ProductEigenvalues multipliers(const Evaluated& e, const Vec& u, std::size_t& trivial) const {
+    ProductEigenvalues plain = product_eigenvalues(e.transitions);
+    trivial = cycle_test_values(plain.values, plain.log_moduli).trivial;
+    if (radau_ || !plain.status.ok() || std::abs(plain.values[trivial] - 1.0) <= 1e-3) return plain;
+    std::vector<Eigen::VectorXd> flow(static_cast<std::size_t>(m_));
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    for (int j = 0; j < m_; ++j) {
+      const Eigen::Matrix<double, kDim, 1> y = point(u, j);
+      Eigen::VectorXd f(kDim);
+      flow_rhs(0, y.data(), f.data(), &ctx_);
+      flow[std::size_t(j)] = f;
+    }
+    DeflatedProductEigenvalues d = deflated_product_eigenvalues(e.transitions, flow);
+    if (!d.eigen.status.ok()) return plain;
+    trivial = d.trivial;
+    return std::move(d.eigen);
   }
 
   void locate(unsigned changed, const arclength::Segment<Vec>& seg) {
@@ -320,8 +401,17 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       if (!(changed & (1u << k))) continue;
       // Two real multipliers with product 1 (a neutral saddle cycle), not a torus.
       if (k == 2 && !pending_pair_) continue;
+      // A fold whose parameter excursion over the step (|tangent component| times the step)
+      // is below the parameter's resolution (1e3 eps |p|) is not one the orbits resolve: near
+      // a homoclinic end the branch runs at a constant parameter (to 1e-14 relative) while the
+      // period grows, and the tangent's component there is rounding noise of either sign.
+      if (k == 0 && std::max(std::abs(last_tests_[0]), std::abs(pending_tests_[0])) * (seg.to - seg.from).norm() *
+                            std::abs(to_ - from_) <=
+                        1e3 * std::numeric_limits<double>::epsilon() * std::abs(pending_.parameter))
+        continue;
       CycleSpecial s;
       s.label = labels[k];
+
       // The stiff route's PD and NS tests need the frozen spectra's multipliers (evaluate):
       // interpolated there; its LPC (the tangent) is located like the others.
       const bool locatable = o_.locate_specials && (!radau_ || k == 0);
@@ -345,9 +435,11 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   double test_value(unsigned k, const Vec& u, const Vec& previous) const {
     const Evaluated& e = at(u);
     if (!e.ok) return std::numeric_limits<double>::quiet_NaN();
-    if (k == 0) return arclength::tangent(e.jacobian, previous)(param_index());
-    const ProductEigenvalues f = product_eigenvalues(e.transitions);
-    const CycleTestValues tv = cycle_test_values(f.values, f.log_moduli);
+    if (k == 0) return arclength::tangent(*this, e.jacobian, previous)(param_index());
+    std::size_t trivial = 0;
+    const ProductEigenvalues f = multipliers(e, u, trivial);
+    const CycleTestValues tv = radau_ ? cycle_test_values(f.values, f.log_moduli)
+                                      : cycle_test_values(f.values, f.log_moduli, trivial);
     return k == 1 ? tv.period_doubling : tv.neimark_sacker;
   }
 
@@ -376,7 +468,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     // at hand (the last accepted orbit's kept, the pending one's cached); else integrated.
     if (Chord && o_.extrapolate_newton_matrix && !radau_ && kept_count_ >= 1 && kept_[2].u.size() == seg.from.size() &&
         kept_[2].u == seg.from && cache_accurate_ && cache_.u.size() == seg.to.size() && cache_.u == seg.to)
-      segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian});
+      segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian, {}, {}});
     struct Context {
       CycleProblem* self;
       unsigned k;
@@ -452,13 +544,12 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     return ok;
   }
 
-  void commit(Vec& u, Vec&, arclength::Stage) {
+  void commit(Vec& u, Vec& t, arclength::Stage) {
     // The accurate Newton matrix of the orbit just accepted (evaluate() integrated it), kept
     // for the next predicted orbit's extrapolation.
     if (Chord && cache_accurate_ && cache_.ok && cache_.u.size() == u.size() && cache_.u == u) {
       std::rotate(kept_.begin(), kept_.begin() + 1, kept_.end());
-      kept_.back().u = u;
-      kept_.back().jacobian = cache_.jacobian;
+      kept_.back() = kept_at(u, cache_.jacobian);
       kept_count_ = std::min(kept_count_ + 1, int(kept_.size()));
     } else {
       kept_count_ = 0;
@@ -466,8 +557,92 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     extrapolated_since_commit_ = false;
     orbits_.push_back(pending_);
     last_ = pending_;
+    last_trivial_ = pending_trivial_;
     last_tests_ = pending_tests_;
     set_phase(u);
+    if (Chord && !radau_ && o_.adapt_intervals) remesh(u, t);
+  }
+
+  // A new mesh for the orbit just accepted where its transition matrices' growth is spread
+  // unevenly, or over too few or too many intervals (model.md §17.9): its points from state
+  // flows of the accepted orbit, the Newton matrix there integrated (its multipliers are
+  // those already found), the tangent from it. u and t change size; the Newton matrices kept
+  // for the extrapolation start again with this one.
+  void remesh(Vec& u, Vec& t) {
+    if (!(cache_accurate_ && cache_.ok && cache_.u.size() == u.size() && cache_.u == u)) return;
+    std::vector<double> growth(static_cast<std::size_t>(m_));
+    for (int j = 0; j < m_; ++j) {
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(cache_.transitions[std::size_t(j)]);
+      growth[std::size_t(j)] = std::log(std::max(svd.singularValues()(0), 1.0));
+    }
+    const std::vector<double> theta =
+        detail::equidistributed_nodes(mesh_, growth, last_.log_moduli.empty() ? 0.0 : last_.log_moduli.front(),
+                                      o_.interval_growth, o_.intervals, o_.max_intervals);
+    if (theta.empty()) return;
+    // The new points: the accepted orbit flowed from each old point to the new ones in its interval.
+    const detail::CycleMesh mesh = detail::CycleMesh::nodes(theta);
+    const int m = mesh.intervals();
+    Vec v(kDim * m + 2);
+    v(kDim * m) = u(period_index());
+    v(kDim * m + 1) = u(param_index());
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    int i = 0;
+    for (int j = 0; j < m_ && i < m; ++j) {
+      Eigen::Matrix<double, kDim, 1> y = point(u, j);
+      std::vector<double> targets;
+      const int first = i;
+      for (; i < m && mesh.node(i) < mesh_.node(j + 1); ++i)
+        if (mesh.node(i) > mesh_.node(j)) targets.push_back((mesh.node(i) - mesh_.node(j)) * period(u));
+      int k = first;
+      if (k < m && !(mesh.node(k) > mesh_.node(j))) {  // a new point on the old one
+        v.template segment<kDim>(kDim * k) = mesh.weight(k) * y;
+        ++k;
+      }
+      if (targets.empty()) continue;
+      std::string_view why;
+      if (!state_.run(ctx_, y.data(), targets.back(), targets, [&](const double* x) {
+            v.template segment<kDim>(kDim * k) = mesh.weight(k) * Eigen::Map<const Eigen::Matrix<double, kDim, 1>>(x);
+            ++k;
+          }, why))
+        return;
+    }
+    // The tangent carried over approximately (linear between the old points), as the border
+    // that orients the new one.
+    Vec previous(kDim * m + 2);
+    previous.template tail<2>() = t.template tail<2>();
+    for (int k = 0, j = 0; k < m; ++k) {
+      while (j + 1 < m_ && mesh_.node(j + 1) <= mesh.node(k)) ++j;
+      const double lambda = (mesh.node(k) - mesh_.node(j)) / mesh_.fraction(j);
+      previous.template segment<kDim>(kDim * k) =
+          mesh.weight(k) * ((1 - lambda) * t.template segment<kDim>(kDim * j) / mesh_.weight(j) +
+                            lambda * t.template segment<kDim>(kDim * ((j + 1) % m_)) / mesh_.weight(j + 1));
+    }
+    const detail::CycleMesh old_mesh = mesh_;
+    const int old_m = m_;
+    const Evaluated kept_cache = cache_, kept_plain = plain_;
+    mesh_ = mesh;
+    m_ = m;
+    cache_.u.resize(0);
+    plain_.u.resize(0);
+    sampled_u_.resize(0);
+    const Evaluated& e = residual_at(v);
+    if (e.ok && e.residual.cwiseAbs().maxCoeff() <= 1e3 * o_.rtol) {
+      const Evaluated& full = at(v);  // accurate: v is a converged orbit
+      if (full.ok && cache_accurate_) {
+        t = arclength::tangent(*this, full.jacobian, previous);
+        u = v;
+        kept_count_ = 1;
+        kept_.back() = kept_at(v, full.jacobian);
+        set_phase(u);
+        ++remeshes_;
+        return;
+      }
+    }
+    mesh_ = old_mesh;  // the new points did not make an orbit at the noise level: the old mesh stays
+    m_ = old_m;
+    cache_ = kept_cache;
+    plain_ = kept_plain;
   }
 
   // The chord corrector's Newton matrix at a predicted orbit u from the last accepted
@@ -492,10 +667,11 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
       const double w0 = (x - s1) * (x - s2) / ((s0 - s1) * (s0 - s2));
       const double w1 = (x - s0) * (x - s2) / ((s1 - s0) * (s1 - s2));
       const double w2 = (x - s0) * (x - s1) / ((s2 - s0) * (s2 - s1));
-      e.jacobian = w0 * a.jacobian + w1 * b.jacobian + w2 * c.jacobian;
+      const Jacobian ja = shifted(a, u), jb = shifted(b, u), jc = shifted(c, u);
+      e.jacobian = Jacobian::combination(w0, ja, w1, jb, w2, &jc);
     } else {
       const double theta = s2 > s1 ? (x - s2) / (s2 - s1) : 0.0;
-      e.jacobian = c.jacobian + theta * (c.jacobian - b.jacobian);
+      e.jacobian = Jacobian::combination(1 + theta, shifted(c, u), -theta, shifted(b, u));
     }
     return finish_estimate(e, u);
   }
@@ -507,10 +683,9 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     e.ok = true;
     e.why = {};
     e.residual = Vec::Zero(n - 1);  // unused: the chord corrector's residuals are state passes
-    e.jacobian.row(n - 2).setZero();
-    e.jacobian.block(n - 2, 0, 1, kDim) = f_ref_.transpose();
+    e.jacobian.phase = f_ref_ / mesh_.weight(0);
     e.transitions.resize(std::size_t(m_));
-    for (int j = 0; j < m_; ++j) e.transitions[std::size_t(j)] = e.jacobian.block(kDim * j, kDim * j, kDim, kDim);
+    for (int j = 0; j < m_; ++j) e.transitions[std::size_t(j)] = e.jacobian.diag[std::size_t(j)] * mesh_.weight(j);
     return e;
   }
   // While a special point is located within a step: the Newton matrix at u linear between
@@ -521,7 +696,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     const double length2 = chord.squaredNorm();
     const double theta = length2 > 0 ? (u - a.u).dot(chord) / length2 : 0.0;
     Evaluated& e = extrapolation_;
-    e.jacobian = a.jacobian + theta * (b.jacobian - a.jacobian);
+    e.jacobian = Jacobian::combination(1 - theta, a.jacobian, theta, b.jacobian);
     return finish_estimate(e, u);
   }
 
@@ -538,13 +713,13 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
     double y[kDim];
     for (int i = 0; i < kDim; ++i) y[i] = state0[std::size_t(i)] / ctx_.scale(i);
     std::vector<double> targets;
-    for (int j = 1; j <= m_; ++j) targets.push_back(T * j / m_);
+    for (int j = 1; j <= m_; ++j) targets.push_back(mesh_.is_uniform() ? T * j / m_ : T * mesh_.node(j));
     int j = 0;
-    for (int i = 0; i < kDim; ++i) u(i) = y[i];
+    for (int i = 0; i < kDim; ++i) u(i) = mesh_.weight(0) * y[i];
     std::string_view why;
     return state_.run(ctx_, y, T, targets, [&](const double* s) {
       if (++j < m_)
-        for (int i = 0; i < kDim; ++i) u(kDim * j + i) = s[i];
+        for (int i = 0; i < kDim; ++i) u(kDim * j + i) = mesh_.weight(j) * s[i];
     }, why);
   }
 
@@ -556,16 +731,39 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   long newton_steps() const { return newton_.steps(); }
   long floquet_steps() const { return floquet_.steps(); }
   long extrapolations() const { return extrapolations_; }
+  long remeshes() const { return remeshes_; }
   const FlowContext& context() const { return ctx_; }
 
  private:
-  // The sample times of one interval of length h: h i / k, i = 1..k, the last exactly h.
-  std::vector<double> sample_times(double h) const {
+  // The stops of interval j's flow (`targets`, from its start, the last its end) and which of
+  // them are samples: the samples are k M uniform times over the period (k =
+  // samples_per_interval; the amplitude's cyclic_max wants them uniform), those in (theta_j,
+  // theta_{j+1}]; the interval's end is a stop, and a sample only where it is one of those times.
+  void sample_plan(const Vec& u, int j, std::vector<double>& targets, std::vector<char>& is_sample) const {
     const int k = o_.samples_per_interval;
-    std::vector<double> targets;
-    for (int i = 1; i < k; ++i) targets.push_back(h * i / k);
-    targets.push_back(h);
-    return targets;
+    const double h = interval_length(u, j);
+    targets.clear();
+    is_sample.clear();
+    if (mesh_.is_uniform()) {  // k per interval, h i / k, the last exactly h
+      for (int i = 1; i < k; ++i) targets.push_back(h * i / k);
+      targets.push_back(h);
+      is_sample.assign(targets.size(), 1);
+      return;
+    }
+    const long total = long(k) * m_;
+    const double T = period(u);
+    const long first = long(std::floor(mesh_.node(j) * double(total) + 1e-9)) + 1;
+    const long last = j + 1 == m_ ? total : long(std::floor(mesh_.node(j + 1) * double(total) + 1e-9));
+    for (long s = first; s <= last; ++s) {
+      targets.push_back(std::min(T * double(s) / double(total) - T * mesh_.node(j), h));
+      is_sample.push_back(1);
+    }
+    if (targets.empty() || targets.back() < h) {
+      targets.push_back(h);
+      is_sample.push_back(0);
+    } else {
+      targets.back() = h;
+    }
   }
   void clear_samples() const {
     sampled_u_.resize(0);
@@ -591,17 +789,22 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   bool sample(const Vec& u, CycleOrbit& orbit) {
     const int k = o_.samples_per_interval;
     if (!sampled_for(u)) {
-      const double h = period(u) / m_;
-      const std::vector<double> targets = sample_times(h);
       ctx_.variational = false;
-      ctx_.radau_step = h / steps_;
+      ctx_.radau_step = period(u) / m_ / steps_;
       clear_samples();
       set(ctx_.p, ctx_.ref, parameter(u));
+      std::vector<double> targets;
+      std::vector<char> is_sample;
       for (int j = 0; j < m_; ++j) {
+        sample_plan(u, j, targets, is_sample);
         double y[kDim];
-        for (int i = 0; i < kDim; ++i) y[i] = u(kDim * j + i);
+        const Eigen::Matrix<double, kDim, 1> yj = point(u, j);
+        for (int i = 0; i < kDim; ++i) y[i] = yj(i);
+        std::size_t at_target = 0;
         std::string_view why;
-        state_.run(ctx_, y, h, targets, [&](const double* s) { keep_sample(s); }, why);
+        state_.run(ctx_, y, interval_length(u, j), targets, [&](const double* s) {
+          if (is_sample[at_target++]) keep_sample(s);
+        }, why);
       }
     }
     if (qabs_.size() != std::size_t(m_ * k)) return false;
@@ -618,6 +821,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   CycleOptions o_;
   double from_, to_, period_h_;
   int m_;
+  detail::CycleMesh mesh_;
   mutable FlowContext ctx_;
   mutable Integrator newton_, floquet_;
   mutable Integrator state_;
@@ -627,6 +831,7 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   Eigen::Matrix<double, kDim, 1> y_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
   Eigen::Matrix<double, kDim, 1> f_ref_ = Eigen::Matrix<double, kDim, 1>::Zero();
   CycleOrbit pending_, last_;
+  std::size_t pending_trivial_ = 0, last_trivial_ = 0;  // the trivial multiplier's index
   std::array<double, 3> pending_tests_{}, last_tests_{};
   bool pending_pair_ = false;
   bool radau_ = false;
@@ -639,13 +844,34 @@ class CycleProblem : public detail::ShootingSystem<CycleProblem<Chord>> {
   struct Kept {
     Vec u;
     Jacobian jacobian;
+    std::vector<double> lengths;          // its intervals' lengths h_j [s]
+    std::vector<Generator> generators;    // at its intervals' ends (cycle_period_shift.hpp)
   };
+  // An accepted orbit's Newton matrix with what moves it to another period.
+  Kept kept_at(const Vec& u, const Jacobian& J) const {
+    Kept k{u, J, {}, {}};
+    ctx_.variational = false;
+    set(ctx_.p, ctx_.ref, parameter(u));
+    for (int j = 0; j < m_; ++j) {
+      k.lengths.push_back(interval_length(u, j));
+      k.generators.push_back(period_shift_generator(ctx_, point(u, (j + 1) % m_)));
+    }
+    return k;
+  }
+  // Kept k's Newton matrix at the intervals' lengths of u.
+  Jacobian shifted(const Kept& k, const Vec& u) const {
+    std::vector<double> dh(static_cast<std::size_t>(m_));
+    for (int j = 0; j < m_; ++j)
+      dh[std::size_t(j)] = o_.shift_newton_matrix ? interval_length(u, j) - k.lengths[std::size_t(j)] : 0.0;
+    return shift_periods(k.jacobian, k.generators, dh);
+  }
   std::array<Kept, 3> kept_;
   int kept_count_ = 0;
   mutable Evaluated extrapolation_;
   std::optional<std::pair<Kept, Kept>> segment_ends_;  // while locating within a step (root_on_branch)
   mutable bool extrapolated_since_commit_ = false;
   mutable long extrapolations_ = 0;
+  long remeshes_ = 0;
 };
 
 static_assert(arclength::Problem<CycleProblem<true>>);

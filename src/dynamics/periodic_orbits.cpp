@@ -237,11 +237,11 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
   const int M = problem.intervals();
   Eigen::VectorXd u(problem.size()), hopf_u(problem.size());
   for (int j = 0; j < M; ++j) {
-    const double phase = 2 * std::numbers::pi * j / M;
+    const double phase = 2 * std::numbers::pi * j / M;  // the first orbit's mesh is uniform
     const Eigen::VectorXcd osc = q * std::polar(1.0, phase);
     for (int i = 0; i < kDim; ++i) {
-      u(kDim * j + i) = (xH(i) + dp * dxdp(i) + 2 * z * osc(i).real()) / D(i);
-      hopf_u(kDim * j + i) = xH(i) / D(i);
+      u(kDim * j + i) = problem.weight(j) * ((xH(i) + dp * dxdp(i) + 2 * z * osc(i).real()) / D(i));
+      hopf_u(kDim * j + i) = problem.weight(j) * (xH(i) / D(i));
     }
   }
   u(problem.period_index()) = hopf_u(problem.period_index()) = 1;
@@ -275,6 +275,8 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
   out.newton_steps = problem.newton_steps();
   out.floquet_steps = problem.floquet_steps();
   out.extrapolated_matrices = problem.extrapolations();
+  out.remeshes = problem.remeshes();
+  out.intervals = problem.intervals();
   if (r.end != arclength::End::end_of_interval) {
     out.status.merge(r.status == Outcome::converged ? Outcome::converged : r.status, "see reason");
     const double last = out.orbits.empty() ? pH : out.orbits.back().parameter;

@@ -154,13 +154,74 @@ ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& facto
   return out;
 }
 
+DeflatedProductEigenvalues deflated_product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
+                                                        const std::vector<Eigen::VectorXd>& chain,
+                                                        const ProductEigenvalueOptions& options) {
+  DeflatedProductEigenvalues out;
+  const std::size_t m = factors.size();
+  if (m == 0 || chain.size() != m) {
+    out.eigen.status.merge(Outcome::numerical_issue, "no factors, or a chain of another length");
+    return out;
+  }
+  const Eigen::Index n = factors.front().rows();
+  std::vector<Eigen::MatrixXd> bases(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (chain[k].size() != n || !(chain[k].norm() > 0) || !chain[k].allFinite() || factors[k].rows() != n ||
+        factors[k].cols() != n || !factors[k].allFinite()) {
+      out.eigen.status.merge(Outcome::numerical_issue, "a chain vector is zero or of the wrong size, or a factor is not "
+                                                        "square of the chain's size and finite");
+      return out;
+    }
+    // An orthonormal basis whose first vector is +- v_k (the sign cancels in prod c_k: each
+    // basis enters one factor and its inverse the next).
+    bases[k] = Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd(chain[k])).householderQ();
+  }
+  std::vector<Eigen::MatrixXd> reduced(m);
+  double log_c = 0;
+  bool negative = false;
+  for (std::size_t k = 0; k < m; ++k) {
+    const Eigen::MatrixXd f = bases[(k + 1) % m].transpose() * factors[k] * bases[k];
+    log_c += std::log(std::abs(f(0, 0)));
+    negative = negative != (f(0, 0) < 0);
+    out.chain_error = std::max(out.chain_error, f.col(0).tail(n - 1).norm() / factors[k].norm());
+    reduced[k] = f.bottomRightCorner(n - 1, n - 1);
+  }
+  if (n > 1) {
+    out.eigen = product_eigenvalues(reduced, options);
+    if (!out.eigen.status.ok()) return out;
+  }
+  // The trivial multiplier in the descending order (after any of equal modulus).
+  std::size_t at = 0;
+  while (at < out.eigen.log_moduli.size() && out.eigen.log_moduli[at] >= log_c) ++at;
+  const double direction = negative ? -1.0 : 1.0;
+  out.trivial = at;
+  out.eigen.log_moduli.insert(out.eigen.log_moduli.begin() + long(at), log_c);
+  out.eigen.arguments.insert(out.eigen.arguments.begin() + long(at), negative ? std::acos(-1.0) : 0.0);
+  out.eigen.values.insert(out.eigen.values.begin() + long(at),
+                          std::isfinite(log_c) ? std::complex<double>(direction * std::exp(log_c)) : 0.0);
+  // Its cluster (of one) after the clusters of the values before it.
+  std::size_t before = 0, c = 0;
+  while (c < out.eigen.clusters.size() && before + std::size_t(out.eigen.clusters[c]) <= at)
+    before += std::size_t(out.eigen.clusters[c++]);
+  out.eigen.clusters.insert(out.eigen.clusters.begin() + long(c), 1);
+  out.eigen.backward_error = std::max(out.eigen.backward_error, out.chain_error);
+  return out;
+}
+
 CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
                                   const std::vector<double>& log_moduli) {
+  std::size_t trivial = 0;
+  for (std::size_t i = 1; i < multipliers.size(); ++i)
+    if (std::abs(multipliers[i] - 1.0) < std::abs(multipliers[trivial] - 1.0)) trivial = i;
+  return cycle_test_values(multipliers, log_moduli, trivial);
+}
+
+CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
+                                  const std::vector<double>& log_moduli, std::size_t trivial) {
   CycleTestValues out;
   const std::size_t n = multipliers.size();
-  if (n == 0 || log_moduli.size() != n) return out;
-  for (std::size_t i = 1; i < n; ++i)
-    if (std::abs(multipliers[i] - 1.0) < std::abs(multipliers[out.trivial] - 1.0)) out.trivial = i;
+  if (n == 0 || log_moduli.size() != n || trivial >= n) return out;
+  out.trivial = trivial;
   out.trivial_distance = std::abs(multipliers[out.trivial] - 1.0);
   std::complex<double> pd = 1, ns = 1;
   for (std::size_t i = 0; i < n; ++i) {

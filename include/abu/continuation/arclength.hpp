@@ -187,7 +187,7 @@ template <System P>
 Start<P> start(const P& p, const typename P::Vec& u0, const typename P::Vec& inward, bool on_edge = true,
                const StepRules& rules = {}) {
   Start<P> s{u0, p.jacobian(u0), inward};
-  s.tangent = tangent(s.jacobian, inward);
+  s.tangent = tangent(p, s.jacobian, inward);
   s.both_ways = !(on_edge && s.tangent.dot(inward) > rules.transversal);
   return s;
 }
@@ -242,7 +242,7 @@ void end_on_edge(P& p, typename P::Vec& u, typename P::Vec& t, std::array<typena
     out.beyond = guess;
     return;
   }
-  const Vec t_edge = tangent(tangent_jacobian(p, last), t);
+  const Vec t_edge = tangent(p, tangent_jacobian(p, last), t);
   advance(p, u, t, tests, last.u, t_edge, p.evaluate(last.u, t_edge, last.jacobian, Stage::edge), Stage::edge);
   out.end = End::end_of_interval;
   out.last = u;
@@ -289,7 +289,7 @@ Result<P> trace(P& p, const typename P::Vec& u0, const typename P::Vec& t0, cons
       if (!shrink(c.converged() ? Status::not_converged : c.status, why)) break;
       continue;
     }
-    const Vec t_new = tangent(detail::tangent_jacobian(p, c), t);
+    const Vec t_new = tangent(p, detail::tangent_jacobian(p, c), t);
     if (!(t_new.dot(t) > min_cos)) {
       const auto why = [&] { return turning_reason(rules.max_turning); };
       if (!shrink(Status::not_converged, why)) break;

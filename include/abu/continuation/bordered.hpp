@@ -92,6 +92,18 @@ Square<Vec> bordered(const Jacobian& J, const Vec& d) {
   return M;
 }
 
+/// The factorization of [J; d^T] for the system s: its own where it has one
+/// (`s.factor_bordered(J, d)`, an object with solve(Vec): a structured solver for a sparse
+/// F_u, e.g. the block-cyclic Newton matrix of multiple shooting), else the dense LU.
+template <class S, class Jacobian, class Vec>
+auto factor_bordered(const S& s, const Jacobian& J, const Vec& d) {
+  if constexpr (requires { s.factor_bordered(J, d); }) {
+    return s.factor_bordered(J, d);
+  } else {
+    return factor(bordered(J, d));
+  }
+}
+
 /// The result of a corrector run.
 template <class S>
 struct Correction {
@@ -123,9 +135,9 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
   c.jacobian = s.jacobian(u_pred);
   Scalar last = std::numeric_limits<Scalar>::infinity();
   constexpr bool chord = requires { requires S::chord_corrector; };
-  using Factors = decltype(factor(bordered(c.jacobian, d)));
+  using Factors = decltype(factor_bordered(s, c.jacobian, d));
   std::optional<Factors> kept;  // the chord method's one factorization
-  if constexpr (chord) kept.emplace(factor(bordered(c.jacobian, d)));
+  if constexpr (chord) kept.emplace(factor_bordered(s, c.jacobian, d));
   for (int it = 0; it < rules.max_iterations; ++it) {
     if constexpr (!chord) {
       if (it > 0) c.jacobian = s.jacobian(c.u);
@@ -136,7 +148,7 @@ Correction<S> correct(const S& s, const typename S::Vec& u_pred, const typename 
     if constexpr (chord) {
       step = kept->solve(Vec(-r));
     } else {
-      step = factor(bordered(c.jacobian, d)).solve(Vec(-r));
+      step = factor_bordered(s, c.jacobian, d).solve(Vec(-r));
     }
     if (!step.allFinite()) {
       c.status = Status::numerical_issue;
@@ -178,6 +190,17 @@ Vec tangent(const Jacobian& J, const Vec& previous) {
   Vec e = Vec::Zero(previous.size());
   e(previous.size() - 1) = 1;
   Vec t = factor(bordered(J, previous)).solve(e);
+  t.normalize();
+  if (t.dot(previous) < 0) t = -t;
+  return t;
+}
+
+/// The same for the system s: its own bordered solver where it has one (factor_bordered).
+template <class S, class Vec, class Jacobian>
+Vec tangent(const S& s, const Jacobian& J, const Vec& previous) {
+  Vec e = Vec::Zero(previous.size());
+  e(previous.size() - 1) = 1;
+  Vec t = factor_bordered(s, J, previous).solve(e);
   t.normalize();
   if (t.dot(previous) < 0) t = -t;
   return t;

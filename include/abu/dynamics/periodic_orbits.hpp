@@ -29,10 +29,24 @@
 namespace abu {
 
 struct CycleOptions {
-  int intervals = 40;          ///< M shooting intervals per period
+  /// M shooting intervals per period at the first orbit; with adapt_intervals the fewest.
+  int intervals = 5;
+  /// The shooting mesh re-chosen along the branch (model.md §17.9): about (ln |mu_max| +
+  /// interval_growth) / interval_growth intervals (mu_max the largest Floquet multiplier), placed
+  /// so that each holds an equal share of ln max(1, |Phi_j|) + interval_growth times its fraction
+  /// of the period: each interval's transition matrix grows by at most about
+  /// e^interval_growth; at most max_intervals. A mesh is re-chosen when the number changes or an
+  /// interval holds 1.5 times the average. Not on the stiff route (uniform, fixed M).
+  bool adapt_intervals = true;
+  double interval_growth = 7.0;
+  int max_intervals = 400;
   /// Newton's matrix kept from the predicted orbit, the iterations integrating the state
   /// only (model.md §17.7); false: full Newton, the variational equations every iteration.
   bool chord_corrector = true;
+  /// The kept Newton matrices moved to the predicted orbit's period by the linearized flow at
+  /// each interval's end before they are extrapolated (model.md §17.7, the fast modes'
+  /// rotation with the period).
+  bool shift_newton_matrix = true;
   double rtol = 1e-13;         ///< integrator tolerance on the scaled state (the residuals: the orbit's accuracy)
   /// Tolerances of the variational equations (model.md §17.8), never tighter than rtol:
   /// the chord corrector's Newton matrix at the predicted orbit (it sets only the corrector's
@@ -58,7 +72,8 @@ struct CycleOptions {
   /// moduli clamped at 2) is retried shorter: a PD or NS crossing and its return within one
   /// step would leave the test functions' signs unchanged (model.md §17.5). 0: no check.
   double max_multiplier_jump = 0.25;
-  ContinuationOptions continuation{0.02, 1e-7, 0.1, 300, 1};
+  /// Steps in the weighted unknowns (model.md §17.7: the orbit's L2 norm, whatever the mesh).
+  ContinuationOptions continuation{0.01, 1e-7, 0.05, 300, 1};
   /// The stiff route (model.md §17.11), taken where the fastest mode at the Hopf point is
   /// over 1e6 times its frequency (coulomb balls): fixed Radau IIA steps, stiff_steps per
   /// interval at first, doubled at the first orbit until its period and resolved multipliers
@@ -90,6 +105,9 @@ struct CycleOrbit {
   int unresolved_multipliers = 0;
   double liouville_error = 0;
   std::vector<double> state0;   ///< x(0) in SI (model.md (2.2)), the orbit's phase origin
+  /// The shooting points: per point its phase theta_j in [0, 1) and x(theta_j T) in SI (the
+  /// start of an independent recomputation, tests/reference/cycle_orbit_reference.py).
+  std::vector<std::vector<double>> profile;
 };
 
 /// A located special point of a cycle branch: LPC (fold of cycles), PD (a multiplier
@@ -126,6 +144,7 @@ struct CycleBranch {
   /// variational equations for the Newton matrix, for the Floquet multipliers.
   long state_steps = 0, newton_steps = 0, floquet_steps = 0;
   long extrapolated_matrices = 0;  ///< Newton matrices extrapolated, not integrated (extrapolate_newton_matrix)
+  long remeshes = 0;               ///< meshes re-chosen along the branch (adapt_intervals)
 };
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in

@@ -69,6 +69,28 @@ struct ProductEigenvalues {
 ProductEigenvalues product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
                                        const ProductEigenvalueOptions& options = {});
 
+/// The eigenvalues of factors.back() * ... * factors.front() where a chain of vectors is known
+/// to be carried along the product, A_k v_{k-1} ~ c_k v_k (k = 1..m, v_m = v_0; chain[k] = v_k,
+/// chain.size() == m): a periodic orbit's flow direction f(y_k) at its shooting points, whose
+/// multiplier c = prod c_k is the trivial one, 1 (docs/model.md §17.4). Each factor is written
+/// in orthonormal bases whose first vectors are v_{k-1} and v_k; c_k is the (1, 1) entry, and the
+/// other eigenvalues are those of the product of the trailing (n - 1)^2 blocks
+/// (product_eigenvalues). The component of A_k v_{k-1} off v_k (the factor's error along the
+/// orbit) is dropped: a backward perturbation of each factor by that much, `chain_error` (the
+/// largest, relative to the factor's norm). Where the trivial multiplier's eigenvector nearly
+/// coincides with another's (a strongly unstable orbit near a homoclinic end: the flow direction
+/// along the saddle's unstable one), the plain product's trivial multiplier is perturbed by the
+/// factors' errors times the largest multiplier; deflated, each multiplier keeps the accuracy of
+/// the factors. The trivial one is inserted in the descending order, `trivial` its index.
+struct DeflatedProductEigenvalues {
+  ProductEigenvalues eigen;
+  std::size_t trivial = 0;
+  double chain_error = 0;
+};
+DeflatedProductEigenvalues deflated_product_eigenvalues(const std::vector<Eigen::MatrixXd>& factors,
+                                                        const std::vector<Eigen::VectorXd>& chain,
+                                                        const ProductEigenvalueOptions& options = {});
+
 /// The test functions of the bifurcations of a periodic orbit on its Floquet multipliers
 /// (docs/model.md §17.5), generic: any multiplier set with one trivial multiplier (the one
 /// closest to 1, the flow direction), in the form product_eigenvalues returns.
@@ -84,6 +106,9 @@ struct CycleTestValues {
 };
 CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
                                   const std::vector<double>& log_moduli);
+/// The same with the trivial multiplier known (its index: deflated_product_eigenvalues).
+CycleTestValues cycle_test_values(const std::vector<std::complex<double>>& multipliers,
+                                  const std::vector<double>& log_moduli, std::size_t trivial);
 
 /// How far the multipliers moved between two orbits: max over `after` of the distance to
 /// the nearest not yet matched multiplier of `before` (greedy matching, both sets of one
