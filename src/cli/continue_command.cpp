@@ -338,7 +338,7 @@ Action add_continue_command(CLI::App& app) {
                   "Integrator tolerance of the cycles' flows and transition matrices (scaled state)")
       ->check(tolerance_range(1e-15, 1e-3))
       ->capture_default_str();
-  sub->add_option("--cycle-intervals", o->cycle.intervals, "Shooting intervals per period")
+  sub->add_option("--cycle-intervals", o->cycle.intervals, "Shooting intervals of the first orbit (then chosen along the branch so that each carries the same growth of its transition matrix, docs/model.md §17.9)")
       ->check(CLI::Range(4, 10000))
       ->capture_default_str();
   sub->add_option("--cycle-newton-rtol", o->cycle.newton_rtol,
