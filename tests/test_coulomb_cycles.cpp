@@ -44,7 +44,7 @@ abu::SpecialPoint coulomb_hopf() {
 TEST_CASE("coulomb cycles: the Radau route's first orbits, trivial multiplier 1 to 1e-8, unstable, the amplitude law of l1",
           "[coulomb_cycles]") {
   const abu::SpecialPoint hb = coulomb_hopf();
-  REQUIRE(hb.lyapunov > 0);  // subcritical (issue 14: l1 = +7.9e-4)
+  REQUIRE(hb.lyapunov > 0);  // subcritical (l1 = +7.9e-4)
   // Independent relocation (helper/coulomb-cycles, numpy): omega_H = 249.933740346,
   // +-0.00282359641i; 1e-8 relative covers the 9 printed digits.
   CHECK(std::abs(double(hb.parameter) / 249.933740346 - 1) < 1e-10);

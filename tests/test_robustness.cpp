@@ -1,4 +1,4 @@
-// Hostile scene text (issue 12): the inputs toml++ 3.3 does not refuse cleanly are refused
+// Hostile scene text: the inputs toml++ 3.3 does not refuse cleanly are refused
 // by the pre-check (src/input/toml_guard.cpp) with a line number, never reach the parser.
 #include <catch2/catch.hpp>
 

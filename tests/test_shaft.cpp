@@ -440,7 +440,7 @@ TEST_CASE("shaft Jacobian agrees with central differences of the field, and the 
 // rigid (2n + 4) spectrum plus the four tilt eigenvalues, the roots of
 //   I_d mu^2 + (c_t - i omega I_p) mu + k_t = 0 shifted to the rotating frame,
 //   lambda = mu - i omega, and their conjugates.
-// Asserted to 1e-10 of each eigenvalue's modulus (issue 11): the rigid spectra are the
+// Asserted to 1e-10 of each eigenvalue's modulus: the rigid spectra are the
 // analyzer's refined ones (equilibrium_spectrum: error estimates ~1e-15), the shaft's a
 // long-double dense QR refined on the pencil, and the library's sparse ladder (ARPACK with
 // the refinement of model.md §19.5).
@@ -480,7 +480,7 @@ TEST_CASE("shaft rigid reduction: one disc on one bearing reproduces the rigid e
           REQUIRE(int(ss.size()) == rs.count + 4);
           std::vector<bool> used(ss.size(), false);
           // The shaft side: long-double QR refined on the pencil (spectrum_long: ~1e-14 of
-          // each eigenvalue). Asserted: 1e-10 of each eigenvalue's modulus, issue 11's
+          // each eigenvalue). Asserted: 1e-10 of each eigenvalue's modulus, the acceptance's
           // tolerance; measured at most 6e-14, the rest is room for conditioning.
           auto match = [&](std::complex<long double> target, double tol_rel) {
             std::size_t best = 0;

@@ -1,4 +1,4 @@
-// Dense cross-check of the flexible rotor's sparse spectra (issue 11 acceptance, model.md
+// Dense cross-check of the flexible rotor's sparse spectra (model.md
 // §19.6): shaft scenes that are not in the repository, generated here from a fixed seed
 // (segments, discs, bearings, Euler–Bernoulli or Timoshenko, 1–3 balls, viscous or
 // coulomb, 100–400 states), each at a balanced and an aligned equilibrium. The library's
@@ -148,7 +148,7 @@ std::vector<cplx> dense_spectrum(const ShaftPencil& pen, double re_min, std::vec
 }  // namespace
 
 // Asserted, per scene and equilibrium: the ladder converged; every returned eigenvalue is a
-// dense one to 1e-8 of its modulus (issue 11's tolerance; measured at most ~1e-13), one to
+// dense one to 1e-8 of its modulus (the acceptance's tolerance; measured at most ~1e-13), one to
 // one; and every dense eigenvalue in the certified region right of the k-th returned
 // (Re >= Re_k, coverage rectangle) is among those returned (the coverage claim of (19.5)).
 // A structural zero (three balls: the balanced set's direction, a defective double zero

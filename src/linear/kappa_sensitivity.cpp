@@ -38,7 +38,7 @@ KappaSensitivity<N> kappa_sensitivity(const ParamsT<double, N>& p, const Lineari
     for (int j = 0; j < d; ++j)
       cols(j) = 1 / std::max((rows.asDiagonal() * T).col(j).cwiseAbs().maxCoeff(), ld(1e-300L));
     const Mat Ts = rows.template cast<cld>().asDiagonal() * T * cols.template cast<cld>().asDiagonal();
-    if (!Ts.allFinite()) continue;  // no sensitivity rather than an SVD of NaNs (issue 12)
+    if (!Ts.allFinite()) continue;  // no sensitivity rather than an SVD of NaNs
     const Eigen::JacobiSVD<Mat> svd(Ts, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Vec x = cols.template cast<cld>().asDiagonal() * svd.matrixV().col(d - 1);
     const Vec y = rows.template cast<cld>().asDiagonal() * svd.matrixU().col(d - 1).conjugate();  // y^T T = 0

@@ -327,7 +327,7 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
   };
   std::array<bool, SpectrumT<N>::capacity> failed{};
   assemble_spectrum(lin, starts, method, vector_of, sp, band, &failed);
-  // Failed refinements (issue 12: at kappa = 1e12 the spectrum spans 30 decades, and a
+  // Failed refinements (at kappa = 1e12 the spectrum spans 30 decades, and a
   // pair at -8 +- 100i came out of both QRs as two real values near +-0.8 that Newton could
   // not leave): retry them from a shifted inverse near their scale, where the QR resolves
   // them, and take the retry only if every eigenvalue then converges. Exact cases never

@@ -74,7 +74,7 @@ bool balanced_qr(const FirstOrderMatrix<N>& m, BalancedQr<N>& r) {
   r.balanced = m;
   // GSL's balancing loops forever once a row or column sum overflows (its scaling loop
   // divides an infinite norm by 4 until it is small): entries beyond 1e150 are refused,
-  // their sums stay finite (issue 12: --set omega=1e155 hung).
+  // their sums stay finite (--set omega=1e155 hung).
   if (!r.balanced.allFinite() || !(r.balanced.cwiseAbs().maxCoeff() <= 1e150)) return false;
   quiet_gsl_errors();  // (a no-op after static initialization)
   gsl_matrix_view view = gsl_matrix_view_array(r.balanced.data(), n, n);

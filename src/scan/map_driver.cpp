@@ -78,7 +78,7 @@ CellWorkspace::CellWorkspace(const MapJob& job) {
 namespace {
 
 // Text buffered per worker before it goes to the tile's temporaries (streamed tiles): the
-// worker's memory does not grow with the y axis (issue 12: 2 GB at 8 threads, N_y = 20,000).
+// worker's memory does not grow with the y axis (2 GB at 8 threads, N_y = 20,000).
 constexpr std::size_t kSpillBytes = kTileSpillBytes;
 
 // The cells of `tile` into `out`. With `spill` set, whenever a buffer passes kSpillBytes

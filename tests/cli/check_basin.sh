@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of `stability-scan basin` (issue 14, model.md §15.5): the CSVs
+# The command-line contract of `stability-scan basin` (model.md §15.5): the CSVs
 # and the chart, fractions summing to one, the same bytes on 1 and 2 threads, an interrupted
 # run resumed equals a fresh run, the refusal to overwrite an interrupted run, the scene's
 # [simulate] run-up equals --ramp, n = 3 balls, bad input (exit 2, nothing written).

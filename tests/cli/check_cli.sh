@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of stability-scan (issue 2): output formats, atomic files,
+# The command-line contract of stability-scan: output formats, atomic files,
 # bad arguments rejected with exit code 2 and nothing written, same bytes on a re-run.
 #   check_cli.sh BINARY SOURCE_DIR
 set -u

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Messages for a user's slips (issue 10): implausible values warn (and the run goes on),
+# Messages for a user's slips: implausible values warn (and the run goes on),
 # unknown names get a "did you mean", a misspelled TOML key is reported as unknown (not
 # as the missing key it leaves), an unknown subcommand is named, descending ranges run
 # and are said; the continuation's branch CSV has a row at every located special point,

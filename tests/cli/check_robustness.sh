@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile input and faults (issue 12, docs/robustness.md): output files never replace what
+# Hostile input and faults (docs/robustness.md): output files never replace what
 # is not theirs and come back on a failure, results are never lost to a chart, signals
 # stop every command in time without leaving temporaries, numerical range, exit codes.
 #   check_robustness.sh BINARY SOURCE_DIR
@@ -154,7 +154,7 @@ check "... no temporary" "no_temporaries '$work/sig4'"
 check "kappa=1e12: no balanced state called unstable after a failed refinement" \
   "/usr/bin/python3 -c \"import json,sys; d=json.load(open('$work/k.json')); sys.exit(any(e['family']=='balanced' and e['stability']=='unstable' for e in d['equilibria']))\""
 
-# kappa = 1e12 (issue 12): the spectrum spans 30 decades and a pair at -8.3 +- 99.8i came
+# kappa = 1e12: the spectrum spans 30 decades and a pair at -8.3 +- 99.8i came
 # out of both QRs as two real values near +-0.8 that Newton could not leave ("marginal,
 # abscissa 0.80"). 40-digit reference (tests/reference/mp_reference.py, this scene with
 # kappa=1e12 omega=150 mu=0.08208914159638263): together 1 is stable, abscissa

@@ -7,7 +7,7 @@
 #    equilibria must be the rigid scene's (ball angles to 1e-10 rad: both come from the same
 #    closed forms, polished), every listed eigenvalue must be a rigid eigenvalue or one of
 #    the four tilt eigenvalues of (18.9.1), computed here from the quadratic, to 1e-10 of its
-#    modulus (issue 11's rigid-reduction tolerance; the rigid ones are the analyzer's refined
+#    modulus (the acceptance's rigid-reduction tolerance; the rigid ones are the analyzer's refined
 #    values, good to ~1e-15, and the shaft's are refined at their own eigenvalue, model.md
 #    §19.5: measured at most 1e-15 relative, so 1e-10 leaves room for the printed digits and
 #    a condition number of 1e5), with residual <= 1e-10, and the verdicts must agree with

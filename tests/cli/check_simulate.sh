@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The command-line contract of `stability-scan simulate` (issue 14, model.md §15): the CSV's
+# The command-line contract of `stability-scan simulate` (model.md §15): the CSV's
 # columns, no NaN, the summary JSON's keys, the chart, bad input (exit 2, one message,
 # nothing written), Ctrl-C keeps what was computed (exit 130), any n.
 #   check_simulate.sh BINARY SOURCE_DIR

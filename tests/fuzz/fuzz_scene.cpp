@@ -1,4 +1,4 @@
-// libFuzzer target for the scene parser and --set (issue 12, docs/robustness.md "Fuzzing").
+// libFuzzer target for the scene parser and --set (docs/robustness.md "Fuzzing").
 // Input: a scene's TOML text, then optionally a NUL byte and `--set` assignments, one per
 // line. Bad input must end in InputError / NotSupportedError (exit 2 in the CLI); any
 // other exception, a crash, a sanitizer report or an assertion is a finding.

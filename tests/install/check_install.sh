@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The installed package (issue 13, docs/install.md): `cmake --install` of the build tree
+# The installed package (docs/install.md): `cmake --install` of the build tree
 # into an empty prefix puts every part where GNUInstallDirs says; the installed program,
 # moved elsewhere with its prefix, draws with its own gnuplot scripts (not the source
 # tree's) and names ABU_PLOTS_DIR when the scripts are missing; examples/consumer

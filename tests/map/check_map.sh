@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The contract of `stability-scan map` (issue 4): the same bytes for 1 and N threads and
+# The contract of `stability-scan map`: the same bytes for 1 and N threads and
 # for a killed-and-resumed run; the fast decision agrees with full eigenvalues; the CSVs
 # are complete and consistent; bad axes are refused before any work; charts are written.
 #   check_map.sh BINARY SOURCE_DIR

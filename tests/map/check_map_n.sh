@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The contract of `stability-scan map` for n balls (issue 7, items 6 and 7; model.md
+# The contract of `stability-scan map` for n balls (model.md
 # §13.8): an n = 3 map whose every cell agrees with `equilibria` at the cell's
 # parameters; the ball count as an axis (`n:2:5:4` on a [balls] ring), its n = 2 row
 # against the two-ball path, capacity and 2^n aligned equilibria; the same bytes on 1 and

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Maps under faults and hostile use (issue 12, docs/robustness.md "Maps"): the tile
+# Maps under faults and hostile use (docs/robustness.md "Maps"): the tile
 # directory is locked against a second writer, resume is keyed by content, a directory
 # left without a manifest is not taken for an interrupted map, a map that cannot fit on
 # the disk is refused up front.

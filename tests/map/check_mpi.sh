@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI maps (issue 4): `mpirun -n 2` and `-n 3` write exactly the bytes of the
+# MPI maps: `mpirun -n 2` and `-n 3` write exactly the bytes of the
 # single-process run, and an MPI run resumes the tiles of an interrupted single-process
 # run. Loopback only (shared memory between ranks on this machine).
 #   check_mpi.sh MPI_BINARY SOURCE_DIR MPIEXEC

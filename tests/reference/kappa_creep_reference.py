@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Independent check of the creep-mode flags (issue 8 item 2, model.md (6.11)).
+"""Independent check of the creep-mode flags (model.md (6.11)).
 
 For the smooth coulomb and stribeck laws the program flags an eigenvalue as a creep mode
 of the regularization when its analytic sensitivity s = d log|lambda| / d log kappa

@@ -1,4 +1,4 @@
-// A flexible-rotor scene (issue 11, docs/model.md §18.10–§18.12): an optional `[shaft]`
+// A flexible-rotor scene (docs/model.md §18.10–§18.12): an optional `[shaft]`
 // table turns the rigid Jeffcott rotor of model.md §1 into a finite-element shaft with
 // discs and bearings; the balancer's race and balls sit at one disc (the balancer node).
 //

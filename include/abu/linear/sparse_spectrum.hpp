@@ -1,4 +1,4 @@
-// Eigenvalues of a large sparse pencil  A v = lambda B v  (issue 11, docs/model.md §19):
+// Eigenvalues of a large sparse pencil  A v = lambda B v  (docs/model.md §19):
 // the k nearest given shifts, and the rightmost ones with the region of the complex plane
 // that the search has covered. Generic: any real A (nonsymmetric), any real B (default the
 // identity); the flexible rotor's Jacobian (model/shaft.hpp) is one user.

@@ -1,4 +1,4 @@
-// A flexible rotor (issue 11, docs/model.md §18): a finite-element shaft with discs and
+// A flexible rotor (docs/model.md §18): a finite-element shaft with discs and
 // bearings, the balancer's race and balls at one disc node. A scene without `[shaft]` is
 // the rigid Jeffcott rotor of model.hpp; nothing here runs for it.
 //

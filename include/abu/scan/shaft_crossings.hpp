@@ -1,5 +1,5 @@
-// Where a flexible rotor's balanced state loses or regains stability along omega (issue 11,
-// docs/model.md §18.14): between two speeds of a sweep whose spectral abscissas have opposite
+// Where a flexible rotor's balanced state loses or regains stability along omega
+// (docs/model.md §18.14): between two speeds of a sweep whose spectral abscissas have opposite
 // signs, the eigenvalue that crosses Re = 0 is tracked (ARPACK shift-invert, eigenvalues_near,
 // at the previous eigenvalue as shift) and Re lambda(omega) = 0 solved by Brent (GSL) to
 // 1e-12 relative in omega (the reported figure: 1e-10).

@@ -1,4 +1,4 @@
-// A stability map of a flexible rotor's balanced state (issue 11, docs/model.md §18.13):
+// A stability map of a flexible rotor's balanced state (docs/model.md §18.13):
 // over two parameters (omega, a bearing's k or c, mu, m, U, kappa, ...) per cell the
 // balanced states of the shaft (u = 0, the balls at W(beta) = 0, model.md §18.8), the
 // rightmost eigenvalues of each by ARPACK shift-invert (sparse_spectrum.hpp, §19), the
