@@ -43,6 +43,17 @@ std::vector<std::string> split_fields(std::string_view spec) {
   return parts;
 }
 
+}  // namespace
+
+std::optional<double> finite_number(std::string_view text) {
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+namespace {
+
 std::optional<long> integer(const std::string& s) {
   long n = 0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), n);
@@ -96,11 +107,9 @@ Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& or
     return fail("the ball radius does not enter the equations of motion (model.md §3)");
   axis.param = *ref;
   const auto number = [&](const std::string& s, const char* what) {
-    double v = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
-      fail(fmt::format("{} '{}' is not a finite number", what, s));
-    return v;
+    const auto v = finite_number(s);
+    if (!v) fail(fmt::format("{} '{}' is not a finite number", what, s));
+    return *v;
   };
   axis.from = number(parts[1], "FROM");
   axis.to = number(parts[2], "TO");

@@ -17,6 +17,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/analysis/map_setup.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
@@ -123,11 +124,9 @@ ShaftAxis shaft_axis(const std::string& text, const Scene& scene, const std::str
     a.unit = std::string(unit(q));
   }
   const auto number = [&](const std::string& s, const char* what) {
-    double v = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v))
-      fail(fmt::format("{} '{}' is not a finite number", what, s));
-    return v;
+    const auto v = finite_number(s);
+    if (!v) fail(fmt::format("{} '{}' is not a finite number", what, s));
+    return *v;
   };
   a.axis.from = number(parts[1], "FROM");
   a.axis.to = number(parts[2], "TO");

@@ -28,6 +28,8 @@ namespace abu {
 /// (integers 2 <= FROM <= TO <= 12, COUNT = TO - FROM + 1, no log, every count's ring
 /// valid). Throws InputError with file `origin` (e.g. "--x").
 Axis parse_axis(std::string_view spec, const Scene& scene, const std::string& origin);
+/// One axis end ("FROM", "TO"): the whole text a finite number, else nothing.
+std::optional<double> finite_number(std::string_view text);
 
 struct MapRequest {
   std::string x, y;  ///< the axis specifications
