@@ -43,7 +43,7 @@ constexpr CommandParts kCommandParts[] = {
     {"sweep", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
-    {"simulate", {.lugre = true, .set_valued = true, .unround = true}},
+    {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true}},
 };
 }  // namespace
@@ -98,9 +98,21 @@ void refuse_set_valued(const Scene& scene, std::string_view command) {
 }
 }  // namespace
 
-void refuse_combined_extensions(const Scene& scene) {
-  // The extensions are modelled one at a time (model.md §10-§12, §14): a scene that combines
-  // them is refused rather than analysed with one of them silently dropped.
+bool unround_on_anisotropic_support(const Scene& scene) {
+  return scene.support && !scene.race.round() && !scene.shaft && scene.law != FrictionLaw::lugre &&
+         scene.law != FrictionLaw::coulomb_set;
+}
+
+void refuse_combined_extensions(const Scene& scene, Handles handles) {
+  // The extensions are modelled one at a time (model.md §10-§12, §14) except an unround race
+  // on an anisotropic support (§20): a scene that combines them otherwise is refused rather
+  // than analysed with one of them silently dropped.
+  if (unround_on_anisotropic_support(scene)) {
+    if (handles.unround_anisotropic) return;
+    throw NotSupportedError(fmt::format("{} has an unround race on an anisotropic support (model.md §20): only {} "
+                                        "analyse that combination so far",
+                                        scene.file, commands_handling(&Handles::unround_anisotropic)));
+  }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +
                          int(scene.shaft != nullptr);
@@ -113,7 +125,7 @@ void refuse_combined_extensions(const Scene& scene) {
 }
 
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles) {
-  refuse_combined_extensions(scene);
+  refuse_combined_extensions(scene, handles);
   if (!handles.lugre) refuse_lugre(scene, command);
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);

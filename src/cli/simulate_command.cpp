@@ -87,6 +87,9 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
   const RaceShape race = race_shape(scene);
   const bool unround = !race.round();
   if (unround) so.race = &race;
+  // An anisotropic support (model.md §20): p carries its mean (k_bar, c_bar), the field adds
+  // the force that turns with the spin angle.
+  if (scene.support) so.support = &*scene.support;
   if (unround && !o.from_equilibrium.empty())
     throw NotSupportedError("--from-equilibrium on an unround race (model.md §11): not supported yet; start from "
                             "--balls or from an equilibrium's state with --from-state");
@@ -132,7 +135,9 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
   else
     smooth = simulate(p, speed, x0, so);
   if constexpr (N == any_balls) {
-    if (unround && r_completed(smooth)) {
+    // On an anisotropic support the unround race's equilibria are periodic orbits (model.md
+    // §20): the run's end is not matched against them.
+    if (unround && !scene.support && r_completed(smooth)) {
       ParamsN at = p;
       at.omega = speed.omega(smooth.t_reached);
       classify_unround_end(smooth.summary, at, find_unround_equilibria(at, race), so.settle_tolerance);
@@ -263,7 +268,7 @@ Action add_simulate_command(CLI::App& app) {
   progress->excludes(quiet);
   return [o, sub]() -> int {
     Scene scene = load(o->scene);
-    refuse_unmodelled(scene, "simulate", {.lugre = true, .set_valued = true, .unround = true});
+    refuse_unmodelled(scene, "simulate", handles_of("simulate"));
     apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
     if (!o->summary.empty()) check_output_target(o->summary, "--summary");
@@ -279,8 +284,9 @@ Action add_simulate_command(CLI::App& app) {
                                    ? *scene.simulate->speed
                                    : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
     // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
-    // An unround race runs in the any-ball storage too (model.md §15.6).
-    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round()) return run_simulation<2>(scene, *o, speed);
+    // An unround race and an anisotropic support run in the any-ball storage too (model.md §15.6, §20).
+    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round() && !scene.support)
+      return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);
   };
 }

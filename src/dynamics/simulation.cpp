@@ -16,7 +16,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/model/lugre.hpp"
-#include "abu/model/unround_field.hpp"
+#include "abu/model/machine_field.hpp"
 #include "dense_output.hpp"
 
 namespace abu {
@@ -120,12 +120,21 @@ const gsl_odeiv2_control_type kScaledControl = {"model-scaled", &scaled_alloc, &
 template <int N>
 struct OdeContext {
   ParamsT<double, N> p;  // p.omega follows the profile
-  double segment_t0 = 0, segment_omega0 = 0, omega_dot = 0;  // omega(t) = omega0 + omega_dot (t - t0)
+  // omega(t) = omega0 + omega_dot (t - t0), the spin angle theta(t) = theta0 + omega0 (t - t0) +
+  // omega_dot (t - t0)^2 / 2 inside a segment of the profile.
+  double segment_t0 = 0, segment_omega0 = 0, segment_theta0 = 0, omega_dot = 0;
   int dim = 0;
   unsigned long rhs = 0, jac = 0;
   ParamRef omega_ref{Quantity::omega, -1};
-  const RaceShape* race = nullptr;  // unround race (model.md §15.6), N = any_balls
+  // An unround race and/or an anisotropic support (model.md §15.6, §20), N = any_balls;
+  // base(): model.md §3 and §9 by model.hpp.
+  RigidMachine machine;
+  MachineFieldValue value;  // the composed field's last evaluation (bounded: no allocation per step)
   void set_time(double t) { p.omega = segment_omega0 + omega_dot * (t - segment_t0); }
+  double theta(double t) const {
+    const double s = t - segment_t0;
+    return segment_theta0 + s * (segment_omega0 + 0.5 * omega_dot * s);
+  }
   // The last Jacobian evaluated and where: bsimp asks for J at the start of every step (again
   // after a rejection), the dense output at the end of every step, the same point (§15.1).
   bool jac_valid = false;
@@ -179,11 +188,11 @@ int ode_rhs(double t, const double y[], double dydt[], void* params) {
     if (c.p.law == FrictionLaw::lugre) return lugre_rhs(c.p, c.omega_dot, y, dydt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
   if constexpr (N == any_balls)
-    if (c.race) {  // model.md §11.3 with the run-up's Euler terms (15.6.1)
-      const State<double, N> f = unround_vector_field(c.p, *c.race, x, c.omega_dot);
+    if (!c.machine.base()) {  // model.md (20.1): (11.3.4) with (15.6.1), and the support's force
+      machine_field(c.p, c.machine, x, c.theta(t), c.omega_dot, c.value, false);
       for (int i = 0; i < c.dim; ++i) {
-        if (!std::isfinite(f(i))) return GSL_EBADFUNC;
-        dydt[i] = f(i);
+        if (!std::isfinite(c.value.field(i))) return GSL_EBADFUNC;
+        dydt[i] = c.value.field(i);
       }
       return GSL_SUCCESS;
     }
@@ -203,16 +212,20 @@ int evaluate_jacobian(OdeContext<N>& c, double t, const double y[], double* dfdy
   if constexpr (N == any_balls)
     if (c.p.law == FrictionLaw::lugre) return lugre_jac(c.p, c.omega_dot, y, dfdy, dfdt, c.dim);
   const State<double, N> x = load_state<N>(y, c.dim);
-  StateMatrix<double, N> J;
-  State<double, N> dfw;
   if constexpr (N == any_balls) {
-    if (c.race) {  // (15.6.2)-(15.6.5)
-      J = unround_jacobian(c.p, *c.race, x, c.omega_dot);
-      if (c.omega_dot != 0) dfw = unround_omega_derivative(c.p, *c.race, x);
+    if (!c.machine.base()) {  // model.md §20: df/dt = omega' df/domega + omega df/dtheta
+      machine_field(c.p, c.machine, x, c.theta(t), c.omega_dot, c.value, true);
+      for (int i = 0; i < c.dim; ++i) {
+        for (int j = 0; j < c.dim; ++j) {
+          if (!std::isfinite(c.value.jacobian(i, j))) return GSL_EBADFUNC;
+          dfdy[i * c.dim + j] = c.value.jacobian(i, j);  // GSL: row-major
+        }
+        dfdt[i] = c.omega_dot * c.value.omega_derivative(i) + c.p.omega * c.value.angle_derivative(i);
+      }
+      return GSL_SUCCESS;
     }
   }
-  const bool unround = N == any_balls && c.race;
-  if (!unround) J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
+  const StateMatrix<double, N> J = c.omega_dot == 0 ? jacobian(c.p, x) : jacobian(c.p, x, c.omega_dot);
   for (int i = 0; i < c.dim; ++i)
     for (int j = 0; j < c.dim; ++j) {
       if (!std::isfinite(J(i, j))) return GSL_EBADFUNC;
@@ -220,7 +233,7 @@ int evaluate_jacobian(OdeContext<N>& c, double t, const double y[], double* dfdy
     }
   // df/dt = omega' df/domega (+ omega'' df/domega', zero inside a segment of the profile).
   if (c.omega_dot != 0) {
-    if (!unround) dfw = parameter_derivative(c.p, x, c.omega_ref);
+    const State<double, N> dfw = parameter_derivative(c.p, x, c.omega_ref);
     for (int i = 0; i < c.dim; ++i) dfdt[i] = c.omega_dot * dfw(i);
   } else {
     for (int i = 0; i < c.dim; ++i) dfdt[i] = 0.0;
@@ -369,6 +382,8 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   gsl_handler_off_once();
   const bool lugre = p.law == FrictionLaw::lugre;  // 3n + 4 states, the bristles last (model.md §12.7)
   if (lugre && N != any_balls) throw std::invalid_argument("simulate: a LuGre scene runs with N = any_balls");
+  if (!RigidMachine{o.race, o.support}.base() && (N != any_balls || lugre))
+    throw std::invalid_argument("simulate: an unround race or an anisotropic support runs with N = any_balls and a smooth law");
   const int n = ball_count(p), mech = 2 * n + 4, dim = lugre ? 3 * n + 4 : mech;
   check_simulation_input(o, mech, x0.data(), int(x0.size()));
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
@@ -407,8 +422,10 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
         LugreState<double> xl = LugreState<double>::Zero(dim);
         xl.head(mech) = xs;
         rho = spectral_radius(lugre_jacobian(pp, xl, RestSide::forward));
-      } else if (o.race) {
-        rho = spectral_radius(unround_jacobian(pp, *o.race, xs));
+      } else if (const RigidMachine m{o.race, o.support}; !m.base()) {
+        MachineFieldValue v;
+        machine_field(pp, m, xs, 0.0, 0.0, v, true);
+        rho = spectral_radius(v.jacobian);
       } else {
         rho = spectral_radius(jacobian(pp, xs));
       }
@@ -425,8 +442,9 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   OdeContext<N> ctx;
   ctx.p = p;
   ctx.dim = dim;
-  if constexpr (N == any_balls) ctx.race = o.race;
-  r.unround_race = ctx.race != nullptr;
+  if constexpr (N == any_balls) ctx.machine = RigidMachine{o.race, o.support};
+  r.unround_race = ctx.machine.unround();
+  r.anisotropic_support = ctx.machine.anisotropic();
   gsl_odeiv2_system sys{&ode_rhs<N>, &ode_jacobian<N>, std::size_t(dim), &ctx};
   const double h0 = std::min(1e-3 / (w_max + w_n), 1e-2 * o.t_end);
   // The driver allocates the stepper, a control and the evolve object once; its control is
@@ -483,6 +501,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   const auto begin_segment = [&](double at) {
     ctx.segment_t0 = at;
     ctx.segment_omega0 = speed.omega(at);
+    ctx.segment_theta0 = speed.angle(at);
     ctx.omega_dot = speed.omega_dot(at);
     ctx.jac_valid = false;  // J and df/dt depend on omega'
   };

@@ -21,6 +21,8 @@ std::string_view to_string(Route route);
 
 /// The route of a scene (after refuse_combined_extensions, which it calls).
 Route route_of(const Scene& scene);
+/// An unround race on an anisotropic support (model.md §20), nothing else beyond §3.
+bool unround_on_anisotropic_support(const Scene& scene);
 
 /// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
@@ -35,11 +37,14 @@ struct Handles {
   bool unround = false;     ///< an unround race (§11.10)
   bool anisotropic = false; ///< an anisotropic support, balanced states by Floquet (§10.11–§10.13)
   bool shaft = false;       ///< a flexible shaft ([shaft], model.md §18)
+  /// an unround race on an anisotropic support at once, with a smooth law (the composed field, model.md §20)
+  bool unround_anisotropic = false;
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
-/// coulomb-set) is refused (NotSupportedError): each is modelled on its own so far. Every
-/// command calls it (refuse_unmodelled does).
-void refuse_combined_extensions(const Scene& scene);
+/// coulomb-set, a shaft) is refused (NotSupportedError, naming the commands that answer it
+/// where some do) unless `handles` answers that combination: an unround race on an
+/// anisotropic support (model.md §20). Every command calls it (refuse_unmodelled does).
+void refuse_combined_extensions(const Scene& scene, Handles handles = {});
 
 /// The parts each command answers for, whatever its route: the one table the refusals quote
 /// (docs/cli.md, "Which command answers what"). Unknown commands handle the base model only.

@@ -26,7 +26,8 @@
 
 namespace abu {
 
-struct RaceShape;  // model/unround_race.hpp
+struct RaceShape;           // model/unround_race.hpp
+struct AnisotropicSupport;  // model/anisotropic_support.hpp
 
 /// GSL odeiv2 steppers the simulation offers (`--method`).
 enum class IntegrationMethod {
@@ -68,6 +69,10 @@ struct SimulationOptions {
   /// An unround race (model.md §11, §15.6): the balls' centre paths; null (or a round race):
   /// the round race of §3. N = any_balls only. Not owned: it must outlive the run.
   const RaceShape* race = nullptr;
+  /// An anisotropic support (model.md §10, §20): the rotor's support force turns with the
+  /// spin angle theta(t); `p` must carry its mean (k_bar, c_bar). Null (or isotropic): p's
+  /// isotropic support. N = any_balls only. Not owned: it must outlive the run.
+  const AnisotropicSupport* support = nullptr;
 };
 
 enum class SimulationStatus { completed, interrupted, failed };
@@ -135,6 +140,7 @@ struct SimulationResult {
   double t_reached = 0;
   bool stopped_early = false;   ///< options.stop_at_sample ended the run at t_reached
   bool unround_race = false;    ///< integrated on an unround race (options.race, model.md §15.6)
+  bool anisotropic_support = false;  ///< integrated on an anisotropic support (options.support, model.md §20)
   /// Friction law `lugre` (model.md §12.7): the n bristle states integrated beside x; the
   /// z_i of every sample (bristle_count per sample, in sample order) and at t_reached.
   int bristle_count = 0;
