@@ -17,7 +17,6 @@
 
 #include "abu/dynamics/forced_orbits.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/model/anisotropic_field.hpp"
 
 using namespace abu;
 
@@ -54,39 +53,6 @@ std::vector<EquilibriumN> aligned(const ParamsN& p) {
 // (10.14.2) is the analytic Jacobian of (10.14.1); central differences of the field with
 // steps 1e-6 of each coordinate's scale have a truncation error ~1e-12 relative and a
 // rounding error ~1e-10 of the largest entry: 1e-7 of the row's largest entry is safe.
-TEST_CASE("forced orbits: the anisotropic field's Jacobian and derivatives are exact", "[forced]") {
-  const ParamsN p = base();
-  const AnisotropicSupport s = support_of(p);
-  State<double, any_balls> x(8);
-  x << 2e-6, -1e-6, 2.9, 3.4, 1e-4, -3e-4, 0.2, -0.1;
-  const double t = 7e-4, delta = 0.7;
-  AnisotropicFieldValue v, a, b;
-  anisotropic_field(p, s, x, t, delta, v, true);
-  const double scale[8] = {1e-6, 1e-6, 1, 1, 1e-3, 1e-3, 1, 1};
-  for (int j = 0; j < 8; ++j) {
-    State<double, any_balls> xp = x, xm = x;
-    const double h = 1e-6 * scale[j];
-    xp(j) += h;
-    xm(j) -= h;
-    anisotropic_field(p, s, xp, t, delta, a, false);
-    anisotropic_field(p, s, xm, t, delta, b, false);
-    const State<double, any_balls> fd = (a.field - b.field) / (2 * h);
-    for (int i = 0; i < 8; ++i) {
-      const double row = v.jacobian.row(i).cwiseProduct(Eigen::Map<const Eigen::VectorXd>(scale, 8).transpose()).cwiseAbs().maxCoeff();
-      INFO("J(" << i << "," << j << ") = " << v.jacobian(i, j) << ", differences " << fd(i));
-      CHECK(std::abs(v.jacobian(i, j) - fd(i)) * scale[j] <= 1e-7 * row + 1e-300);
-    }
-  }
-  // d/ddelta (exactly linear) and d/dt (first harmonic in 2 omega t).
-  anisotropic_field(p, s, x, t, delta + 1e-3, a, false);
-  anisotropic_field(p, s, x, t, delta - 1e-3, b, false);
-  CHECK(((a.field - b.field) / 2e-3 - v.delta_derivative).norm() <= 1e-9 * v.delta_derivative.norm());
-  const double ht = 1e-9;
-  anisotropic_field(p, s, x, t + ht, delta, a, false);
-  anisotropic_field(p, s, x, t - ht, delta, b, false);
-  CHECK(((a.field - b.field) / (2 * ht) - v.time_derivative).norm() <= 1e-5 * v.time_derivative.norm());
-}
-
 // delta_end = 0: the mean system, whose aligned equilibrium is a constant orbit. Its
 // shooting multipliers (the transition matrices integrated to rtol 1e-13 and multiplied
 // by periodic orthogonal iteration) must equal exp(lambda pi/omega) of the equilibrium's

@@ -3,15 +3,13 @@
 // path (offset circle and harmonics 2..4), an anisotropic support with cross terms, every
 // smooth friction law, constant speed and a run-up: its Jacobian and its derivatives in
 // omega, in the support's angle and in the anisotropy scale against central differences of
-// the field; and its reductions to the codes of the single parts (an anisotropic support on
-// a round race: model/anisotropic_field.hpp; a round race on an isotropic support: model.md
-// §3 itself).
+// the field; on a round race, model.md §3's code with the support's force against the
+// unround race's formulas; with a part absent, model.md §3's field itself.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <random>
 
-#include "abu/model/anisotropic_field.hpp"
 #include "abu/model/machine_field.hpp"
 #include "abu/model/model.hpp"
 
@@ -139,40 +137,43 @@ TEST_CASE("machine field: the Jacobian and the omega, angle and anisotropy deriv
   CHECK(cases == 18);
 }
 
-TEST_CASE("machine field: on a round race it is the anisotropic support's field of model.md (10.14.1)",
+TEST_CASE("machine field: on a round race, model.md §3's code with the support's force is the unround race's",
           "[machine_field]") {
-  // Two codes for one field: machine_field on circles (the unround race's A and b, (11.3.3)
-  // with zero amplitudes, plus g) against anisotropic_field (model.md §3's A and b at the mean
-  // support plus A^-1 g). They differ in their formulas only: 1e-12 of each row's size.
+  // Two codes for one field: on a round race machine_field takes model.md §3's A and b at the
+  // mean support plus A^-1 g (model.hpp); on a race with amplitudes of 1e-30 (round to
+  // rounding) the unround race's formulas (11.3.3)-(11.3.4) plus g. They differ in their
+  // formulas only: 1e-12 of each row's size, for the field, the Jacobian and every derivative,
+  // at constant speed and in a run-up.
   std::mt19937 rng(7);
-  for (int n : {2, 4}) {
-    Combination c = random_combination(rng, n, FrictionLaw::coulomb);
-    const RaceShape round;
-    MachineFieldValue v;
-    machine_field(c.p, RigidMachine{&round, &c.support, c.delta}, c.x, c.theta, 0.0, v, true);
-    AnisotropicFieldValue a;
-    const double t = c.theta / c.p.omega;  // at constant speed theta = omega t
-    anisotropic_field(c.p, c.support, c.x, t, c.delta, a, true);
-    check_close(v.field, a.field, 1e-12, a.field.cwiseAbs().maxCoeff());
-    for (int i = 0; i < c.x.size(); ++i)
-      for (int j = 0; j < c.x.size(); ++j)
-        CHECK(std::abs(v.jacobian(i, j) - a.jacobian(i, j)) <= 1e-12 * a.jacobian.row(i).cwiseAbs().maxCoeff());
-    check_close(v.delta_derivative, a.delta_derivative, 1e-12, a.delta_derivative.cwiseAbs().maxCoeff());
-    const State<double, any_balls> dt = c.p.omega * v.angle_derivative;  // d theta / dt = omega
-    check_close(dt, a.time_derivative, 1e-12, a.time_derivative.cwiseAbs().maxCoeff());
-  }
+  for (int n : {2, 4})
+    for (double wd : {0.0, 250.0}) {
+      Combination c = random_combination(rng, n, FrictionLaw::coulomb);
+      const RaceShape round;
+      RaceShape nearly_round;
+      for (int i = 0; i < n; ++i) nearly_round.balls.push_back({{2, 1e-30, 0.3}});
+      REQUIRE(!nearly_round.round());
+      MachineFieldValue v, a;
+      machine_field(c.p, RigidMachine{&round, &c.support, c.delta}, c.x, c.theta, wd, v, true);
+      machine_field(c.p, RigidMachine{&nearly_round, &c.support, c.delta}, c.x, c.theta, wd, a, true);
+      check_close(v.field, a.field, 1e-12, a.field.cwiseAbs().maxCoeff());
+      for (int i = 0; i < c.x.size(); ++i)
+        for (int j = 0; j < c.x.size(); ++j)
+          CHECK(std::abs(v.jacobian(i, j) - a.jacobian(i, j)) <= 1e-12 * a.jacobian.row(i).cwiseAbs().maxCoeff());
+      check_close(v.delta_derivative, a.delta_derivative, 1e-12, a.delta_derivative.cwiseAbs().maxCoeff());
+      check_close(v.angle_derivative, a.angle_derivative, 1e-12, a.angle_derivative.cwiseAbs().maxCoeff());
+      check_close(v.omega_derivative, a.omega_derivative, 1e-12, a.omega_derivative.cwiseAbs().maxCoeff());
+    }
 }
 
 TEST_CASE("machine field: absent parts cost nothing and change nothing", "[machine_field]") {
-  // No race, a round race, an isotropic support or delta = 0: model.md §3's field and
+  // No race, a round race or an isotropic support: model.md §3's field and
   // Jacobian themselves (the same code: equal to the last bit), with zero angle and delta
   // derivatives; the omega derivative is model.hpp's parameter_derivative.
   std::mt19937 rng(11);
   Combination c = random_combination(rng, 3, FrictionLaw::stribeck);
   const RaceShape round;
   const AnisotropicSupport isotropic{c.p.rotor.stiffness, c.p.rotor.stiffness, 0.0, c.p.rotor.damping, c.p.rotor.damping, 0.0};
-  for (const RigidMachine& m : {RigidMachine{}, RigidMachine{&round, nullptr}, RigidMachine{nullptr, &isotropic},
-                                RigidMachine{&round, &c.support, 0.0}}) {
+  for (const RigidMachine& m : {RigidMachine{}, RigidMachine{&round, nullptr}, RigidMachine{nullptr, &isotropic}}) {
     REQUIRE(m.base());
     MachineFieldValue v;
     machine_field(c.p, m, c.x, c.theta, 0.0, v, true);

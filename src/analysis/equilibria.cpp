@@ -70,6 +70,17 @@ AnisotropicStates anisotropic_states(const Scene& scene, const EquilibriaOptions
   return out;
 }
 
+// Every state a pi/omega-periodic orbit (model.md §20.4): the race's equilibria on the mean
+// support, continued in the support's anisotropy.
+UnroundAnisotropicStates unround_anisotropic_states(const Scene& scene, const EquilibriaOptions& o,
+                                                    std::string& warnings) {
+  if (o.mode_shapes) throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
+  UnroundStates race = unround_states(scene, o, warnings);
+  UnroundAnisotropicStates out{race.params, race.race, *scene.support, std::move(race.result), {}};
+  out.orbits = analyze_unround_orbits(out.params, out.support, out.race, out.mean);
+  return out;
+}
+
 template <class States, class P>
 States rigid_states(const P& p, const BalancedSampling& sampling) {
   States out;
@@ -131,6 +142,7 @@ EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions&
     }
     case Route::unround: r.states = unround_states(scene, o, r.warnings); break;
     case Route::anisotropic: r.states = anisotropic_states(scene, o); break;
+    case Route::unround_anisotropic: r.states = unround_anisotropic_states(scene, o, r.warnings); break;
     case Route::set_valued: {
       const ParamsN p = params_of<any_balls>(scene);
       r.states = StickSetStates{p, stick_set(p, o.stick)};

@@ -46,4 +46,20 @@ ForcedOrbitAnalysis analyze_forced_orbits(const ParamsN& p, const AnisotropicSup
   return a;
 }
 
+ForcedOrbitAnalysis analyze_unround_orbits(const ParamsN& p, const AnisotropicSupport& support, const RaceShape& race,
+                                           const UnroundResult& mean, const ForcedOrbitOptions& options) {
+  ForcedOrbitAnalysis a;
+  a.origin = OrbitOrigin::unround_equilibria;
+  const int d = p.n_balls() + 2;
+  for (std::size_t k = 0; k < mean.list.size(); ++k) {
+    Coordinates<double, any_balls> s(d);
+    for (int i = 0; i < d; ++i) s(i) = double(mean.list[k].position(i));
+    ++a.aligned;
+    a.orbits.push_back(forced_orbit(p, RigidMachine{&race, &support}, at_rest<double, any_balls>(s),
+                                    fmt::format("unround equilibrium {}", k + 1), options));
+    if (a.orbits.back().status.ok()) ++a.converged;
+  }
+  return a;
+}
+
 }  // namespace abu

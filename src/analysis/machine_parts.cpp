@@ -17,11 +17,13 @@ std::string_view to_string(Route route) {
     case Route::unround: return "unround";
     case Route::anisotropic: return "anisotropic";
     case Route::shaft: return "shaft";
+    case Route::unround_anisotropic: return "unround_anisotropic";
   }
   return "?";
 }
 
 Route route_of(const Scene& scene) {
+  if (unround_on_anisotropic_support(scene)) return Route::unround_anisotropic;  // model.md §20
   refuse_combined_extensions(scene);
   if (scene.shaft) return Route::shaft;
   if (!scene.race.round()) return Route::unround;
@@ -39,7 +41,8 @@ struct CommandParts {
 // Which command answers which part (docs/cli.md). sweep and continue take an unround race along
 // its own parameters; simulate and basin a LuGre or set-valued law by their own integrators.
 constexpr CommandParts kCommandParts[] = {
-    {"equilibria", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"equilibria",
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true}},
     {"sweep", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},

@@ -14,7 +14,7 @@
 
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/floquet.hpp"
-#include "abu/model/anisotropic_field.hpp"
+#include "abu/model/machine_field.hpp"
 #include "forced_orbits_radau.hpp"
 #include "shooting_flow.hpp"
 
@@ -28,15 +28,16 @@ using StateX = State<double, any_balls>;
 struct ForcedContext {
   ParamsN p;
   AnisotropicSupport support;
+  const RaceShape* race = nullptr;  // an unround race under the support (model.md §20); null: round
   Eigen::VectorXd scale;  // D
   int dim = 0;            // 2 n + 4
   double delta = 0;       // the homotopy parameter of the current evaluation
   double span = 1;        // d delta / d (scaled parameter) = delta_end
-  AnisotropicFieldValue value;  // the last evaluation (bounded storage: no allocation per step)
+  MachineFieldValue value;  // the last evaluation (bounded storage: no allocation per step)
   void evaluate(double t, const Eigen::VectorXd& y, bool derivatives) {
     StateX x(dim);
     for (int i = 0; i < dim; ++i) x(i) = scale(i) * y(i);
-    anisotropic_field(p, support, x, t, delta, value, derivatives);
+    machine_field(p, RigidMachine{race, &support, delta}, x, p.omega * t, 0.0, value, derivatives);  // (20.1)
   }
   // The Radau step's field(t, y, F, J, P).
   template <class F, class P>
@@ -56,12 +57,13 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
  public:
   static constexpr std::size_t test_count = 1;  // d delta / ds: a fold in delta
 
-  ForcedProblem(const ParamsN& p, const AnisotropicSupport& s, const Eigen::VectorXd& scale,
+  ForcedProblem(const ParamsN& p, const RigidMachine& machine, const Eigen::VectorXd& scale,
                 const ForcedOrbitOptions& o)
       : ShootingSystem(1e-15, 1e2), o_(o), m_(o.intervals), steps_(o.steps_per_interval), dim_(int(scale.size())),
         radau_(int(scale.size())) {
     ctx_.p = p;
-    ctx_.support = s;
+    ctx_.support = *machine.support;
+    ctx_.race = machine.race;
     ctx_.scale = scale;
     ctx_.dim = dim_;
     ctx_.span = o.delta_end;
@@ -315,17 +317,36 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
   out.family = e.family;
   out.pattern = e.pattern;
   out.member = e.member;
-  const int n = e.n_balls(), d = 2 * n + 4;
-  out.kind = kind_of(e, n);
+  out.kind = kind_of(e, e.n_balls());
   out.period = std::numbers::pi / p.omega;
-  const auto fail = [&](Outcome kind, std::string why) {
-    out.status.merge(kind, "see reason");
+  const auto fail = [&](std::string why) {
+    out.status.merge(e.converged ? Outcome::numerical_issue : Outcome::not_converged, "see reason");
     out.reason = std::move(why);
     return out;
   };
-  if (e.family == Family::balanced) return fail(Outcome::numerical_issue, "a balanced state is an equilibrium, not an orbit");
-  if (!e.converged) return fail(Outcome::not_converged, "its equilibrium of the mean system did not converge");
-  if (e.singular()) return fail(Outcome::numerical_issue, "its equilibrium of the mean system is singular (degenerate)");
+  if (e.family == Family::balanced) return fail("a balanced state is an equilibrium, not an orbit");
+  if (!e.converged) return fail("its equilibrium of the mean system did not converge");
+  if (e.singular()) return fail("its equilibrium of the mean system is singular (degenerate)");
+  ForcedOrbit orbit = forced_orbit(p, RigidMachine{nullptr, &s}, at_rest<double, any_balls>(e.position_si()), out.kind, o);
+  orbit.family = e.family;
+  orbit.pattern = e.pattern;
+  orbit.member = e.member;
+  return orbit;
+}
+
+ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const StateX& x0, std::string kind,
+                         const ForcedOrbitOptions& o) {
+  ForcedOrbit out;
+  const int n = p.n_balls(), d = 2 * n + 4;
+  out.kind = std::move(kind);
+  out.period = std::numbers::pi / p.omega;
+  const auto fail = [&](Outcome outcome, std::string why) {
+    out.status.merge(outcome, "see reason");
+    out.reason = std::move(why);
+    return out;
+  };
+  if (!machine.support) return fail(Outcome::numerical_issue, "no support to continue in (machine.support is null)");
+  if (x0.size() != d || !x0.allFinite()) return fail(Outcome::numerical_issue, "the start is not a finite state of this machine");
   if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
   // Scaling D (model.md (10.14.3)).
   const double L = displacement_scale(p), w = p.omega;
@@ -333,8 +354,7 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
   D.segment(n + 2, n + 2).setConstant(w);
   D.head(2) *= L;
   D.segment(n + 2, 2) *= L;
-  const StateX x0 = e.position_si().size() ? at_rest<double, any_balls>(e.position_si()) : StateX();
-  ForcedProblem problem(p, s, D, o);
+  ForcedProblem problem(p, machine, D, o);
   const int M = o.intervals;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
   for (int j = 0; j < M; ++j) u.segment(d * j, d) = x0.cwiseQuotient(D);

@@ -9,12 +9,13 @@
 #include <numbers>
 
 #include "abu/model/friction.hpp"
+#include "abu/model/mass_derivative.hpp"
 #include "abu/model/unround_field.hpp"
 
 namespace abu {
 
 bool RigidMachine::unround() const { return race != nullptr && !race->round(); }
-bool RigidMachine::anisotropic() const { return support != nullptr && !support->isotropic() && delta != 0.0; }
+bool RigidMachine::anisotropic() const { return support != nullptr && !support->isotropic(); }
 
 namespace {
 
@@ -129,6 +130,40 @@ void base_field(const ParamsN& p, const State<double, any_balls>& x, double wd, 
   out.delta_derivative = State<double, any_balls>::Zero(x.size());
 }
 
+// A round race on an anisotropic support: model.md §3's A and b (model.hpp) at the mean
+// support plus delta A^-1 (g, 0), with (20.2) and the mean field's derivatives (§10.14).
+void round_race_field(const ParamsN& p, const RigidMachine& m, const State<double, any_balls>& x, double theta,
+                      double wd, MachineFieldValue& out, bool derivatives) {
+  base_field(p, x, wd, out, derivatives);
+  const Eigen::Index d = x.size() / 2;
+  const Dof pos = x.head(d);
+  const Eigen::Vector2d q = x.head<2>(), qdot = x.segment<2>(d);
+  const Eigen::LLT<DofM> llt(mass_matrix(p, pos));  // A is SPD (model.md §3)
+  const Anisotropy a = anisotropy_at(*m.support, theta);
+  Dof g = Dof::Zero(d);
+  g.head<2>() = support_force(a.dK, a.dC, p.omega, q, qdot);
+  const Dof accel = llt.solve(g);  // A^-1 g: the full anisotropy's acceleration
+  out.field.segment(d, d) += m.delta * accel;
+  if (!derivatives) return;
+  out.delta_derivative.segment(d, d) = accel;
+  Dof gt = Dof::Zero(d);
+  gt.head<2>() = support_force(a.dK_theta, a.dC_theta, p.omega, q, qdot);
+  out.angle_derivative.segment(d, d) = m.delta * llt.solve(gt);
+  Eigen::Matrix2d J2;
+  J2 << 0.0, -1.0, 1.0, 0.0;
+  Dof gw = Dof::Zero(d);
+  gw.head<2>() = -m.delta * (a.dC * (J2 * q));
+  out.omega_derivative.segment(d, d) += llt.solve(gw);
+  // (20.2), and the change of A(beta) at fixed delta g: -(dA/ds) A^-1 delta g.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, dof_capacity<any_balls>,
+                2 * dof_capacity<any_balls>>
+      rhs = Eigen::MatrixXd::Zero(d, 2 * d);
+  rhs.block(0, 0, 2, 2) = -m.delta * (a.dK + p.omega * a.dC * J2);
+  rhs.block(0, d, 2, 2) = -m.delta * a.dC;
+  rhs.leftCols(d) -= mass_derivative_times(p, pos, Dof(m.delta * accel));
+  out.jacobian.block(d, 0, d, 2 * d) += llt.solve(rhs);
+}
+
 // Bs = db/ds - (dA/ds) s'' and Bv = db/ds' of (15.6.2), (15.6.4) with s'' = acc, and db/domega
 // (15.6.5): the race's and the mean support's terms.
 void race_derivatives(const ParamsN& p, const Paths& paths, const State<double, any_balls>& x, double wd,
@@ -185,10 +220,9 @@ void race_derivatives(const ParamsN& p, const Paths& paths, const State<double, 
 void machine_field(const ParamsN& p, const RigidMachine& m, const State<double, any_balls>& x, double theta,
                    double wd, MachineFieldValue& out, bool derivatives) {
   if (m.base()) return base_field(p, x, wd, out, derivatives);
+  if (!m.unround()) return round_race_field(p, m, x, theta, wd, out, derivatives);
   const int n = p.n_balls(), d = n + 2;
-  static const RaceShape round_race;
-  const RaceShape& race = m.race ? *m.race : round_race;
-  const Paths paths = paths_at(p, race, x, derivatives);
+  const Paths paths = paths_at(p, *m.race, x, derivatives);
   const auto llt = mass_of(p, paths).llt();  // A is SPD (model.md §11.3)
   Dof b = forces_of(p, paths, x, wd);
   const bool aniso = m.anisotropic();

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "abu/output/format.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
 #include "abu/output/report.hpp"
@@ -55,6 +56,26 @@ std::string anisotropic_text(const AnisotropicStates& s, std::string_view format
   return floquet_table(s.floquet, p, s.support) + (s.orbits ? forced_orbits_table(*s.orbits, p) : "");
 }
 
+// An unround race on an anisotropic support (model.md §20.4): the periodic orbits alone.
+std::string unround_anisotropic_text(const UnroundAnisotropicStates& s, std::string_view format, const OutputContext& c) {
+  const ParamsN& p = s.params;
+  const AnisotropicSupport& k = s.support;
+  const std::string what = fmt::format(
+      "unround race on an anisotropic support (model.md §20): no state is an equilibrium; the race's {} equilibria "
+      "on the mean support (k_bar = {} N/m, c_bar = {} N s/m; {}) continue to pi/omega-periodic orbits",
+      s.mean.list.size(), k.mean_stiffness(), k.mean_damping(), s.mean.doubt.empty() ? "the search is complete" : s.mean.doubt);
+  if (format == "csv") return provenance_header(c.command_line, c.scene_file, p) + "# " + what + "\n" + forced_orbits_csv(s.orbits, p);
+  if (format == "json")
+    return fmt::format("{{\n  \"command\": {},\n  \"scene\": {},\n  \"balls\": {},\n  \"omega\": {},\n  \"model\": {},\n  "
+                       "\"support\": {{\"frame\": \"fixed\", \"stiffness\": [[{}, {}], [{}, {}]], \"damping\": [[{}, {}], [{}, {}]], "
+                       "\"units\": \"N/m, N s/m\"}},\n  \"period\": {},\n  {}\n}}\n",
+                       json_string(c.command_line), json_string(c.scene_file), p.n_balls(), p.omega, json_string(what),
+                       k.k_x, k.k_xy, k.k_xy, k.k_y, k.c_x, k.c_xy, k.c_xy, k.c_y, s.orbits.orbits.empty() ? 0.0 : s.orbits.orbits[0].period,
+                       forced_orbits_json(s.orbits));
+  return fmt::format("{}: {} balls, omega = {} rad/s\n{}\n", c.scene_file, p.n_balls(), p.omega, what) +
+         forced_orbits_table(s.orbits, p);
+}
+
 }  // namespace
 
 std::string equilibria_text(const EquilibriaReport& r, std::string_view format, const OutputContext& c) {
@@ -79,6 +100,7 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
             return unround_table(s.result, s.params, s.race, c.scene_file);
           },
           [&](const AnisotropicStates& s) { return anisotropic_text(s, format, c); },
+          [&](const UnroundAnisotropicStates& s) { return unround_anisotropic_text(s, format, c); },
           [&](const ShaftStates& s) {
             if (format == "csv") return shaft_states_csv(s, c.command_line, c.scene_file);
             if (format == "json") return shaft_states_json(s, c.command_line, c.scene_file);

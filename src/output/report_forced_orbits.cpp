@@ -21,15 +21,24 @@ std::string csv_quoted(std::string_view text) {
   return out + "\"";
 }
 
+// Where the orbits start, as the reports name it.
+std::string_view origin_text(const ForcedOrbitAnalysis& a) {
+  return a.origin == OrbitOrigin::aligned_equilibria ? "aligned equilibria of the mean system"
+                                                     : "equilibria of the unround race on the mean support";
+}
+std::string_view origin_section(const ForcedOrbitAnalysis& a) {
+  return a.origin == OrbitOrigin::aligned_equilibria ? "§10.14" : "§20.4";
+}
+
 }  // namespace
 
 std::string forced_orbits_table(const ForcedOrbitAnalysis& a, const ParamsN& p) {
   std::string out = fmt::format(
-      "\nperiodic orbits (model.md §10.14): {} of the {} aligned equilibria of the mean system continued to "
+      "\nperiodic orbits (model.md {}): {} of the {} {} continued to "
       "pi/omega-periodic orbits of this support (shooting over pi/omega, continued in the anisotropy delta = 0 -> 1). "
       "|q| over the period (rotating frame = fixed-frame whirl radius); multipliers over pi/omega, no trivial one "
       "(the system is not autonomous)\n",
-      a.converged, a.aligned);
+      origin_section(a), a.converged, a.aligned, origin_text(a));
   for (const ForcedOrbit& o : a.orbits) {
     out += fmt::format("{}: ", o.kind);
     if (!o.status.ok()) {
@@ -52,10 +61,10 @@ std::string forced_orbits_table(const ForcedOrbitAnalysis& a, const ParamsN& p) 
 std::string forced_orbits_csv(const ForcedOrbitAnalysis& a, const ParamsN& p) {
   const int n = p.n_balls(), dim = 2 * n + 4;
   std::string out = fmt::format(
-      "# periodic orbits (model.md §10.14): {} of {} aligned equilibria continued; a second block with its own "
+      "# periodic orbits (model.md {}): {} of {} {} continued; a second block with its own "
       "header: q_abs [m] over pi/omega (rotating frame), beta ranges [rad], multipliers over pi/omega (modulus "
       "descending), mult_logmod = ln|rho|; a failed orbit has empty values and its reason\n",
-      a.converged, a.aligned);
+      origin_section(a), a.converged, a.aligned, a.origin == OrbitOrigin::aligned_equilibria ? "aligned equilibria" : origin_text(a));
   out += "orbit,kind,status,stability,q_abs_max,q_abs_mean";
   for (int k = 1; k <= n; ++k) out += fmt::format(",beta{}_min,beta{}_max", k, k);
   for (int k = 1; k <= dim; ++k) out += fmt::format(",rho{}_re,rho{}_im,mult_logmod{}", k, k, k);
@@ -78,7 +87,8 @@ std::string forced_orbits_csv(const ForcedOrbitAnalysis& a, const ParamsN& p) {
 }
 
 std::string forced_orbits_json(const ForcedOrbitAnalysis& a) {
-  std::string out = fmt::format("\"aligned_equilibria\": {}, \"periodic_orbits_found\": {},\n  \"periodic_orbits\": [",
+  std::string out = fmt::format("\"{}\": {}, \"periodic_orbits_found\": {},\n  \"periodic_orbits\": [",
+                                a.origin == OrbitOrigin::aligned_equilibria ? "aligned_equilibria" : "unround_equilibria",
                                 a.aligned, a.converged);
   for (std::size_t i = 0; i < a.orbits.size(); ++i) {
     const ForcedOrbit& o = a.orbits[i];

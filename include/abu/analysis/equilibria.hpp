@@ -11,6 +11,8 @@
 //   unround race                                 every equilibrium by the box search (§11.4)
 //   anisotropic support                          the balanced states' Floquet verdicts and the
 //                                                other states' periodic orbits (§10)
+//   unround race on an anisotropic support       every state a periodic orbit, continued from the
+//                                                race's equilibria on the mean support (§20.4)
 //   flexible shaft                               the states with their rightmost eigenvalues (§18)
 //
 //   abu::EquilibriaReport r = abu::analyze_equilibria(scene, {});
@@ -79,8 +81,20 @@ struct AnisotropicStates {
   std::optional<ForcedOrbitAnalysis> orbits;  ///< when asked for (EquilibriaOptions::periodic_orbits)
 };
 
+/// An unround race on an anisotropic support (model.md §20.4): no state is an equilibrium
+/// (the race leaves q != 0, the support turns under it); each equilibrium of the race on the
+/// mean support continues to a pi/omega-periodic orbit.
+struct UnroundAnisotropicStates {
+  ParamsN params;  ///< with the mean support (k_bar, c_bar)
+  RaceShape race;
+  AnisotropicSupport support;
+  UnroundResult mean;          ///< the race's equilibria on the mean support (§11.4)
+  ForcedOrbitAnalysis orbits;  ///< one per equilibrium of `mean`
+};
+
 struct EquilibriaReport {
-  std::variant<RigidStates2, RigidStatesN, LugreStates, StickSetStates, UnroundStates, AnisotropicStates, ShaftStates>
+  std::variant<RigidStates2, RigidStatesN, LugreStates, StickSetStates, UnroundStates, AnisotropicStates, ShaftStates,
+               UnroundAnisotropicStates>
       states;
   std::string warnings;  ///< for the user (stderr), one line each
 };

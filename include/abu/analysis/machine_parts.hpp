@@ -16,7 +16,7 @@ namespace abu {
 /// How a scene is analysed: the part that sets the method. A scene has at most one of the
 /// extensions (refuse_combined_extensions); `rigid` is the base model of model.md §3 with a
 /// smooth law (none, viscous, coulomb, stribeck), any ball count.
-enum class Route { rigid, lugre, set_valued, unround, anisotropic, shaft };
+enum class Route { rigid, lugre, set_valued, unround, anisotropic, shaft, unround_anisotropic };
 std::string_view to_string(Route route);
 
 /// The route of a scene (after refuse_combined_extensions, which it calls).

@@ -1,7 +1,7 @@
 // The non-balanced states on an anisotropic support (docs/model.md §10.14): each aligned
 // equilibrium of the mean (isotropic) system becomes a pi/omega-periodic orbit of the
 // rotating-frame system, which is non-autonomous. The orbit is continued from the
-// equilibrium in the homotopy parameter delta of model/anisotropic_field.hpp (delta = 0:
+// equilibrium in the homotopy parameter delta of model/machine_field.hpp (delta = 0:
 // the mean support, delta = 1: the scene's), by multiple shooting over the fixed period
 // pi/omega with the project's pseudo-arclength engine, and its 2n + 4 Floquet multipliers
 // come from the product of the short-interval transition matrices (linear/floquet.hpp).
@@ -26,6 +26,7 @@
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/anisotropic_support.hpp"
+#include "abu/model/machine_field.hpp"
 
 namespace abu {
 
@@ -80,5 +81,11 @@ struct ForcedOrbit {
 /// k_bar, c_bar; e an equilibrium of it with q != 0) to delta_end.
 ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& support, const EquilibriumN& e,
                          const ForcedOrbitOptions& options = {});
+
+/// The same from any equilibrium `start` (at rest, SI) of the machine at delta = 0 — the mean
+/// support with `machine.race` (model.md §20: an equilibrium of the unround race, §11.4) —
+/// labelled `kind`. `machine.support` must be set; its delta is ignored (the continuation's).
+ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const State<double, any_balls>& start,
+                         std::string kind, const ForcedOrbitOptions& options = {});
 
 }  // namespace abu

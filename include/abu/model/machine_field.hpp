@@ -7,11 +7,11 @@
 //     A(beta) s'' = b(s, s'; omega, omega') + delta (g(q, q', theta), 0)           (20.1)
 //
 // A and b those of the unround race (model.md (11.3.3)-(11.3.4), with the run-up's Euler
-// terms (15.6.1)) at the mean support (k_bar, c_bar) — for a round race they are model.md
-// §3's — and g the support's anisotropic force on the rotating axes (10.14.1) at the spin
-// angle theta: g = -(K_rot(theta) - k_bar I) q - (C_rot(theta) - c_bar I) (q' + omega J2 q).
-// A part that is absent costs nothing: a round race on an isotropic support is model.md §3's
-// field (model.hpp) itself.
+// terms (15.6.1)) at the mean support (k_bar, c_bar) — for a round race model.md §3's, by
+// model.hpp's code — and g the support's anisotropic force on the rotating axes (10.14.1) at
+// the spin angle theta: g = -(K_rot(theta) - k_bar I) q - (C_rot(theta) - c_bar I) (q' +
+// omega J2 q). A part that is absent costs nothing: a round race on an isotropic support is
+// model.md §3's field (model.hpp) itself.
 //
 //   abu::RigidMachine m{&race, &support};          // either may be null
 //   abu::MachineFieldValue v;
@@ -34,6 +34,8 @@ struct RigidMachine {
   double delta = 1.0;  ///< the anisotropy's homotopy scale in (20.1) (1: the scene's support)
 
   bool unround() const;
+  /// An anisotropic support, whatever delta (at delta = 0 the field is the mean support's,
+  /// its delta derivative A^-1 (g, 0) is not zero).
   bool anisotropic() const;
   /// Neither part: model.md §3's field applies as it is.
   bool base() const { return !unround() && !anisotropic(); }
