@@ -18,6 +18,6 @@ run() {  # scene balls [--ramp R]
 }
 run "$scenes/composed/oval_anisotropic.toml" 0.5,2.5
 run "$scenes/composed/oval_anisotropic.toml" 0.5,2.5 --ramp 300:1100:4000
-run "$scenes/composed/three_balls_lobes_anisotropic.toml" 0.3,2.0,4.1
+run "$scenes/composed/three_balls_oval_anisotropic.toml" 0.3,2.0,4.1
 run "$scenes/anisotropic/ref_viscous.toml" 0.3,2.0
 echo "composed simulation: all runs agree with the fixed-frame reference"
