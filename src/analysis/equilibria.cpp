@@ -145,7 +145,7 @@ EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions&
     case Route::unround_anisotropic: r.states = unround_anisotropic_states(scene, o, r.warnings); break;
     case Route::set_valued: {
       const ParamsN p = params_of<any_balls>(scene);
-      r.states = StickSetStates{p, stick_set(p, o.stick)};
+      r.states = StickSetStates{p, stick_set(p, race_shape(scene), o.stick)};  // on the race's paths if unround (§20.5)
       break;
     }
     case Route::lugre: r.states = lugre_states(scene, o); break;

@@ -24,6 +24,7 @@ std::string_view to_string(Route route) {
 
 Route route_of(const Scene& scene) {
   if (unround_on_anisotropic_support(scene)) return Route::unround_anisotropic;  // model.md §20
+  if (set_valued_on_unround_race(scene)) return Route::set_valued;               // on the race's paths, §20.5
   refuse_combined_extensions(scene);
   if (scene.shaft) return Route::shaft;
   if (!scene.race.round()) return Route::unround;
@@ -42,7 +43,8 @@ struct CommandParts {
 // its own parameters; simulate and basin a LuGre or set-valued law by their own integrators.
 constexpr CommandParts kCommandParts[] = {
     {"equilibria",
-     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true}},
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
+      .unround_set_valued = true}},
     {"sweep", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
@@ -106,6 +108,10 @@ bool unround_on_anisotropic_support(const Scene& scene) {
          scene.law != FrictionLaw::coulomb_set;
 }
 
+bool set_valued_on_unround_race(const Scene& scene) {
+  return scene.law == FrictionLaw::coulomb_set && !scene.race.round() && !scene.support && !scene.shaft;
+}
+
 void refuse_combined_extensions(const Scene& scene, Handles handles) {
   // The extensions are modelled one at a time (model.md §10-§12, §14) except an unround race
   // on an anisotropic support (§20): a scene that combines them otherwise is refused rather
@@ -115,6 +121,12 @@ void refuse_combined_extensions(const Scene& scene, Handles handles) {
     throw NotSupportedError(fmt::format("{} has an unround race on an anisotropic support (model.md §20): only {} "
                                         "analyse that combination so far",
                                         scene.file, commands_handling(&Handles::unround_anisotropic)));
+  }
+  if (set_valued_on_unround_race(scene)) {
+    if (handles.unround_set_valued) return;
+    throw NotSupportedError(fmt::format("{} has coulomb-set balls on an unround race (model.md §20.5): only {} "
+                                        "analyse that combination so far (the stick set on the race's paths)",
+                                        scene.file, commands_handling(&Handles::unround_set_valued)));
   }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +

@@ -10,6 +10,7 @@
 
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/equilibria/unround_equilibria.hpp"
 #include "stick_set_model.hpp"
 
 namespace abu {
@@ -17,7 +18,12 @@ namespace abu {
 using namespace stick_detail;
 
 StickPoint stick_point(const ParamsN& p, const std::vector<double>& beta) {
-  const StickModel m(p);
+  static const RaceShape round;
+  return stick_point(p, round, beta);
+}
+
+StickPoint stick_point(const ParamsN& p, const RaceShape& race, const std::vector<double>& beta) {
+  const StickModel m(p, &race);
   const cplx q = m.q(beta.data());
   StickPoint out{q.real(), q.imag(), {}};
   for (int i = 0; i < m.n; ++i) out.s.push_back(m.s(q, i, beta[std::size_t(i)]));
@@ -52,7 +58,7 @@ std::optional<StickSet> whole_torus_by_bound(const StickModel& m, const std::vec
   for (std::size_t k = 0; k < S.seeds.size(); ++k) {
     S.seeds[k].component = 0;
     c.seeds.push_back(int(k));
-    if (S.seeds[k].family == "balanced") c.balanced_points.push_back(int(k));
+    if (S.seeds[k].anchor) c.balanced_points.push_back(int(k));
   }
   c.spread.assign(std::size_t(m.n), 0.0);
   S.worst_q_abs_any = c.q_abs_max;
@@ -86,6 +92,7 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
       sd.family = std::string(to_string(e.family));
       sd.beta = {double(wrap_angle(e.position[2])), double(wrap_angle(e.position[3]))};
       sd.q_abs = std::abs(m.q(sd.beta.data()));
+      sd.anchor = e.family == Family::balanced;
       seeds.push_back(sd);
     }
   } else {
@@ -97,6 +104,7 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
       sd.family = std::string(to_string(e.family));
       for (int i = 0; i < m.n; ++i) sd.beta.push_back(double(wrap_angle(e.position[2 + i])));
       sd.q_abs = std::abs(m.q(sd.beta.data()));
+      sd.anchor = e.family == Family::balanced;
       seeds.push_back(sd);
     }
   }
@@ -108,6 +116,34 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
   StickSet S = m.n == 2 ? two_ball_set(m, options, std::move(seeds)) : sampled_set(m, options, std::move(seeds));
   const double bare = std::abs(m.G) * m.U;
   S.bare_rotor_q_abs = bare;
+  return S;
+}
+
+StickSet stick_set(const ParamsN& p, const RaceShape& race, const StickSetOptions& options) {
+  if (race.round()) return stick_set(p, options);
+  const StickModel m(p, &race);
+  // The race's equilibria (tau = 0, always in E, model.md §11.4) as seeds; the stable one of
+  // least |q| anchors V (model.md §20.5). Stable as with viscous rolling resistance: with the
+  // rotor's damping too the system is fully damped, and its equilibria are stable exactly
+  // where the rotating frame's effective potential has a minimum, whatever d > 0 is.
+  ParamsN smooth = p;
+  smooth.law = FrictionLaw::viscous;
+  for (auto& b : smooth.balls) b.d = 1e-3;
+  const UnroundResult found = find_unround_equilibria(smooth, race);
+  std::vector<StickSeed> seeds;
+  for (std::size_t k = 0; k < found.list.size(); ++k) {
+    const UnroundEquilibrium& e = found.list[k];
+    StickSeed sd;
+    sd.family = fmt::format("equilibrium {}", k + 1);
+    for (int i = 0; i < m.n; ++i) sd.beta.push_back(double(wrap_angle(e.position[2 + i])));
+    sd.q_abs = std::abs(m.q(sd.beta.data()));
+    sd.anchor = found.best_stable && *found.best_stable == k;
+    seeds.push_back(sd);
+  }
+  StickSet S = sampled_set(m, options, std::move(seeds));
+  S.unround_race = true;
+  S.anchor = "least-|q| stable equilibrium of the race";
+  S.bare_rotor_q_abs = std::abs(m.G) * m.U;
   return S;
 }
 

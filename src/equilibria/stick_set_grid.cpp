@@ -118,7 +118,7 @@ StickSet sampled_set(const StickModel& m, const StickSetOptions& o, std::vector<
     if (c < 0) continue;
     sd.component = c;
     S.components[std::size_t(c)].seeds.push_back(int(k));
-    if (sd.family == "balanced") S.components[std::size_t(c)].balanced_points.push_back(int(k));
+    if (sd.anchor) S.components[std::size_t(c)].balanced_points.push_back(int(k));
   }
   S.spread.assign(std::size_t(n), 0.0);
   for (const auto& comp : S.components) {
@@ -129,12 +129,15 @@ StickSet sampled_set(const StickModel& m, const StickSetOptions& o, std::vector<
     for (int i = 0; i < n; ++i)
       S.spread[std::size_t(i)] = std::max(S.spread[std::size_t(i)], comp.spread[std::size_t(i)]);
   }
-  const bool any_balanced_seed =
-      std::any_of(S.seeds.begin(), S.seeds.end(), [](const StickSeed& s) { return s.family == "balanced"; });
-  if (!S.balanced_exists)
-    S.status = Status{Outcome::not_converged, any_balanced_seed
+  const bool any_anchor = std::any_of(S.seeds.begin(), S.seeds.end(), [](const StickSeed& s) { return s.anchor; });
+  if (!S.balanced_exists && !m.race)
+    S.status = Status{Outcome::not_converged, any_anchor
                                                   ? Reason("the grid does not resolve the stick set around the balanced set")
                                                   : Reason("no balanced state in the stick set")};
+  if (!S.balanced_exists && m.race)
+    S.status = Status{Outcome::not_converged,
+                      any_anchor ? Reason("the grid does not resolve the stick set around the race's least-|q| stable equilibrium")
+                                 : Reason("the unround race has no stable equilibrium (model.md §11.4)")};
   return S;
 }
 

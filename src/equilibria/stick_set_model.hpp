@@ -23,6 +23,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/core/params.hpp"
 #include "abu/equilibria/stick_set.hpp"
+#include "abu/model/unround_race.hpp"
 
 namespace abu::stick_detail {
 
@@ -36,15 +37,19 @@ inline double wrap(double b) {
   return w;
 }
 
-// The model of (14.1) in the form the column scans need: q = G W(beta), G = omega^2/(K+iC).
+// The model of (14.1) in the form the column scans need: q = G W(beta), G = omega^2/(K+iC);
+// on an unround race (model.md (20.5)) W = U + sum m_i p_i(beta_i), p_i = l_i(beta) e^{i beta}.
 struct StickModel {
   cplx G;
   double U = 0.0;
   std::vector<double> a;      // a_i = m_i l_i
   std::vector<double> bound;  // mu_i l_i [m]
+  std::vector<double> mass, radius;  // m_i, l_i (the unround race's paths)
+  const RaceShape* race = nullptr;   // unround centre paths; null: the round race of (14.1)
   int n = 0;
 
-  explicit StickModel(const ParamsN& p) {
+  explicit StickModel(const ParamsN& p, const RaceShape* unround = nullptr) {
+    race = unround && !unround->round() ? unround : nullptr;
     n = p.n_balls();
     const double M = p.total_mass();
     const double K = p.rotor.stiffness - p.omega * p.omega * M;
@@ -62,16 +67,34 @@ struct StickModel {
             i + 1, b.mu));
       a.push_back(b.mass * b.race_radius);
       bound.push_back(b.mu * b.race_radius);
+      mass.push_back(b.mass);
+      radius.push_back(b.race_radius);
     }
+  }
+  const RaceHarmonics& path_of(int i) const {
+    static const RaceHarmonics circle;
+    return std::size_t(i) < race->balls.size() ? race->balls[std::size_t(i)] : circle;
   }
   cplx W(const double* beta) const {
     cplx w(U, 0.0);
+    if (race) {
+      for (int i = 0; i < n; ++i)
+        w += mass[std::size_t(i)] * path_point<double>(path_of(i), radius[std::size_t(i)], beta[i]).ell *
+             std::polar(1.0, beta[i]);
+      return w;
+    }
     for (int i = 0; i < n; ++i) w += a[std::size_t(i)] * std::polar(1.0, beta[i]);
     return w;
   }
   cplx q(const double* beta) const { return G * W(beta); }
-  // s_i = (q1 sin b_i - q2 cos b_i) / (mu_i l_i)
+  // s_i = (q1 sin b_i - q2 cos b_i) / (mu_i l_i); on an unround race (20.5)
+  // s_i = -Re(conj(p_i') (p_i + q)) / (s_i' mu_i l_i), which is that on a circle.
   double s(const cplx& q, int i, double beta_i) const {
+    if (race) {
+      const PathPoint<double> pt = path_point<double>(path_of(i), radius[std::size_t(i)], beta_i);
+      const cplx e = std::polar(1.0, beta_i), p = pt.ell * e, dp = cplx(pt.d1, pt.ell) * e;
+      return -(std::conj(dp) * (p + q)).real() / (pt.speed * bound[std::size_t(i)]);
+    }
     return (q.real() * std::sin(beta_i) - q.imag() * std::cos(beta_i)) / bound[std::size_t(i)];
   }
   // max_i |s_i| - 1: <= 0 inside E.

@@ -160,7 +160,7 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
     sd.component = comp_of_root[A.uf.find(A.columns[std::size_t(j)].node[std::size_t(arc)])];
     auto& comp = S.components[std::size_t(sd.component)];
     comp.seeds.push_back(int(k));
-    if (sd.family == "balanced") comp.balanced_points.push_back(int(k));
+    if (sd.anchor) comp.balanced_points.push_back(int(k));
   }
 
   // spreads of the balanced components: beta_1 from these columns, beta_2 from the transposed scan

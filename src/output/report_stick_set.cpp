@@ -38,7 +38,9 @@ std::string stick_set_table(const StickSet& s, const ParamsN& p) {
   std::string out = fmt::format(
       "{} balls; omega = {} rad/s = {:.4f} omega_n (omega_n = {:.6g} rad/s), friction coulomb-set (model.md §14)\n",
       s.n_balls, p.omega, p.omega / omega_n, omega_n);
-  out += "stick set E: every arrangement where every ball can stick, |q1 sin b_i - q2 cos b_i| <= mu_i l_i\n";
+  out += s.unround_race ? "stick set E on the unround race's paths: every arrangement where every ball can stick, "
+                          "|Re(conj(p_i') (p_i + q))| / s_i' <= mu_i l_i (model.md (20.5))\n"
+                        : "stick set E: every arrangement where every ball can stick, |q1 sin b_i - q2 cos b_i| <= mu_i l_i\n";
   if (s.sampled)
     out += fmt::format("method: grid of {} points per angle (resolution {:.4g} rad), flood fill on the torus\n",
                        s.grid_points_per_angle, s.resolution);
@@ -51,9 +53,9 @@ std::string stick_set_table(const StickSet& s, const ParamsN& p) {
                      s.max_abs_s);
   out += fmt::format("components {}\n", s.components.size());
   if (s.balanced_exists)
-    out += fmt::format("worst residual vibration V (connected to balance) = {:.9g} m at beta = ({}) rad; {:.4g} x the "
+    out += fmt::format("worst residual vibration V (connected to {}) = {:.9g} m at beta = ({}) rad; {:.4g} x the "
                        "rotor without balls ({:.6g} m)\n",
-                       s.worst_q_abs, angles(s.worst_beta), s.bare_rotor_q_abs > 0 ? s.worst_q_abs / s.bare_rotor_q_abs : 0.0,
+                       s.unround_race ? "the " + s.anchor : std::string("balance"), s.worst_q_abs, angles(s.worst_beta), s.bare_rotor_q_abs > 0 ? s.worst_q_abs / s.bare_rotor_q_abs : 0.0,
                        s.bare_rotor_q_abs);
   else
     out += fmt::format("worst residual vibration V: not defined ({})\n", s.status.reason);
@@ -63,13 +65,14 @@ std::string stick_set_table(const StickSet& s, const ParamsN& p) {
   std::string spread;
   for (std::size_t i = 0; i < s.spread.size(); ++i)
     spread += fmt::format("{}{:.6f} rad ({:.3f} deg)", i ? ", " : "", s.spread[i], s.spread[i] * 180 / std::numbers::pi);
-  out += fmt::format("spread of each ball over a balanced component: {}\n", spread);
+  out += fmt::format("spread of each ball over a component holding {}: {}\n",
+                     s.unround_race ? "the " + s.anchor : std::string("a balanced point"), spread);
   for (std::size_t c = 0; c < s.components.size(); ++c) {
     const auto& comp = s.components[c];
     out += fmt::format("\ncomponent {}: area {:.9g} rad^{}, max |q| {:.9g} m at beta = ({}), mean |q| {:.6g} m{}\n",
                        c + 1, comp.area, s.n_balls, comp.q_abs_max, angles(comp.beta_at_max),
                        comp.area > 0 ? comp.q_abs_integral / comp.area : 0.0,
-                       comp.balanced_points.empty() ? "" : ", holds a balanced point");
+                       comp.balanced_points.empty() ? "" : ", holds " + (s.unround_race ? "the " + s.anchor : std::string("a balanced point")));
     for (int k : comp.seeds) {
       const auto& sd = s.seeds[std::size_t(k)];
       out += fmt::format("  {:<9} beta = ({}) rad, |q| = {:.6g} m\n", sd.family, angles(sd.beta), sd.q_abs);
@@ -105,6 +108,10 @@ std::string stick_set_csv(const StickSet& s, const std::string& header) {
 }
 
 std::string stick_set_json_object(const StickSet& s) {
+  // On an unround race (model.md §20.5) V is anchored at the race's least-|q| stable
+  // equilibrium: "balanced_exists" and "balanced_points" then mean that anchor.
+  const std::string race = s.unround_race ? fmt::format("\"unround_race\": true, \"anchor\": {}, ", json_string(s.anchor))
+                                          : std::string();
   std::string out = fmt::format(
       "{{\"area\": {}, \"area_fraction\": {}, \"whole_torus\": {}, \"components\": {}, \"sampled\": {}, "
       "\"resolution\": {}, \"grid_points_per_angle\": {}, \"max_abs_s\": {}, \"balanced_exists\": {}, "
@@ -115,6 +122,7 @@ std::string stick_set_json_object(const StickSet& s) {
       num(s.worst_q_abs, "V"), list(s.worst_beta, "beta"), num(s.worst_q_abs_any, "V_E"), list(s.worst_beta_any, "beta"),
       num(s.mean_q_abs, "mean"), list(s.spread, "spread"), num(s.bare_rotor_q_abs, "bare"),
       json_string(s.status.ok() ? "ok" : s.status.reason), s.boundary.size());
+  out.insert(1, race);  // inside the object
   for (std::size_t c = 0; c < s.components.size(); ++c) {
     const auto& comp = s.components[c];
     out += fmt::format("{}{{\"area\": {}, \"q_abs_max\": {}, \"beta_at_max\": {}, \"mean_q_abs\": {}, "

@@ -23,6 +23,8 @@ std::string_view to_string(Route route);
 Route route_of(const Scene& scene);
 /// An unround race on an anisotropic support (model.md §20), nothing else beyond §3.
 bool unround_on_anisotropic_support(const Scene& scene);
+/// coulomb-set balls on an unround race, an isotropic support (model.md §20.5).
+bool set_valued_on_unround_race(const Scene& scene);
 
 /// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
@@ -39,6 +41,8 @@ struct Handles {
   bool shaft = false;       ///< a flexible shaft ([shaft], model.md §18)
   /// an unround race on an anisotropic support at once, with a smooth law (the composed field, model.md §20)
   bool unround_anisotropic = false;
+  /// coulomb-set balls on an unround race (the stick set on the race's paths, model.md §20.5)
+  bool unround_set_valued = false;
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
 /// coulomb-set, a shaft) is refused (NotSupportedError, naming the commands that answer it

@@ -26,6 +26,8 @@
 
 namespace abu {
 
+struct RaceShape;  // model/unround_race.hpp
+
 /// Options of the stick-set computation; the defaults give area to ~1e-9 relative and the
 /// maxima to rounding on the scenes of tests/reference (model.md §14.3).
 struct StickSetOptions {
@@ -65,7 +67,10 @@ struct StickComponent {
 
 /// A smooth equilibrium (tau = 0, model.md §5): always in E.
 struct StickSeed {
-  std::string family;           ///< balanced, together, opposite, aligned
+  std::string family;           ///< balanced, together, opposite, aligned; "equilibrium K" on an unround race
+  /// V is measured over the components holding an anchor: a balanced point, or on an unround
+  /// race its stable equilibrium of least |q| (model.md §20.5).
+  bool anchor = false;
   std::vector<double> beta;     ///< [rad]
   double q_abs = 0.0;           ///< [m]
   int component = -1;           ///< index into StickSet::components, -1 if not resolved
@@ -84,6 +89,10 @@ struct StickSet {
   double max_abs_s = 0.0;       ///< max over the torus of max_i |s_i| (sampled): E = T^n iff <= 1
   std::vector<StickComponent> components;
   std::vector<StickSeed> seeds;
+  /// What anchors V (StickSeed::anchor): "balanced point", or "least-|q| stable equilibrium of the
+  /// race" on an unround race (model.md §20.5); the fields named balanced_* below mean the anchor.
+  std::string anchor = "balanced point";
+  bool unround_race = false;    ///< the balls stick on an unround race's paths (model.md §20.5)
   double worst_q_abs = 0.0;     ///< V: max |q| over the components holding a balanced point [m]
   std::vector<double> worst_beta;     ///< where V is attained
   bool balanced_exists = false;       ///< false: no balanced state, V is reported as 0 and status says so
@@ -101,10 +110,17 @@ struct StickPoint {
   std::vector<double> s;
 };
 StickPoint stick_point(const ParamsN& p, const std::vector<double>& beta);
+/// The same on an unround race's paths (model.md (20.5)).
+StickPoint stick_point(const ParamsN& p, const RaceShape& race, const std::vector<double>& beta);
 
 /// The stick set of a `coulomb-set` scene (any law is accepted: its mu_i are used).
 /// Throws NotSupportedError if some mu_i <= 0 (the set then has no interior) or
 /// K = C = 0 (q undefined).
 StickSet stick_set(const ParamsN& p, const StickSetOptions& options = {});
+
+/// The same on an unround race (model.md §20.5): the grid method for every n (two balls too,
+/// at the stated resolution), the race's equilibria (§11.4) as seeds, V over the components
+/// holding its stable equilibrium of least |q|. A round `race` gives stick_set(p, options).
+StickSet stick_set(const ParamsN& p, const RaceShape& race, const StickSetOptions& options = {});
 
 }  // namespace abu
