@@ -2,10 +2,11 @@
 #include "abu/analysis/dry_friction.hpp"
 
 #include "abu/core/errors.hpp"
+#include "abu/model/unround_race.hpp"
 
 namespace abu {
 
-DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOptions& options) {
+DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOptions& options, const RaceShape* race) {
   DryFrictionVerdict out;
   if (smooth.law != FrictionLaw::coulomb && smooth.law != FrictionLaw::stribeck) return out;
   out.applies = true;
@@ -18,7 +19,7 @@ DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOpt
   o.verdict_only = true;  // area, components, V, V_E: the same values, not the |q| integrals nor the spreads
   out.which = smooth.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
   try {
-    out.set = stick_set(p, o);
+    out.set = race ? stick_set(p, *race, o) : stick_set(p, o);
   } catch (const NotSupportedError& e) {
     out.not_defined = e.what();
   }

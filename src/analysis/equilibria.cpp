@@ -43,8 +43,9 @@ LugreStates lugre_states(const Scene& scene, const EquilibriaOptions& o) {
 
 UnroundStates unround_states(const Scene& scene, const EquilibriaOptions& o, std::string& warnings) {
   if (o.mode_shapes) throw NotSupportedError("--mode-shapes on an unround race (model.md §11): not supported yet");
-  UnroundStates out{params_of<any_balls>(scene), race_shape(scene), {}};
+  UnroundStates out{params_of<any_balls>(scene), race_shape(scene), {}, {}};
   out.result = find_unround_equilibria(out.params, out.race);
+  out.dry = dry_friction_verdict(out.params, o.stick, &out.race);  // dry friction as it is (§20.5)
   for (const auto& e : out.result.list)
     if (!(e.residual <= 1e-8))
       throw NumericalError(fmt::format("omega={}: an equilibrium of the unround race has residual {:.3g}: it is not "
@@ -76,7 +77,7 @@ UnroundAnisotropicStates unround_anisotropic_states(const Scene& scene, const Eq
                                                     std::string& warnings) {
   if (o.mode_shapes) throw NotSupportedError("--mode-shapes on an anisotropic support (the modes are Floquet modes, model.md §10)");
   UnroundStates race = unround_states(scene, o, warnings);
-  UnroundAnisotropicStates out{race.params, race.race, *scene.support, std::move(race.result), {}};
+  UnroundAnisotropicStates out{race.params, race.race, *scene.support, std::move(race.result), {}};  // (no stick set on a turning support)
   out.orbits = analyze_unround_orbits(out.params, out.support, out.race, out.mean);
   return out;
 }

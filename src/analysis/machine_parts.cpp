@@ -49,7 +49,7 @@ constexpr CommandParts kCommandParts[] = {
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
     {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
-    {"basin", {.lugre = true, .set_valued = true}},
+    {"basin", {.lugre = true, .set_valued = true, .unround = true}},
 };
 }  // namespace
 
@@ -70,6 +70,13 @@ std::string commands_handling(bool Handles::*part) {
 }
 
 namespace {
+// "`a` analyses" or "`a` and `b` analyse": the commands that handle a part with the verb agreeing.
+std::string only_commands(bool Handles::*part, std::string_view verb) {
+  int count = 0;
+  for (const auto& c : kCommandParts) count += c.handles.*part ? 1 : 0;
+  return fmt::format("{} {}{}", commands_handling(part), verb, count == 1 ? "s" : "");
+}
+
 void refuse_unround(const Scene& scene, std::string_view command) {
   if (!scene.race.round())
     throw NotSupportedError(fmt::format("`{}` on an unround race ([race] in {}, model.md §11): only {} analyse it so far",
@@ -119,14 +126,14 @@ void refuse_combined_extensions(const Scene& scene, Handles handles) {
   if (unround_on_anisotropic_support(scene)) {
     if (handles.unround_anisotropic) return;
     throw NotSupportedError(fmt::format("{} has an unround race on an anisotropic support (model.md §20): only {} "
-                                        "analyse that combination so far",
-                                        scene.file, commands_handling(&Handles::unround_anisotropic)));
+                                        "that combination so far",
+                                        scene.file, only_commands(&Handles::unround_anisotropic, "analyse")));
   }
   if (set_valued_on_unround_race(scene)) {
     if (handles.unround_set_valued) return;
     throw NotSupportedError(fmt::format("{} has coulomb-set balls on an unround race (model.md §20.5): only {} "
-                                        "analyse that combination so far (the stick set on the race's paths)",
-                                        scene.file, commands_handling(&Handles::unround_set_valued)));
+                                        "that combination so far (the stick set on the race's paths)",
+                                        scene.file, only_commands(&Handles::unround_set_valued, "analyse")));
   }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +

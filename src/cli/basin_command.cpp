@@ -25,6 +25,7 @@
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
+#include "abu/output/report_unround.hpp"
 #include "abu/scan/basin.hpp"
 #include "commands.hpp"
 #include "tiled_run.hpp"
@@ -124,7 +125,7 @@ Action add_basin_command(CLI::App& app) {
     const Scene scene = load(o->scene);
     // It integrates the base model's field (model.md §3), LuGre's 3n + 4 (§12.7) or the
     // stick-slip dynamics of coulomb-set (§14.8).
-    refuse_unmodelled(scene, "basin", {.lugre = true, .set_valued = true});
+    refuse_unmodelled(scene, "basin", handles_of("basin"));
     check_output_directory(o->output);
     BasinOptions b = *o;
     b.sim.t_end = 10.0;
@@ -168,7 +169,9 @@ Action add_basin_command(CLI::App& app) {
     job.sim.method = *integration_method_from_string(b.method);
     job.settle_radius = b.settle_radius;
     job.settle_samples = b.settle_samples;
-    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre;  // LuGre: bounded 3n + 4 storage
+    job.race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
+    // LuGre: bounded 3n + 4 storage; an unround race: the bounded storage of its field.
+    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !job.race.round();
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
     for (const auto& s : o->scene.overrides) line += " --set " + s;
     line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),
@@ -182,6 +185,7 @@ Action add_basin_command(CLI::App& app) {
       job.params.omega = job.speed.omega(0.0);
       job.provenance = provenance_header(line, scene.file, job.params);
     }
+    if (!job.race.round()) job.provenance += race_lines(job.race, "# ");
     job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
                                   "in the rotor frame\n",
                                   c1, c2);

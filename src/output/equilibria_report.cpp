@@ -95,9 +95,13 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
             return stick_set_table(s.set, s.params);
           },
           [&](const UnroundStates& s) {
-            if (format == "csv") return unround_csv(s.result, s.params, s.race, header(s.params));
-            if (format == "json") return unround_json(s.result, s.params, s.race, c.command_line, c.scene_file);
-            return unround_table(s.result, s.params, s.race, c.scene_file);
+            if (format == "csv")
+              return unround_csv(s.result, s.params, s.race, header(s.params) + dry_friction_lines(s.dry, "# "));
+            if (format == "json") {
+              std::string json = unround_json(s.result, s.params, s.race, c.command_line, c.scene_file);
+              return json.insert(2, dry_friction_json(s.dry));  // a member after the opening "{\n"
+            }
+            return unround_table(s.result, s.params, s.race, c.scene_file) + dry_friction_lines(s.dry, "");
           },
           [&](const AnisotropicStates& s) { return anisotropic_text(s, format, c); },
           [&](const UnroundAnisotropicStates& s) { return unround_anisotropic_text(s, format, c); },

@@ -208,7 +208,8 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
 
 std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view prefix) {
   if (!d.applies) return {};
-  std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md §14): ", prefix, d.which);
+  std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md {}): ", prefix, d.which,
+                                d.set && d.set->unround_race ? "§20.5, on the race's paths" : "§14");
   if (!d.set) return out + fmt::format("not defined: {}\n", d.not_defined);
   const StickSet& s = *d.set;
   const std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
@@ -231,8 +232,8 @@ std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view pre
 std::string dry_friction_json(const DryFrictionVerdict& d) {
   if (!d.applies) return {};
   std::string out = fmt::format("  \"dry_friction\": {{\"law\": \"coulomb-set\", \"coefficients\": {}, \"model\": "
-                                "\"model.md §14\", ",
-                                json_string(d.which));
+                                "\"model.md {}\", ",
+                                json_string(d.which), d.set && d.set->unround_race ? "§20.5" : "§14");
   if (!d.set) return out + fmt::format("\"defined\": false, \"not_defined\": {}}},\n", json_string(d.not_defined));
   const StickSet& s = *d.set;
   out += fmt::format("\"defined\": true, \"area\": {}, \"area_unit\": \"rad^{}\", \"area_fraction\": {}, "

@@ -23,19 +23,6 @@ double dynamic_stiffness(const ParamsN& p) {
 // reference q0): what the residual whirl is compared with.
 double bare_whirl(const ParamsN& p) { return p.omega * p.omega * p.rotor.unbalance / dynamic_stiffness(p); }
 
-std::string race_lines(const RaceShape& race, std::string_view prefix) {
-  std::string out;
-  for (std::size_t i = 0; i < race.balls.size(); ++i) {
-    out += fmt::format("{}race, ball {} (path radius l_i (1 + ...), model.md §11.1):", prefix, i + 1);
-    if (race.balls[i].empty()) out += " round";
-    for (const auto& h : race.balls[i])
-      out += fmt::format(" order {} amplitude {} phase {} rad;", h.order, num(h.amplitude, "amplitude"),
-                         num(h.phase, "phase"));
-    out += "\n";
-  }
-  return out;
-}
-
 std::string search_line(const UnroundResult& r) {
   return fmt::format("search (model.md §11.4): {} boxes tested, {} leaves (Newton starts), {} unresolved, index sum {}{}",
                      r.search.boxes_tested, r.search.leaves, r.search.unresolved, r.search.index_sum,
@@ -51,6 +38,19 @@ std::string design_line(const UnroundResult& r, const ParamsN& p) {
                      e.amplitude, *r.best_stable + 1, bare_whirl(p), e.amplitude / bare_whirl(p));
 }
 }  // namespace
+
+std::string race_lines(const RaceShape& race, std::string_view prefix) {
+  std::string out;
+  for (std::size_t i = 0; i < race.balls.size(); ++i) {
+    out += fmt::format("{}race, ball {} (path radius l_i (1 + ...), model.md §11.1):", prefix, i + 1);
+    if (race.balls[i].empty()) out += " round";
+    for (const auto& h : race.balls[i])
+      out += fmt::format(" order {} amplitude {} phase {} rad;", h.order, num(h.amplitude, "amplitude"),
+                         num(h.phase, "phase"));
+    out += "\n";
+  }
+  return out;
+}
 
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene) {
   const int n = p.n_balls();

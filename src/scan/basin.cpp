@@ -10,6 +10,8 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/stick_slip.hpp"
+#include "abu/dynamics/unround_simulation.hpp"
+#include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
 
@@ -69,6 +71,7 @@ const ParamsT<double, N>& params_for(const BasinJob& job) {
 // The options of one cell's run: recorded (the settle test looks at every sample), Ctrl-C polled.
 SimulationOptions cell_options(const BasinJob& job) {
   SimulationOptions o = job.sim;
+  if (!job.race.round()) o.race = &job.race;  // the balls on the race's paths (model.md §15.6)
   o.record = true;
   o.interrupt = &stop_flag();
   o.progress = nullptr;
@@ -207,6 +210,18 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     case SimulationOutcome::not_settled: c.attractor = "not_settled"; break;
     case SimulationOutcome::equilibrium: c.attractor = "equilibrium"; break;  // unround race only (§15.7)
   }
+  if constexpr (N == any_balls) {
+    // On an unround race a run at rest is matched against the race's equilibria (§15.7).
+    if (!job.race.round() && (c.attractor == "balanced" || c.attractor == "aligned:" + r.summary.pattern ||
+                              c.attractor == "stuck")) {
+      SimulationSummary s = r.summary;
+      ParamsN at = p;
+      at.omega = w;
+      classify_unround_end(s, at, find_unround_equilibria(at, job.race), job.sim.settle_tolerance);
+      c.attractor = s.outcome == SimulationOutcome::equilibrium ? "equilibrium" : "stuck";
+      c.member = s.unround_member;
+    }
+  }
   if (r.summary.settle_time) c.t_settle = *r.summary.settle_time;
   return c;
 }
@@ -230,8 +245,29 @@ static bool set_valued(const BasinJob& job) {
   return (job.any_balls ? job.params_n.law : job.params.law) == FrictionLaw::coulomb_set;
 }
 
+// An unround race's stable equilibria at the final speed (model.md §11.4, §15.7), numbered as
+// `equilibria` lists them; no certified region (the settle radius test).
+std::vector<BasinTarget> unround_targets(const BasinJob& job) {
+  ParamsN p = job.params_n;
+  p.omega = job.final_omega();
+  const UnroundResult found = find_unround_equilibria(p, job.race);
+  std::vector<BasinTarget> out;
+  for (std::size_t k = 0; k < found.list.size(); ++k) {
+    const UnroundEquilibrium& e = found.list[k];
+    if (e.spectrum.stability != Stability::stable) continue;
+    BasinTarget t;
+    t.label = "equilibrium";
+    t.member = int(k) + 1;
+    for (int i = 0; i < e.position.size(); ++i) t.position.push_back(double(e.position(i)));
+    t.region.reason = "an unround race: no certified region yet (model.md §15.8); the settle radius test";
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
 std::vector<BasinTarget> basin_targets(const BasinJob& job) {
   if (set_valued(job)) return {};  // the stick set, not points: each end point is checked against it (§14.8)
+  if (!job.race.round()) return unround_targets(job);
   if (!job.any_balls) {
     Params p = job.params;
     p.omega = job.final_omega();

@@ -22,8 +22,9 @@ struct DryFrictionVerdict {
 };
 
 /// The stick set of coulomb-set friction with the smooth law's coefficients (no boundary
-/// tracing: the verdict needs the area and the worst vibration only). Empty (applies = false)
-/// for the other laws.
-DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOptions& options = {});
+/// tracing: the verdict needs the area and the worst vibration only), on the race's paths when
+/// `race` is unround (model.md §20.5). Empty (applies = false) for the other laws.
+DryFrictionVerdict dry_friction_verdict(const ParamsN& smooth, const StickSetOptions& options = {},
+                                        const RaceShape* race = nullptr);
 
 }  // namespace abu

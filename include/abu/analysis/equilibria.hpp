@@ -73,6 +73,7 @@ struct UnroundStates {
   ParamsN params;
   RaceShape race;
   UnroundResult result;
+  DryFrictionVerdict dry;  ///< coulomb / stribeck: the stick set of the same mu on the race's paths (§20.5)
 };
 struct AnisotropicStates {
   ParamsN params;  ///< with the mean support (k_bar, c_bar)

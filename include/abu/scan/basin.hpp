@@ -20,6 +20,7 @@
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/model/speed_profile.hpp"
+#include "abu/model/unround_race.hpp"
 #include "abu/scan/basin_certificate.hpp"
 #include "abu/scan/map_driver.hpp"
 
@@ -33,6 +34,9 @@ struct BasinJob {
   SimulationOptions sim;    ///< t_end, every (the settle test looks at every sample), rtol, method
   int cells1 = 24, cells2 = 24;  ///< grid of beta1 x beta2 over [0, 2 pi)^2
   std::vector<double> fixed;     ///< start angles of balls 3..n [rad]
+  /// An unround race (model.md §11, §15.7): the balls run on its paths (any_balls true), and
+  /// the attractors are its stable equilibria at the final speed; empty or round: the round race.
+  RaceShape race;
   /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
   /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
   double settle_radius = 1e-2;
@@ -46,8 +50,9 @@ struct BasinJob {
 
 /// A stable equilibrium of the final speed, or the balanced set of n >= 3 balls.
 struct BasinTarget {
-  std::string label;           ///< "balanced" or "aligned:+-..." (ball 1 is +)
-  int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set)
+  std::string label;           ///< "balanced", "aligned:+-..." (ball 1 is +) or "equilibrium" (an unround race's)
+  int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set); an
+                               ///< unround race's: its number in the list `equilibria` prints
   std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set
   bool balanced_set = false;   ///< n >= 3: the whole (normally stable) balanced set
   /// The Lyapunov region of model.md §15.8 (two balls): entering it decides the cell. Not
