@@ -14,6 +14,8 @@ if (!exists("logx")) logx = '0'
 if (!exists("title")) title = ''
 if (!exists("subtitle")) subtitle = ''
 if (!exists("nballs")) nballs = 'n'
+# What V is connected to: balance, or on an unround race its least-|q| stable equilibrium (model.md §20.5).
+if (!exists("anchor")) anchor = 'balance'
 
 set datafile separator ','
 set datafile commentschars '#'
@@ -45,7 +47,7 @@ set logscale y
 set format y '10^{%L}'
 set ylabel '|q| [m] (rotating frame = fixed-frame whirl radius)'
 set xlabel ''
-plot csv using (column(c_p)):(V(c_v)) with linespoints lw 2 pt 7 ps 0.6 lc rgb '#1565c0' title 'V: worst |q| connected to balance', \
+plot csv using (column(c_p)):(V(c_v)) with linespoints lw 2 pt 7 ps 0.6 lc rgb '#1565c0' title 'V: worst |q| connected to '.anchor, \
      csv using (column(c_p)):(V(c_ve)) with linespoints lw 1.5 pt 5 ps 0.5 dt 2 lc rgb '#c62828' title 'V_E: worst |q| over the whole set', \
      csv using (column(c_p)):(V(c_b)) with lines lw 1.5 lc rgb '#444444' dt 4 title 'rotor without balls'
 unset logscale y

@@ -45,7 +45,8 @@ constexpr CommandParts kCommandParts[] = {
     {"equilibria",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .unround_set_valued = true}},
-    {"sweep", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"sweep",
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
     {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
@@ -148,6 +149,9 @@ void refuse_combined_extensions(const Scene& scene, Handles handles) {
 
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles) {
   refuse_combined_extensions(scene, handles);
+  // A combination the command answers as one (model.md §20) needs no single-part handling.
+  if (handles.unround_set_valued && set_valued_on_unround_race(scene)) handles.unround = handles.set_valued = true;
+  if (handles.unround_anisotropic && unround_on_anisotropic_support(scene)) handles.unround = handles.anisotropic = true;
   if (!handles.lugre) refuse_lugre(scene, command);
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);

@@ -210,9 +210,13 @@ Action add_sweep_command(CLI::App& app) {
       return shaft_campbell_sweep(scene, o->scene, omega_input(o->scene, o->from), omega_input(o->scene, o->to),
                                   o->steps, o->logarithmic, o->shaft, o->chart, o->output_dir);
     }
-    const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14)
-    const bool unround = !scene.race.round() || o->param == kUnroundnessParam;  // model.md §11.10
-    refuse_unmodelled(scene, "sweep", unround ? Handles{.unround = true} : Handles{.lugre = true, .set_valued = true, .anisotropic = true});
+    const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14, §20.5)
+    // model.md §11.10; coulomb-set balls on an unround race take the stick-set path (§20.5)
+    const bool unround = (!scene.race.round() || o->param == kUnroundnessParam) && !stick;
+    refuse_unmodelled(scene, "sweep",
+                      unround ? Handles{.unround = true}
+                              : Handles{.lugre = true, .set_valued = true, .anisotropic = true,
+                                        .unround_set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (unround)

@@ -4,6 +4,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/input/race_scene.hpp"
 #include "abu/output/chart_labels.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
@@ -32,7 +33,8 @@ int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
   for (std::size_t i = 0; i < in.scenes.size(); ++i) {
     throw_if_stopped("sweep");
     try {
-      sets.push_back(stick_set(params_of<any_balls>(in.scenes[i]), options));
+      // on the race's paths when the race is unround (model.md §20.5)
+      sets.push_back(stick_set(params_of<any_balls>(in.scenes[i]), race_shape(in.scenes[i]), options));
     } catch (const NotSupportedError& e) {
       throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
     }
@@ -54,11 +56,13 @@ int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
                  {"unit", in.unit},
                  {"logx", in.logarithmic ? "1" : "0"},
                  {"nballs", std::to_string(first.n_balls())},
-                 {"title", fmt::format("{}: stick set of coulomb-set friction, sweep of {}", scene.file, in.name)},
+                 {"anchor", sets.front().unround_race ? "the least-|q| stable equilibrium of the race" : "balance"},
+                 {"title", fmt::format("{}: stick set of coulomb-set friction{}, sweep of {}", scene.file,
+                                       sets.front().unround_race ? " on the paths of an unround race" : "", in.name)},
                  {"subtitle", chart_subtitle(scene, in.overrides)}});
   out.commit();
   fmt::print(stderr, "wrote {} ({} values){}\n", csv_path.string(), sets.size(),
-             in.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+             in.chart && std::filesystem::exists(png_path) ? fmt::format(" and {}", png_path.string()) : std::string());
   return exit_ok;
 }
 
