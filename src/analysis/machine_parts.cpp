@@ -48,7 +48,8 @@ constexpr CommandParts kCommandParts[] = {
     {"sweep",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
-    {"map", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true}},
+    {"map",
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true}},
     {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true, .unround = true}},
 };

@@ -1,5 +1,7 @@
 #include "abu/analysis/map_setup.hpp"
 
+#include "abu/input/race_scene.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -157,6 +159,8 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
                        "a coulomb-set map takes one ball count: the ball count is not an axis of a stick-set map");
     job.stick_set = true;
     job.stick = request.stick;
+    job.race = race_shape(scene);
+    if (!job.race.round()) job.provenance_notes += describe_race(job.race, "# ");
     job.params_n = params_of<any_balls>(scene);
     job.command_line =
         request.command_line + (scene.balls.size() == 2

@@ -25,7 +25,6 @@
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
-#include "abu/output/report_unround.hpp"
 #include "abu/scan/basin.hpp"
 #include "commands.hpp"
 #include "tiled_run.hpp"
@@ -185,7 +184,7 @@ Action add_basin_command(CLI::App& app) {
       job.params.omega = job.speed.omega(0.0);
       job.provenance = provenance_header(line, scene.file, job.params);
     }
-    if (!job.race.round()) job.provenance += race_lines(job.race, "# ");
+    if (!job.race.round()) job.provenance += describe_race(job.race, "# ");
     job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
                                   "in the rotor frame\n",
                                   c1, c2);

@@ -107,8 +107,9 @@ Action add_map_command(CLI::App& app) {
       throw InputError(o->shaft.band != ShaftSpectrumOptions{}.band ? "--band" : "--eigenvalues", 0, "shaft",
                        "ARPACK's eigenvalue count and band apply to a flexible shaft ([shaft]) only; a rigid "
                        "map computes every eigenvalue");
-    if (!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
-        o->y.rfind(kUnroundnessParam + ":", 0) == 0) {  // model.md §11.10
+    const bool stick_on_race = set_valued_on_unround_race(scene);  // the stick set per cell (§20.5)
+    if ((!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
+         o->y.rfind(kUnroundnessParam + ":", 0) == 0) && !stick_on_race) {  // model.md §11.10
       refuse_unmodelled(scene, "map", {.unround = true});
       check_output_directory(o->output_dir);
       return map_unround(scene, o->scene,
@@ -116,7 +117,7 @@ Action add_map_command(CLI::App& app) {
                           o->threads, o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
-    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true, .anisotropic = true});
+    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true, .anisotropic = true, .unround_set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

@@ -219,4 +219,15 @@ Linearization<L, any_balls> unround_linearization(const LongParamsN& p, const Ra
   return lin;
 }
 
+std::string describe_race(const RaceShape& race, std::string_view prefix) {
+  std::string out;
+  for (std::size_t i = 0; i < race.balls.size(); ++i) {
+    out += fmt::format("{}race, ball {} (path radius l_i (1 + ...), model.md §11.1):", prefix, i + 1);
+    if (race.balls[i].empty()) out += " round";
+    for (const auto& h : race.balls[i]) out += fmt::format(" order {} amplitude {} phase {} rad;", h.order, h.amplitude, h.phase);
+    out += "\n";
+  }
+  return out;
+}
+
 }  // namespace abu

@@ -39,24 +39,12 @@ std::string design_line(const UnroundResult& r, const ParamsN& p) {
 }
 }  // namespace
 
-std::string race_lines(const RaceShape& race, std::string_view prefix) {
-  std::string out;
-  for (std::size_t i = 0; i < race.balls.size(); ++i) {
-    out += fmt::format("{}race, ball {} (path radius l_i (1 + ...), model.md §11.1):", prefix, i + 1);
-    if (race.balls[i].empty()) out += " round";
-    for (const auto& h : race.balls[i])
-      out += fmt::format(" order {} amplitude {} phase {} rad;", h.order, num(h.amplitude, "amplitude"),
-                         num(h.phase, "phase"));
-    out += "\n";
-  }
-  return out;
-}
 
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene) {
   const int n = p.n_balls();
   std::string out = fmt::format("{}: unround race (model.md §11), omega = {} rad/s, {} balls, law {}\n", scene,
                                 p.omega, n, to_string(p.law));
-  out += race_lines(race, "");
+  out += describe_race(race, "");
   const double lambda = unround_lambda(p, race);
   out += fmt::format("Lambda = max k^2 eps_k |K + iC| / (m omega^2) = {:.4g} (§11.6): {}\n", lambda,
                      lambda <= kFirstOrderLambda ? "first-order regime (Lambda <= 0.1)"
@@ -82,7 +70,7 @@ std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceSh
 std::string unround_csv(const UnroundResult& r, const ParamsN& p, const RaceShape& race, const std::string& header) {
   const int n = p.n_balls();
   std::string out = header;
-  out += race_lines(race, "# ");
+  out += describe_race(race, "# ");
   out += fmt::format("# Lambda = {} (first order for Lambda <= 0.1: {})\n", num(unround_lambda(p, race), "Lambda"),
                      unround_lambda(p, race) <= kFirstOrderLambda);
   out += fmt::format("# {}\n# {}\n", search_line(r), design_line(r, p));

@@ -15,6 +15,11 @@ namespace {
 std::string_view axis_unit(const Axis& a) { return unit(a.param.quantity); }
 
 std::string resolution_line(const MapJob& job) {
+  if (!job.race.round())
+    return fmt::format("on the paths of an unround race (model.md §20.5, its harmonics above): a grid of at most {} "
+                       "points (floor(budget^(1/n)) per angle), flood fill (§14.3); V connected to the race's "
+                       "least-|q| stable equilibrium (balanced_exists, spread: that equilibrium's components)",
+                       job.stick.grid_budget);
   if (job.params_n.n_balls() == 2)
     return fmt::format("two balls: {} beta_1 columns, {} beta_2 samples per column (plus the dense windows at the "
                        "smooth equilibria), area by adaptive Simpson, maxima refined (§14.3)",
@@ -99,7 +104,7 @@ int write_stick_cell(const MapJob& job, int ix, int iy, std::string_view x, std:
   options.trace = false;  // the boundary curves are not written per cell
   StickSet s;
   try {
-    s = stick_set(p, options);
+    s = stick_set(p, job.race, options);  // on the race's paths when unround (model.md §20.5)
   } catch (const NotSupportedError& e) {
     throw NotSupportedError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {}", ix, iy, job.x.name(), x,
                                         job.y.name(), y, e.what()));

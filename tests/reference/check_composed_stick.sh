@@ -27,3 +27,18 @@ ok = float(first[col["mu"]]) == 1e-4 and all(abs(g - w) <= 1e-12 * abs(w) for g,
 print("sweep row at mu = 1e-4:", got, "equilibria:", want, "agree" if ok else "MISMATCH")
 sys.exit(0 if ok else 1)
 PY
+# `map` of the same scene (omega x mu): its cell at the scene's omega and mu is the `equilibria`
+# set too (V, V_E and the area to 1e-12).
+"$bin" map "$scenes/composed/runout_coulomb_set.toml" --x omega:800:900:2 --y mu:1e-4:2e-4:2 -o "$out/map" --no-chart --quiet
+/usr/bin/python3 - "$out/map/summary_omega_mu.csv" "$out/runout_coulomb_set.json" <<'PY'
+import json, sys
+rows = [l.rstrip("\n").split(",") for l in open(sys.argv[1]) if not l.startswith("#")]
+col = {k: i for i, k in enumerate(rows[0])}
+cell = [r for r in rows[1:] if float(r[col["omega"]]) == 800 and float(r[col["mu"]]) == 1e-4][0]
+s = json.load(open(sys.argv[2]))["stick_set"]
+got = [float(cell[col[k]]) for k in ("area", "worst_q_abs", "worst_q_abs_any")]
+want = [s["area"], s["worst_q_abs"], s["worst_q_abs_any"]]
+ok = all(abs(g - w) <= 1e-12 * abs(w) for g, w in zip(got, want))
+print("map cell at (800, 1e-4):", got, "equilibria:", want, "agree" if ok else "MISMATCH")
+sys.exit(0 if ok else 1)
+PY

@@ -14,6 +14,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "abu/model/model.hpp"
@@ -38,6 +39,10 @@ struct RaceShape {
   /// The largest order present (0 for a round race).
   int max_order() const;
 };
+
+/// The race's harmonics, one line per ball, each starting with `prefix` ("# " in CSV
+/// headers): "race, ball 1 (path radius l_i (1 + ...), model.md §11.1): order 2 amplitude ...".
+std::string describe_race(const RaceShape& race, std::string_view prefix);
 
 /// The race with every amplitude (order 1's offset included) times `factor` >= 0: the
 /// unroundness parameter of model.md §11.10 (factor 1 is the scene's race, 0 the round one).

@@ -14,9 +14,6 @@ namespace abu {
 
 // unround_lambda and kFirstOrderLambda (§11.6): model/unround_race.hpp.
 
-/// The race's harmonics, one line per ball, each starting with `prefix` ("# " in CSV headers).
-std::string race_lines(const RaceShape& race, std::string_view prefix);
-
 std::string unround_table(const UnroundResult& r, const ParamsN& p, const RaceShape& race, std::string_view scene);
 /// `header`: the provenance comment lines (output/provenance.hpp).
 std::string unround_csv(const UnroundResult& r, const ParamsN& p, const RaceShape& race, const std::string& header);

@@ -13,6 +13,8 @@
 //   abu::assemble(job, store, long_csv_stream, summary_csv_stream, &grid_stream);
 #pragma once
 
+#include "abu/model/unround_race.hpp"
+
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -71,6 +73,8 @@ struct MapJob {
   /// count (no ball-count axis), any_balls false, `method` and `sampling` not used.
   bool stick_set = false;
   StickSetOptions stick;
+  /// coulomb-set on an unround race (model.md §20.5): the stick set on its paths per cell.
+  RaceShape race;
   /// The long CSV's rows (a row per equilibrium per cell, ~0.8 kB a cell) are formatted
   /// and kept in the tiles only when asked for (`map --long`); part of the tiles' manifest.
   bool long_rows = false;
