@@ -28,6 +28,8 @@ import tomllib
 
 import mpmath as mp
 
+import verdict_cache
+
 mp.mp.dps = 40
 FACTOR = mp.mpf(1)  # --sweep-factor
 
@@ -160,7 +162,8 @@ def torus_distance(a, b):
 
 
 def sweep_point(binary, scene_path, factor, n):
-    """The equilibria at the first value of a one-value unroundness sweep, as dicts."""
+    """The equilibria at the first value of a one-value unroundness sweep, as dicts, and the
+    CSV's text."""
     import csv
     import tempfile
     with tempfile.TemporaryDirectory() as work:
@@ -168,9 +171,10 @@ def sweep_point(binary, scene_path, factor, n):
                               "--steps", "1", "--no-chart", "-o", work], capture_output=True, text=True)
         if out.returncode != 0:
             print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
-            return None
+            return None, None
         with open(f"{work}/sweep_unroundness.csv") as fh:
-            rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+            text = fh.read()
+    rows = list(csv.DictReader(line for line in text.splitlines() if not line.startswith("#")))
     # --steps 1 gives the value twice (both ends): the first value's rows are the leading
     # run of increasing equilibrium numbers.
     first = []
@@ -179,7 +183,7 @@ def sweep_point(binary, scene_path, factor, n):
             break
         first.append(r)
     return [{"beta": [float(r[f"beta{i + 1}"]) for i in range(n)], "q1": r["q1"], "q2": r["q2"], "q_abs": r["q_abs"]}
-            for r in first]
+            for r in first], text
 
 
 def main(argv):
@@ -195,6 +199,20 @@ def main(argv):
     with open(scene_path, "rb") as fh:
         scene = tomllib.load(fh)
     n, residual, kmax = build(scene)
+    # the program first: its output keys the verdict cache (verdict_cache.py)
+    if factor is None:
+        out = subprocess.run([binary, "equilibria", scene_path, "--format", "json"], capture_output=True, text=True)
+        if out.returncode != 0:
+            print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
+            return 1
+        got, text = json.loads(out.stdout)["equilibria"], out.stdout
+    else:
+        got, text = sweep_point(binary, scene_path, factor, n)
+        if got is None:
+            return 1
+    cache_key = verdict_cache.key(argv[2:], [text])
+    if verdict_cache.recorded(cache_key):
+        return 0
     G = (8 if n == 2 else 4) * (kmax + 1)
     found = []
     grid = [(i + 0.5) * 2 * math.pi / G for i in range(G)]
@@ -205,16 +223,6 @@ def main(argv):
             found.append(z)
     ref = [polish(residual, z) for z in found]
 
-    if factor is None:
-        out = subprocess.run([binary, "equilibria", scene_path, "--format", "json"], capture_output=True, text=True)
-        if out.returncode != 0:
-            print(f"stability-scan failed ({out.returncode}): {out.stderr}", file=sys.stderr)
-            return 1
-        got = json.loads(out.stdout)["equilibria"]
-    else:
-        got = sweep_point(binary, scene_path, factor, n)
-        if got is None:
-            return 1
     bad = 0
     print(f"{scene_path}: reference {len(ref)} equilibria, stability-scan {len(got)}")
     if len(ref) != len(got):
@@ -239,6 +247,8 @@ def main(argv):
         if not any(torus_distance(e["beta"], [float(b) for b in beta]) < 1e-9 for beta, _ in ref):
             print(f"  stability-scan equilibrium beta={e['beta']} not in the reference")
             bad += 1
+    if not bad:
+        verdict_cache.record(cache_key)
     return 1 if bad else 0
 
 

@@ -79,13 +79,14 @@ def column_length(P, b1, M=6000):
         return 0.0
     total = 0.0
     f = lambda y: float(excess(P, b1, y))
-    # walk around the circle from an outside sample
+    # walk around the circle from an outside sample, visiting only the samples i where
+    # inside changes between i and i + 1 (found by numpy; a Python loop over all M samples
+    # was 90 % of this reference's time), in the walk's order from k0
     k0 = int(np.argmin(inside))
+    changes = np.nonzero(inside != np.roll(inside, -1))[0]
     lo = None
-    for step in range(1, M + 1):
-        i, j = (k0 + step - 1) % M, (k0 + step) % M
-        if inside[i] == inside[j]:
-            continue
+    for i in changes[np.argsort((changes - k0) % M, kind="stable")].tolist():
+        j = (i + 1) % M
         xa, xb = x[i], x[j] + (TWO_PI if j < i else 0.0)
         r = optimize.brentq(f, xa, xb, xtol=1e-15, rtol=1e-15)
         if inside[j]:
