@@ -12,6 +12,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for scene in oval_anisotropic three_balls_oval_anisotropic; do
   "$bin" equilibria "$scenes/composed/$scene.toml" --format json > "$out/$scene.json"
-  /usr/bin/python3 "$here/composed_orbit_reference.py" "$scenes/composed/$scene.toml" --json "$out/$scene.json" --tol 1e-6
+  /usr/bin/python3 "$here/verdict_cache.py" "$out/$scene.json" -- \
+    /usr/bin/python3 "$here/composed_orbit_reference.py" "$scenes/composed/$scene.toml" --json "$out/$scene.json" --tol 1e-6
 done
 echo "composed orbits: every orbit agrees with the fixed-frame reference"

@@ -10,7 +10,8 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for scene in runout_coulomb_set oval_coulomb_set; do
   "$bin" equilibria "$scenes/composed/$scene.toml" --format json > "$out/$scene.json"
-  /usr/bin/python3 "$here/composed_stick_reference.py" "$scenes/composed/$scene.toml" --json "$out/$scene.json"
+  /usr/bin/python3 "$here/verdict_cache.py" "$out/$scene.json" -- \
+    /usr/bin/python3 "$here/composed_stick_reference.py" "$scenes/composed/$scene.toml" --json "$out/$scene.json"
 done
 # `sweep` of the same scene over mu: its row at the scene's mu is the `equilibria` set (the same
 # computation per value: V, V_E and the area equal to the last digit printed).
