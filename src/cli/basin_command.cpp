@@ -168,9 +168,9 @@ Action add_basin_command(CLI::App& app) {
     job.sim.method = *integration_method_from_string(b.method);
     job.settle_radius = b.settle_radius;
     job.settle_samples = b.settle_samples;
-    job.race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
+    const RaceShape race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
     // LuGre: bounded 3n + 4 storage; an unround race: the bounded storage of its field.
-    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !job.race.round();
+    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round();
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
     for (const auto& s : o->scene.overrides) line += " --set " + s;
     line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),
@@ -184,6 +184,7 @@ Action add_basin_command(CLI::App& app) {
       job.params.omega = job.speed.omega(0.0);
       job.provenance = provenance_header(line, scene.file, job.params);
     }
+    set_basin_race(job, race);  // after params_n and the speed: the equilibria at the final speed
     if (!job.race.round()) job.provenance += describe_race(job.race, "# ");
     job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
                                   "in the rotor frame\n",

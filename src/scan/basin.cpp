@@ -217,7 +217,7 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
       SimulationSummary s = r.summary;
       ParamsN at = p;
       at.omega = w;
-      classify_unround_end(s, at, find_unround_equilibria(at, job.race), job.sim.settle_tolerance);
+      classify_unround_end(s, at, *job.race_equilibria, job.sim.settle_tolerance);
       c.attractor = s.outcome == SimulationOutcome::equilibrium ? "equilibrium" : "stuck";
       c.member = s.unround_member;
     }
@@ -248,9 +248,7 @@ static bool set_valued(const BasinJob& job) {
 // An unround race's stable equilibria at the final speed (model.md §11.4, §15.7), numbered as
 // `equilibria` lists them; no certified region (the settle radius test).
 std::vector<BasinTarget> unround_targets(const BasinJob& job) {
-  ParamsN p = job.params_n;
-  p.omega = job.final_omega();
-  const UnroundResult found = find_unround_equilibria(p, job.race);
+  const UnroundResult& found = *job.race_equilibria;
   std::vector<BasinTarget> out;
   for (std::size_t k = 0; k < found.list.size(); ++k) {
     const UnroundEquilibrium& e = found.list[k];
@@ -263,6 +261,15 @@ std::vector<BasinTarget> unround_targets(const BasinJob& job) {
     out.push_back(std::move(t));
   }
   return out;
+}
+
+void set_basin_race(BasinJob& job, RaceShape race) {
+  job.race = std::move(race);
+  job.race_equilibria.reset();
+  if (job.race.round()) return;
+  ParamsN p = job.params_n;
+  p.omega = job.final_omega();
+  job.race_equilibria = std::make_shared<const UnroundResult>(find_unround_equilibria(p, job.race));
 }
 
 std::vector<BasinTarget> basin_targets(const BasinJob& job) {

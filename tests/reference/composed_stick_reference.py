@@ -22,30 +22,15 @@ Usage: composed_stick_reference.py SCENE.toml --json EQUILIBRIA.json
 """
 import argparse
 import json
+import os
 import sys
 import tomllib
 
 import numpy as np
 from scipy import ndimage
 
-
-def scene_balls(scene):
-    if "ball" in scene:
-        return scene["ball"]
-    ring = scene["balls"]
-    return [dict(ring) for _ in range(ring["count"])]
-
-
-def harmonics(scene, balls):
-    race = scene.get("race", {})
-    out = []
-    for i, b in enumerate(balls):
-        spec = race.get("unroundness")
-        for pb in race.get("ball", []):
-            if pb["ball"] == i + 1 and "unroundness" in pb:
-                spec = pb["unroundness"]
-        out.append([(h["order"], h["amplitude"], h.get("phase", 0.0)) for h in (spec or [])])
-    return out
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from composed_simulation_reference import harmonics, scene_balls  # noqa: E402 (the scene reading only)
 
 
 def radius(h, l, beta):

@@ -14,12 +14,14 @@
 //   abu::BasinCell c = abu::compute_basin_cell(job, targets, 3, 5);   // beta = (3, 5) * 2 pi / 16
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/model/speed_profile.hpp"
+#include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/model/unround_race.hpp"
 #include "abu/scan/basin_certificate.hpp"
 #include "abu/scan/map_driver.hpp"
@@ -37,6 +39,9 @@ struct BasinJob {
   /// An unround race (model.md §11, §15.7): the balls run on its paths (any_balls true), and
   /// the attractors are its stable equilibria at the final speed; empty or round: the round race.
   RaceShape race;
+  /// The race's equilibria at the final speed (model.md §11.4), found once for every cell's end
+  /// (set_basin_race fills it); empty on a round race.
+  std::shared_ptr<const UnroundResult> race_equilibria;
   /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
   /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
   double settle_radius = 1e-2;
@@ -64,6 +69,10 @@ struct BasinTarget {
 /// is stable (model.md §6), and for n >= 3 the balanced set if every sample of it is
 /// normally stable (§13.5). Deterministic order (as the analysis lists them).
 std::vector<BasinTarget> basin_targets(const BasinJob& job);
+
+/// Puts the balls on `race` (unround: job.race_equilibria found at the final speed; job.params_n
+/// and job.speed must be set).
+void set_basin_race(BasinJob& job, RaceShape race);
 
 struct BasinCell {
   int i = 0, j = 0;
