@@ -36,7 +36,7 @@ __all__ = [
     "InputError", "NumericalError", "NotSupportedError", "Scene",
     "load_scene", "scene_from_dict", "scene_toml", "parameter_symbols",
     "equilibria", "continue_branches", "map", "simulate",
-    "Equilibria", "Continuation", "Branch", "Table", "StabilityMap", "Simulation", "Result",
+    "Equilibria", "MachineEquilibria", "Continuation", "Branch", "Table", "StabilityMap", "Simulation", "Result",
 ]
 
 
@@ -264,6 +264,26 @@ class Equilibria(Table):
         return f"<abu.Equilibria: {len(self)} equilibria of {self.n_balls} balls at omega = {self.omega} rad/s>"
 
 
+class MachineEquilibria(Result):
+    """The states of a scene beyond the rigid rotor with a smooth law (abu.equilibria of a
+    flexible shaft, LuGre or coulomb-set friction, an unround race, an anisotropic support,
+    an unround race on an anisotropic support, coulomb-set balls on an unround race).
+
+      route     which of these the scene is: 'shaft', 'lugre', 'set_valued', 'unround',
+                'anisotropic', 'unround_anisotropic' (docs/cli.md, "Which command answers what")
+      json      the CLI's `equilibria --format json` object of the same analysis, parsed
+                (its keys and units as docs/cli.md documents them for that scene kind)
+      table     the CLI's table output (also str(result))
+      warnings  what the CLI prints on stderr
+    """
+
+    def __repr__(self):
+        return f"<abu.MachineEquilibria: route {self.route}>"
+
+    def __str__(self):
+        return self.table
+
+
 class Branch(Result):
     """One equilibrium branch of a continuation, points ordered along its arclength.
 
@@ -429,9 +449,15 @@ def equilibria(scene, samples_per_sheet=64):
 
     samples_per_sheet: n >= 3 balls, samples per sheet of the balanced set (the CLI's
     --set-samples; 1..100000). Returns an abu.Equilibria (arrays; see its doc). Runs with
-    the GIL released.
+    the GIL released. A scene with a flexible shaft, LuGre or coulomb-set friction, an unround
+    race or an anisotropic support (alone or composed as the CLI takes them) gives an
+    abu.MachineEquilibria: the CLI's JSON object of the same analysis.
     """
-    return Equilibria(_abu.equilibria(scene, int(samples_per_sheet)))
+    data = _abu.equilibria(scene, int(samples_per_sheet))
+    if data.get("kind") == "machine":
+        del data["kind"]
+        return MachineEquilibria(data)
+    return Equilibria(data)
 
 
 def continue_branches(scene, param, to, *, family=None, state=None, ds=0.01, ds_min=1e-9, ds_max=0.2,

@@ -5,6 +5,7 @@
 // released: results are computed into C++ values first and converted afterwards.
 #pragma once
 
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "abu/analysis/machine_parts.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/status.hpp"
 #include "abu/input/scene.hpp"
@@ -23,14 +25,25 @@ namespace abu::python {
 
 namespace py = pybind11;
 
-/// The module analyses the model of model.md §3 (isotropic support, round race): a scene
-/// with an anisotropic support (§10) or an unround race (§11) is refused, as the CLI's
-/// sweep, continue, map and simulate refuse it, rather than analysed without them.
-inline void require_base_model(const Scene& scene, std::string_view what) {
-  if (scene.support || !scene.race.round())
-    throw NotSupportedError(std::string(what) + ": " + scene.file + " has an " +
-                            (scene.support ? "anisotropic support (model.md §10)" : "unround race (model.md §11)") +
-                            "; the Python module does not analyse it yet (the CLI's `equilibria` does)");
+/// The parts a call of the module answers for (machine_parts.hpp), refused otherwise with the
+/// CLI's message naming the commands that do: `equilibria` takes every scene the CLI's
+/// `equilibria` takes; `map` the base model and LuGre (its z = 0 equilibria, as the CLI);
+/// `continue_branches` and `simulate` the base model of model.md §3 only (a shaft, an
+/// anisotropic support, an unround race, LuGre or coulomb-set friction are refused rather than
+/// dropped).
+/// The refusal says it is the module's call that does not take the scene (the CLI's command of
+/// the same name may: its message lists the CLI's commands).
+inline void require_parts(const Scene& scene, std::string_view call, Handles handles) {
+  const std::string note = fmt::format(" (the Python module's abu.{} takes less than the CLI's command: "
+                                       "abu.equilibria takes every scene `equilibria` takes)",
+                                       call);
+  try {
+    refuse_unmodelled(scene, call, handles);
+  } catch (const InputError& e) {
+    throw InputError(e.file(), e.line(), e.key(), e.rule() + note);
+  } catch (const NotSupportedError& e) {
+    throw NotSupportedError(e.what() + note);
+  }
 }
 
 /// Registers continue_branches and simulate (runs.cpp).

@@ -151,8 +151,21 @@ py::dict equilibria_dict(const A& a, const ParamsT<double, N>& p, const Equilibr
   return d;
 }
 
+// A scene beyond the rigid rotor's smooth laws (a shaft, LuGre, coulomb-set, an unround race,
+// an anisotropic support, a composition of §20): the CLI's JSON object of the same report,
+// its table and its stderr lines (abu.MachineEquilibria).
+py::dict machine_equilibria_dict(const Scene& scene, const EquilibriaReport& report) {
+  const OutputContext context{"", scene.file, SpeedUnit::rad_per_s};
+  py::dict d;
+  d["kind"] = "machine";
+  d["route"] = std::string(to_string(route_of(scene)));
+  d["json"] = py::module_::import("json").attr("loads")(equilibria_text(report, "json", context));
+  d["table"] = equilibria_text(report, "table", context);
+  d["warnings"] = equilibria_warnings(report);
+  return d;
+}
+
 py::dict equilibria(const Scene& scene, int samples_per_sheet) {
-  require_base_model(scene, "equilibria");
   EquilibriaOptions options;
   options.sampling.samples_per_sheet = samples_per_sheet;
   if (const auto rule = options_violation(options.sampling)) throw InputError("equilibria", 0, "samples_per_sheet", *rule);
@@ -163,6 +176,7 @@ py::dict equilibria(const Scene& scene, int samples_per_sheet) {
     report = analyze_equilibria(scene, options);
   }
   if (const auto* two = std::get_if<RigidStates2>(&report.states)) return equilibria_dict(two->analysis, two->params, report);
+  if (!std::holds_alternative<RigidStatesN>(report.states)) return machine_equilibria_dict(scene, report);
   const auto& any = std::get<RigidStatesN>(report.states);
   py::dict d = equilibria_dict(any.analysis, any.params, report);
   const auto& info = any.analysis.equilibria.balanced_set;
@@ -286,7 +300,7 @@ void map_tile(const MapJob& job, int tile, CellWorkspace& ws, std::vector<CellSu
 
 py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& method,
              int samples_per_sheet, int threads) {
-  require_base_model(scene, "map");
+  require_parts(scene, "map", {.lugre = true});
   if (method != "fast" && method != "full")
     throw InputError("map", 0, "method", fmt::format("must be 'fast' or 'full', got '{}'", method));
   if (threads < 1 || threads > 1024) throw InputError("map", 0, "threads", "must lie in 1..1024");

@@ -299,7 +299,7 @@ py::dict run_dict(const RunT& run, int n) {
 py::dict continue_run(const Scene& scene, const std::string& param, double to, std::optional<std::string> family,
                       std::optional<std::vector<double>> state, double ds, double ds_min, double ds_max,
                       int max_steps, int samples_per_sheet) {
-  require_base_model(scene, "continue_branches");
+  require_parts(scene, "continue_branches", {});
   const int n = int(scene.balls.size());
   const ParamRef ref = checked_param(scene, param, to);
   ContinuationOptions options;
@@ -495,7 +495,7 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
                       std::optional<double> perturb, std::optional<std::vector<double>> ramp,
                       std::optional<std::vector<std::pair<double, double>>> speed_profile, const std::string& method,
                       double rtol, double every, unsigned long max_steps, double settle_tol) {
-  require_base_model(scene, "simulate");
+  require_parts(scene, "simulate", {});
   SimulationRequest q;
   q.balls = std::move(balls);
   q.state = std::move(state);
