@@ -1,14 +1,11 @@
 // The special points of an equilibrium branch flagged by its test functions
 // (branch_tracer.hpp), located by augmented systems (bifurcation.hpp), not on the grid.
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
-
-#include "abu/core/gsl_errors.hpp"
-
 #include <Eigen/SVD>
 #include <cmath>
+#include <optional>
 
 #include "abu/continuation/bifurcation.hpp"
+#include "abu/core/bracketed_root.hpp"
 #include "branch_tracer.hpp"
 
 namespace abu {
@@ -96,39 +93,20 @@ std::optional<Vec5> BranchTracer::root_on_branch(const Bracket& br, bool fold_te
   const Vec5 za = br.za;
   const ld length = (br.zb - za).norm();
   const Vec5 d = (br.zb - za) / length;
-  struct Context {
-    const StaticEquations* eq;
-    Vec5 za, d, t;
-    bool fold_test;
-    bool failed = false;
-  } ctx{&eq, za, d, br.ta, fold_test};
-  gsl_function fn;
-  fn.params = &ctx;
-  fn.function = [](double sigma, void* raw) -> double {
-    auto* c = static_cast<Context*>(raw);
-    const Corrected on = correct(*c->eq, c->za + ld(sigma) * c->d, c->d);
-    if (!on.converged()) c->failed = true;
-    const Vec5 t = arclength::tangent(on.jacobian, c->t);
-    return c->fold_test ? double(t(4)) : double(arclength::bordered_determinant(on.jacobian, t));
+  const auto test = [&](double sigma) -> std::optional<double> {
+    const Corrected on = correct(eq, za + ld(sigma) * d, d);
+    if (!on.converged()) return std::nullopt;
+    const Vec5 t = arclength::tangent(on.jacobian, br.ta);
+    return fold_test ? double(t(4)) : double(arclength::bordered_determinant(on.jacobian, t));
   };
-  quiet_gsl_errors();  // GSL returns its errors (core/gsl_errors.hpp)
-  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  double lo = 0, hi = double(length), root = 0.5 * hi;
-  if (!solver) return std::nullopt;
-  bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
-  for (int it = 0; ok && it < 200; ++it) {
-    if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
-      ok = false;
-      break;
-    }
-    root = gsl_root_fsolver_root(solver);
-    lo = gsl_root_fsolver_x_lower(solver);
-    hi = gsl_root_fsolver_x_upper(solver);
-    if (gsl_root_test_interval(lo, hi, 0, 1e-15) == GSL_SUCCESS) break;
-  }
-  gsl_root_fsolver_free(solver);
-  const Corrected on = correct(eq, za + ld(root) * d, d);
-  if (!(ok && on.converged() && !ctx.failed && inside(br.za, br.zb, on.u))) return std::nullopt;
+  // A bracket of 1e-15 relative to sigma (in [0, |z_b - z_a|]): down to rounding, the test
+  // function being smooth here; 200 iterations at most, the last estimate taken after them.
+  RootSearch search;
+  search.relative_width = 1e-15;
+  const BracketedRoot found = bracketed_root(test, 0.0, double(length), search);
+  if (!found.converged() && found.end != BracketedRoot::End::max_iterations) return std::nullopt;
+  const Corrected on = correct(eq, za + ld(found.root) * d, d);
+  if (!(on.converged() && inside(br.za, br.zb, on.u))) return std::nullopt;
   return on.u;
 }
 

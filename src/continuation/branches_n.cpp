@@ -1,10 +1,5 @@
 #include "abu/continuation/branches_n.hpp"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
-
-#include "abu/core/gsl_errors.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,6 +9,7 @@
 
 #include "abu/continuation/arclength.hpp"
 #include "abu/continuation/bifurcation.hpp"
+#include "abu/core/bracketed_root.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/static_equations.hpp"
@@ -196,56 +192,33 @@ class Tracer : public S {
   ChordRoot root_on_chord(const Vec& from, const Vec& to, F&& f) const {
     const ld length = (to - from).norm();
     if (!(length > 0)) return {};
-    struct Context {
-      const Tracer* self;
-      Vec from, d;
-      std::remove_reference_t<F>* f;
-      bool failed = false;
-      std::optional<Vec> last;  // the last point found on the branch
-    } ctx{this, from, Vec((to - from) / length), &f, false, std::nullopt};
-    gsl_function fn;
-    fn.params = &ctx;
-    fn.function = [](double sigma, void* raw) -> double {
-      auto* c = static_cast<Context*>(raw);
-      const Vec guess = c->from + ld(sigma) * c->d;
-      auto on = arclength::correct(static_cast<const S&>(*c->self), guess, c->d);
+    const Vec d = (to - from) / length;
+    std::optional<Vec> last;  // the last point found on the branch
+    const auto test = [&](double sigma) -> std::optional<double> {
+      const Vec guess = from + ld(sigma) * d;
+      auto on = arclength::correct(static_cast<const S&>(*this), guess, d);
       if (!on.converged()) {
         // Linear convergence next to a branch point: the relaxed rules below.
-        const auto relaxed = arclength::correct(Relaxed{*c->self}, guess, c->d);
+        const auto relaxed = arclength::correct(Relaxed{*this}, guess, d);
         on.u = relaxed.u, on.jacobian = relaxed.jacobian, on.status = relaxed.status;
       }
-      if (!on.converged()) {
-        c->failed = true;
-        return 0.0;  // ends the search (below)
-      }
-      c->last = on.u;
-      return (*c->f)(on);
+      if (!on.converged()) return std::nullopt;  // ends the search (below)
+      last = on.u;
+      return f(on);
     };
-    quiet_gsl_errors();  // GSL returns its errors (core/gsl_errors.hpp)
-    gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    double lo = 0, hi = double(length), root = 0.5 * hi;
-    if (!solver) return {};
-    bool ok = gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
-    for (int it = 0; ok && it < 200 && !ctx.failed; ++it) {
-      if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
-        ok = false;
-        break;
-      }
-      if (ctx.failed) break;  // lo, hi: the bracket before the failed evaluation
-      root = gsl_root_fsolver_root(solver);
-      lo = gsl_root_fsolver_x_lower(solver);
-      hi = gsl_root_fsolver_x_upper(solver);
-      if (gsl_root_test_interval(lo, hi, 0, 1e-13 * double(length)) == GSL_SUCCESS) break;
-    }
-    gsl_root_fsolver_free(solver);
+    // A bracket of 1e-13 |sigma| |z_b - z_a|; 200 iterations at most, the last estimate taken.
+    RootSearch search;
+    search.relative_width = 1e-13 * double(length);
+    const BracketedRoot found = bracketed_root(test, 0.0, double(length), search);
     ChordRoot out;
-    out.width = std::max(1e-13, (hi - lo) / double(length));
-    if (!ok) return out;
-    if (ctx.failed) {
-      if (out.width <= 1e-6 && ctx.last) out.u = ctx.last;
+    out.width = std::max(1e-13, (found.upper - found.lower) / double(length));
+    if (found.end == BracketedRoot::End::evaluation_failed) {
+      if (out.width <= 1e-6 && last) out.u = last;
       return out;
     }
-    const auto on = arclength::correct(static_cast<const S&>(*this), Vec(from + ld(root) * ctx.d), ctx.d);
+    if (!found.converged() && found.end != BracketedRoot::End::max_iterations) return out;
+    const double root = found.root;
+    const auto on = arclength::correct(static_cast<const S&>(*this), Vec(from + ld(root) * d), d);
     if (on.converged()) out.u = on.u;
     return out;
   }

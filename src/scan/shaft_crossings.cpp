@@ -3,13 +3,11 @@
 #include "abu/scan/shaft_crossings.hpp"
 
 #include <fmt/format.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 
 #include <cmath>
 #include <map>
 
-#include "abu/core/gsl_errors.hpp"
+#include "abu/core/bracketed_root.hpp"
 #include "abu/linear/sparse_spectrum.hpp"
 #include "abu/scan/shaft_map.hpp"
 
@@ -92,45 +90,27 @@ ShaftCrossing refine_shaft_crossing(const std::function<ShaftSystem(double)>& sy
                             w_a, re_a, w_b, re_b)};
     return c;
   }
-  struct Context {
-    decltype(track)* f;
-    bool failed = false;
-  } ctx{&track};
-  gsl_function fn;
-  fn.params = &ctx;
-  fn.function = [](double w, void* raw) -> double {
-    auto* x = static_cast<Context*>(raw);
-    const Tracked t = (*x->f)(w, false);
+  std::string failure;  // the tracking's failure that ended the search, if one did
+  const auto re_lambda = [&](double w) -> std::optional<double> {
+    const Tracked t = track(w, false);
     if (!t.ok) {
-      x->failed = true;
-      return 0.0;  // Brent stops at a zero; the failure is reported
+      failure = fmt::format(": at omega = {}: {}", w, t.why);
+      return std::nullopt;
     }
     return t.pair.value.real();
   };
-  quiet_gsl_errors();
-  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  double lo = std::min(w_a, w_b), hi = std::max(w_a, w_b), root = 0.5 * (lo + hi);
-  bool ok = solver && gsl_root_fsolver_set(solver, &fn, lo, hi) == GSL_SUCCESS;
-  bool converged = false;
-  for (int it = 0; ok && it < 200 && !ctx.failed; ++it) {
-    if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) {
-      ok = false;
-      break;
-    }
-    root = gsl_root_fsolver_root(solver);
-    lo = gsl_root_fsolver_x_lower(solver);
-    hi = gsl_root_fsolver_x_upper(solver);
-    // 1e-12 relative: the reported 1e-10 with room for the eigenvalue's rounding.
-    if (gsl_root_test_interval(lo, hi, 0, 1e-12) == GSL_SUCCESS) {
-      converged = true;
-      break;
-    }
-  }
-  if (solver) gsl_root_fsolver_free(solver);
+  // 1e-12 relative: the reported 1e-10 with room for the eigenvalue's rounding.
+  RootSearch search;
+  search.relative_width = 1e-12;
+  const BracketedRoot found = bracketed_root(re_lambda, std::min(w_a, w_b), std::max(w_a, w_b), search);
+  const double root = found.root, lo = found.lower, hi = found.upper;
+  const bool converged = found.converged();
   const Tracked at = track(root, true);
-  if (!ok || ctx.failed || !at.ok || !converged) {
+  if (!at.ok || !converged) {
     c.status = {Outcome::not_converged, fmt::format("Brent on Re lambda(omega) = 0 in [{}, {}] did not converge{}", lo,
-                                                    hi, at.ok ? std::string() : ": " + at.why)};
+                                                    hi, !failure.empty() ? failure
+                                                        : at.ok          ? std::string()
+                                                                         : ": " + at.why)};
     return c;
   }
   c.omega = root;
