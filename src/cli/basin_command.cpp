@@ -35,7 +35,7 @@ namespace {
 
 struct BasinOptions {
   SceneOptions scene;
-  std::string ramp, profile_file, grid = "24", fixed;
+  std::string ramp, profile_file, grid = "24", fixed, others = "sobol";
   SimulationOptions sim;
   std::string method = "auto";
   double settle_radius = 1e-2;
@@ -84,8 +84,12 @@ Action add_basin_command(CLI::App& app) {
   sub->add_option("--grid", o->grid, "Cells per axis of beta1 x beta2 over [0, 2 pi)^2: N or N1xN2")
       ->capture_default_str();
   sub->add_option("--fixed", o->fixed,
-                  "n >= 3 balls: start angles of balls 3..n [rad] (default evenly spaced, 2 pi (i - 1) / n)")
+                  "n >= 3 balls: start angles of balls 3..n [rad], the same in every cell (default: --others)")
       ->type_name("B3,B4,...");
+  sub->add_option("--others", o->others,
+                  "n >= 3: how balls 3..n start: 'sobol' (default: each cell its own point of a Sobol sequence, "
+                  "every ball's angle sampled) or 'symmetric' (every cell at 2 pi (i - 1) / n)")
+      ->check(CLI::IsMember({"sobol", "symmetric"}));
   sub->add_option("--t-end", o->sim.t_end, "Longest integration per cell [s] (default 10, or the scene's t_end)");
   auto* ramp = sub->add_option("--ramp", o->ramp, "Run-up OMEGA0:OMEGA1:ALPHA (as simulate; default: the scene's "
                                                   "[simulate] run-up, else the constant [speed])")
@@ -161,7 +165,7 @@ Action add_basin_command(CLI::App& app) {
       job.fixed = parse_real_list(b.fixed, "--fixed");
       if (int(job.fixed.size()) != n - 2)
         throw InputError("--fixed", 0, "", fmt::format("give balls 3..{}: {} angles, got {}", n, n - 2, job.fixed.size()));
-    } else {
+    } else if (b.others == "symmetric") {
       for (int i = 3; i <= n; ++i) job.fixed.push_back(2 * M_PI * (i - 1) / n);
     }
     job.sim = b.sim;
@@ -185,6 +189,7 @@ Action add_basin_command(CLI::App& app) {
       job.provenance = provenance_header(line, scene.file, job.params);
     }
     set_basin_race(job, race);  // after params_n and the speed: the equilibria at the final speed
+    set_sobol_starts(job);      // n >= 3 without fixed angles: every ball's start angle sampled
     if (!job.race.round()) job.provenance += describe_race(job.race, "# ");
     job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
                                   "in the rotor frame\n",
@@ -193,6 +198,10 @@ Action add_basin_command(CLI::App& app) {
       std::string f;
       for (double x : job.fixed) f += fmt::format("{}{:.10g}", f.empty() ? "" : ",", x);
       job.provenance += fmt::format("# fixed: balls 3..{} start at {} rad\n", n, f);
+    } else if (n > 2) {
+      job.provenance += fmt::format("# others: balls 3..{} start in cell (i, j) at 2 pi times point i*{} + j + 1 of the "
+                                    "Sobol sequence in {} dimensions (GSL), columns beta3_0..beta{}_0\n",
+                                    n, c2, n - 2, n);
     }
 
     const std::vector<BasinTarget> targets = basin_targets(job);

@@ -2,10 +2,12 @@
 #include "abu/scan/basin.hpp"
 
 #include <fmt/format.h>
+#include <gsl/gsl_qrng.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
@@ -145,8 +147,9 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   c.j = j;
   c.beta1 = job.beta1(i);
   c.beta2 = job.beta2(j);
+  c.beta_others = job.start_of_others(i, j);
   std::vector<double> beta{c.beta1, c.beta2};
-  beta.insert(beta.end(), job.fixed.begin(), job.fixed.end());
+  beta.insert(beta.end(), c.beta_others.begin(), c.beta_others.end());
   const State<double, N> x0 = start_at_rest(p, beta);
   if (p.law == FrictionLaw::coulomb_set) return stick_slip_cell(job, p, x0, c);
 
@@ -232,6 +235,29 @@ int BasinJob::n_balls() const { return any_balls ? ball_count(params_n) : 2; }
 double BasinJob::beta1(int i) const { return kTwoPi * i / cells1; }
 double BasinJob::beta2(int j) const { return kTwoPi * j / cells2; }
 
+std::vector<double> BasinJob::start_of_others(int i, int j) const {
+  if (!fixed.empty() || others.empty()) return fixed;
+  const auto m = std::size_t(n_balls() - 2);
+  const auto at = others.begin() + std::ptrdiff_t((std::size_t(i) * std::size_t(cells2) + std::size_t(j)) * m);
+  return {at, at + std::ptrdiff_t(m)};
+}
+
+void set_sobol_starts(BasinJob& job) {
+  const int m = job.n_balls() - 2;
+  job.others.clear();
+  if (m < 1 || !job.fixed.empty()) return;
+  const std::unique_ptr<gsl_qrng, decltype(&gsl_qrng_free)> q(gsl_qrng_alloc(gsl_qrng_sobol, unsigned(m)),
+                                                               &gsl_qrng_free);
+  if (!q) throw NumericalError(fmt::format("basin: no Sobol sequence in {} dimensions (GSL)", m));
+  const std::size_t cells = std::size_t(job.cells1) * std::size_t(job.cells2);
+  job.others.resize(cells * std::size_t(m));
+  for (std::size_t k = 0; k < cells; ++k) {
+    double* u = job.others.data() + k * std::size_t(m);
+    gsl_qrng_get(q.get(), u);  // in (0, 1); GSL's first point is (1/2, ..., 1/2)
+    for (int d = 0; d < m; ++d) u[d] *= kTwoPi;
+  }
+}
+
 double shortest_arc(std::vector<double> angles) {
   if (angles.size() < 2) return 0.0;
   for (double& a : angles) a = std::fmod(std::fmod(a, kTwoPi) + kTwoPi, kTwoPi);
@@ -297,15 +323,18 @@ BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>
 
 std::string basin_csv_header(const BasinJob& job) {
   std::string h = job.provenance;
-  h += "i,j,beta1_0,beta2_0,attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
+  h += "i,j,beta1_0,beta2_0";
+  for (int k = 3; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_0", k);
+  h += ",attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
   for (int k = 1; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_end", k);
   h += set_valued(job) ? ",steps,rejected,max_abs_s,in_stick_set\n" : ",steps,rejected\n";
   return h;
 }
 
 std::string basin_row(const BasinCell& c) {
-  std::string row = fmt::format("{},{},{:.10g},{:.10g},{},{},{},{},{:.10g},{:.6e},{:.6e}", c.i, c.j, c.beta1, c.beta2,
-                                c.attractor, c.member == 0 ? std::string() : std::to_string(c.member),
+  std::string row = fmt::format("{},{},{:.10g},{:.10g}", c.i, c.j, c.beta1, c.beta2);
+  for (double b : c.beta_others) row += fmt::format(",{:.10g}", b);
+  row += fmt::format(",{},{},{},{},{:.10g},{:.6e},{:.6e}", c.attractor, c.member == 0 ? std::string() : std::to_string(c.member),
                                 c.by_settle_test, c.t_settle >= 0 ? fmt::format("{:.6g}", c.t_settle) : "",
                                 c.t_end, c.q_abs_end, c.max_q_abs);
   const int n = (int(c.state_end.size()) - 4) / 2;
@@ -323,7 +352,7 @@ std::string basin_row(const BasinCell& c) {
 
 std::string basin_manifest(const BasinJob& job) {
   std::string out = fmt::format("abu basin tiles: 1 column per tile, {} tiles\n", job.cells1);
-  out += fmt::format("# grid {} x {}, fixed", job.cells1, job.cells2);
+  out += fmt::format("# grid {} x {}, {}", job.cells1, job.cells2, job.fixed.empty() ? "others sobol" : "fixed");
   for (double f : job.fixed) out += fmt::format(" {:.17g}", f);
   out += fmt::format("\n# speed {}, t_end {:.17g}, every {:.17g}, rtol {:.17g}, method {}\n", job.speed.describe(),
                      job.sim.t_end, job.sim.every, job.sim.rtol, to_string(job.sim.method));

@@ -2,7 +2,8 @@
 # The command-line contract of `stability-scan basin` (model.md §15.5): the CSVs
 # and the chart, fractions summing to one, the same bytes on 1 and 2 threads, an interrupted
 # run resumed equals a fresh run, the refusal to overwrite an interrupted run, the scene's
-# [simulate] run-up equals --ramp, n = 3 balls, bad input (exit 2, nothing written).
+# [simulate] run-up equals --ramp, n = 3 balls (ball 3 sampled by Sobol points, or fixed), bad
+# input (exit 2, nothing written).
 #   check_basin.sh BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -79,7 +80,30 @@ check "the run-up is named in the header" "grep -q 'ramp 150 -> 400' '$work/r1/b
 sed 's/^count = 11/count = 3/' "$src/data/scenes/ring11.toml" >"$work/ring3.toml"
 "$bin" basin "$work/ring3.toml" --grid 3 --t-end 0.05 --no-chart --quiet -o "$work/n3" 2>"$work/n3.err"
 check "three balls: exits 0, 9 cells, three end angles" \
-  "[ $? -eq 0 ] && [ \$(grep -v '^#' '$work/n3/basin.csv' | tail -n +2 | wc -l) -eq 9 ] && grep -v '^#' '$work/n3/basin.csv' | head -1 | grep -q 'beta3_end' && grep -q '^# fixed: balls 3..3 start at 4.18879' '$work/n3/basin.csv'"
+  "[ $? -eq 0 ] && [ \$(grep -v '^#' '$work/n3/basin.csv' | tail -n +2 | wc -l) -eq 9 ] && grep -v '^#' '$work/n3/basin.csv' | head -1 | grep -q 'beta3_end'"
+# Ball 3 sampled, not fixed: its start angle in cell (i, j) is 2 pi times point k = 3 i + j + 1
+# of the Sobol sequence in GSL's Gray-code order (Antonov-Saleev), whose first coordinate is
+# the base-2 van der Corput radical inverse of gray(k) = k xor (k >> 1) (the bits mirrored
+# about the binary point), computed here independently of GSL; to the 10 significant digits
+# the CSV prints.
+check "three balls: ball 3 starts at the cell's Sobol point (van der Corput in one dimension)" "/usr/bin/python3 -c \"
+import csv, math
+rows = list(csv.DictReader(l for l in open('$work/n3/basin.csv') if not l.startswith('#')))
+def vdc(k):
+    x, f = 0.0, 0.5
+    while k:
+        x += f * (k & 1); k >>= 1; f /= 2
+    return x
+assert len(rows) == 9
+for r in rows:
+    k = 3 * int(r['i']) + int(r['j']) + 1
+    k ^= k >> 1
+    assert abs(float(r['beta3_0']) - 2 * math.pi * vdc(k)) <= 1e-9, (r['i'], r['j'], r['beta3_0'])
+assert len({r['beta3_0'] for r in rows}) == 9  # every cell its own angle
+\" && grep -q '^# others: balls 3..3' '$work/n3/basin.csv'"
+"$bin" basin "$work/ring3.toml" --grid 3 --t-end 0.05 --no-chart --quiet --others symmetric -o "$work/n3s" 2>/dev/null
+check "three balls, --others symmetric: ball 3 at 4 pi / 3 in every cell" \
+  "grep -q '^# fixed: balls 3..3 start at 4.18879' '$work/n3s/basin.csv' && [ \$(grep -v '^#' '$work/n3s/basin.csv' | tail -n +2 | cut -d, -f5 | sort -u) = 4.188790205 ]"
 
 # --- bad input: exit 2, nothing written -------------------------------------------------------
 bad() {  # name, then the arguments; -o inside an empty directory
@@ -99,6 +123,7 @@ bad "grid not a number"     "$scene" --grid 4y4
 bad "ramp through zero"     "$scene" --ramp 100:-10:50
 bad "fixed balls on two"    "$scene" --fixed 1
 bad "fixed wrong count"     "$work/ring3.toml" --fixed 1,2
+bad "others unknown"        "$work/ring3.toml" --others random
 bad "settle radius 0"       "$scene" --settle-radius 0
 bad "scene t_end <= 0"      "$src/tests/scenes/invalid/64-simulate-zero-t-end.toml"
 finish

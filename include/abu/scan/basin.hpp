@@ -35,7 +35,11 @@ struct BasinJob {
   SpeedProfile speed;       ///< constant or a run-up; the attractors are those of its final speed
   SimulationOptions sim;    ///< t_end, every (the settle test looks at every sample), rtol, method
   int cells1 = 24, cells2 = 24;  ///< grid of beta1 x beta2 over [0, 2 pi)^2
-  std::vector<double> fixed;     ///< start angles of balls 3..n [rad]
+  std::vector<double> fixed;     ///< start angles of balls 3..n [rad] (every cell; empty: `others`)
+  /// Start angles of balls 3..n per cell when `fixed` is empty (n >= 3): cell (i, j) holds
+  /// (i cells2 + j)'s point of a Sobol sequence (set_sobol_starts), so that every ball's start
+  /// angle is sampled, not only balls 1 and 2's; [rad], (n - 2) per cell, row-major.
+  std::vector<double> others;
   /// An unround race (model.md §11, §15.7): the balls run on its paths (any_balls true), and
   /// the attractors are its stable equilibria at the final speed; empty or round: the round race.
   RaceShape race;
@@ -50,8 +54,16 @@ struct BasinJob {
   int n_balls() const;
   double beta1(int i) const;
   double beta2(int j) const;
+  /// Balls 3..n's start angles in cell (i, j) [rad] (empty for two balls).
+  std::vector<double> start_of_others(int i, int j) const;
   double final_omega() const { return speed.omega(sim.t_end); }
 };
+
+/// Fills job.others (n >= 3, job.fixed empty): balls 3..n of cell (i, j) start at 2 pi times
+/// point k = i cells2 + j of the Sobol sequence in n - 2 dimensions (GSL's gsl_qrng_sobol, its
+/// points 1, 2, ... in order): a low-discrepancy sample of their angles over the whole grid,
+/// the same whatever the thread count. Needs job.cells1, cells2 and the ball count set.
+void set_sobol_starts(BasinJob& job);
 
 /// A stable equilibrium of the final speed, or the balanced set of n >= 3 balls.
 struct BasinTarget {
@@ -77,6 +89,7 @@ void set_basin_race(BasinJob& job, RaceShape race);
 struct BasinCell {
   int i = 0, j = 0;
   double beta1 = 0, beta2 = 0;      ///< start angles [rad]
+  std::vector<double> beta_others;  ///< start angles of balls 3..n [rad]
   std::string attractor;            ///< balanced | aligned:PATTERN | periodic | stuck | not_settled
   int member = 0;                   ///< which target of that label (settle test), 0 if by §15.2 only
   /// How the run ended: 0 at t_end (judged by §15.2), 1 by entering a target's certified
@@ -99,7 +112,7 @@ double shortest_arc(std::vector<double> angles);
 
 BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j);
 
-/// Long CSV: comment block, then `i,j,beta1_0,beta2_0,attractor,member,by_settle_test,
+/// Long CSV: comment block, then `i,j,beta1_0,beta2_0,[beta3_0..betan_0,]attractor,member,by_settle_test,
 /// t_settle,t_end,q_abs_end,max_q_abs,beta1_end..betan_end,steps,rejected` (model.md §15.5),
 /// for coulomb-set followed by `max_abs_s,in_stick_set` (model.md §14.8).
 std::string basin_csv_header(const BasinJob& job);
