@@ -28,6 +28,8 @@ st(col, want) = (strcol("stability") eq want) ? column(col) : NaN
 kindlabel(k) = k eq 'fold' ? 'fold (+1)' : k eq 'flip' ? 'flip (-1)' : 'N-S (complex)'
 
 set multiplot layout 2,1 title heading noenhanced font ',9'
+set lmargin at screen 0.09  # one x axis for both panels, whatever the keys' widths
+set rmargin at screen 0.82
 set grid
 set key outside right top
 set format x ''

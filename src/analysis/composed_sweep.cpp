@@ -58,23 +58,41 @@ ComposedSweepPoint orbits_at(const AnisotropicSupport& support, const ComposedMa
   return point;
 }
 
+// The orbit `from` (at value a) continued to value b by Newton (forced_orbit_near); where
+// Newton fails over the whole step, in 2, 4, ... 16 equal sub-steps (natural-parameter
+// continuation: a long grid step near a resonance, where the orbits move fast).
+ForcedOrbit continued_orbit(const ForcedOrbit& from, double a, double b, const AnisotropicSupport& support,
+                            const ComposedAt& at, const ComposedSweepOptions& o) {
+  ForcedOrbit last;
+  for (int parts = 1; parts <= 16; parts *= 2) {
+    last = from;
+    for (int k = 1; k <= parts; ++k) {
+      const ComposedMachineAt m = at(k == parts ? b : a + (b - a) * k / parts);
+      last = forced_orbit_near(m.params, RigidMachine{&m.race, &support}, last, from.kind, o.orbit);
+      if (!usable(last)) break;
+    }
+    if (usable(last)) return last;
+  }
+  return last;
+}
+
 // Gives this point's orbits the tracks of the previous point's: each previous orbit continued
-// to this value by Newton (forced_orbit_near) and matched to this value's orbit at the same
-// x(0); a previous orbit that does not continue, or continues to none of them, is a lost row.
-// The orbits left unmatched start new tracks.
+// to this value (continued_orbit) and matched to this value's orbit at the same x(0); a
+// previous orbit that does not continue, or continues to none of them, is a lost row. The
+// orbits left unmatched start new tracks.
 void follow_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point, const AnisotropicSupport& support,
-                   const ComposedMachineAt& m, const ComposedSweepOptions& o, int& tracks) {
-  const RigidMachine machine{&m.race, &support};
+                   const ComposedAt& at, const ComposedSweepOptions& o, int& tracks) {
+  const ParamsN params = at(point.value).params;
   std::vector<ComposedOrbitRow> lost;
   for (const ComposedOrbitRow& before : previous.rows) {
     if (before.lost || before.track == 0) continue;
     throw_if_stopped("sweep: composed orbits");
-    const ForcedOrbit next = forced_orbit_near(m.params, machine, before.orbit, before.orbit.kind, o.orbit);
+    const ForcedOrbit next = continued_orbit(before.orbit, previous.value, point.value, support, at, o);
     ComposedOrbitRow* match = nullptr;
     if (usable(next))
       for (ComposedOrbitRow& row : point.rows)
         if (row.track == 0 && usable(row.orbit) &&
-            composed_orbit_distance(m.params, next.state0, row.orbit.state0) <= o.match_tolerance)
+            composed_orbit_distance(params, next.state0, row.orbit.state0) <= o.match_tolerance)
           match = &row;
     if (match) {
       match->track = before.track;
@@ -87,11 +105,12 @@ void follow_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point
         usable(next) ? fmt::format("it continues (Newton from the orbit at {}) to an orbit that none of this value's "
                                    "equilibria continues to in delta",
                                    previous.value)
-                     : fmt::format("Newton from the orbit at {} fails here ({}): no orbit continues it (a fold of the "
-                                   "orbit family between the two values, or a step too long)",
+                     : fmt::format("Newton from the orbit at {} fails here, also in 16 sub-steps ({}): no orbit "
+                                   "continues it (a fold of the orbit family between the two values)",
                                    previous.value, next.reason);
     row.orbit.status.merge(Outcome::not_converged, "see reason");
-    row.orbit.reason = fmt::format("track {} lost between {} and {}: {}", before.track, previous.value, point.value, why);
+    row.orbit.reason = fmt::format("track {} ({} at {}) lost between {} and {}: {}", before.track, before.orbit.kind,
+                                   previous.value, previous.value, point.value, why);
     lost.push_back(std::move(row));
   }
   for (ComposedOrbitRow& row : point.rows)
@@ -161,7 +180,7 @@ ComposedSweep composed_sweep(const AnisotropicSupport& support, const ComposedAt
       for (ComposedOrbitRow& row : point.rows)
         if (usable(row.orbit)) row.track = ++s.tracks;
     } else {
-      follow_tracks(s.points.back(), point, support, m, o, s.tracks);
+      follow_tracks(s.points.back(), point, support, at, o, s.tracks);
     }
     for (const ComposedOrbitRow& row : point.rows)
       if (!row.orbit.status.ok())

@@ -30,11 +30,14 @@ std::string composed_sweep_csv(const ComposedSweep& s, const std::string& name, 
          "from value to value (0: not converged, no identity); equilibrium: its equilibrium's number at this value "
          "(0: lost); Floquet multipliers over pi/omega (rotating frame), modulus descending, none trivial; "
          "rho_abs_max = max |rho|, decay_rate = (omega/pi) ln rho_abs_max [1/s]; q_abs_max, q_abs_min: |q| over the "
-         "period [m] (fixed-frame whirl radius); band: the verdict's margin on ln max|rho| (§10.18)\n";
+         "period [m] (fixed-frame whirl radius); band: the verdict's margin on ln max|rho| (§10.18); x0_1..x0_(2n+4): the orbit's state at t = 0 "
+         "(q1, q2 [m], beta_i [rad], q1', q2' [m/s], beta_i' [rad/s], rotating frame, model.md (2.2))\n";
   for (const auto& point : s.points) {
     if (!point.search_doubt.empty()) out += fmt::format("# at {}={}: the search: {}\n", name, point.value, point.search_doubt);
     for (const auto& row : point.rows)
-      if (!row.orbit.status.ok())
+      if (row.lost)
+        out += fmt::format("# at {}={}: lost: {}\n", name, point.value, row.orbit.reason);
+      else if (!row.orbit.status.ok())
         out += fmt::format("# at {}={}: {} ({}): {}\n", name, point.value, row.orbit.kind, composed_row_status(row),
                            row.orbit.reason);
   }
@@ -42,6 +45,7 @@ std::string composed_sweep_csv(const ComposedSweep& s, const std::string& name, 
                      "steps_per_interval",
                      name);
   for (std::size_t k = 1; k <= count; ++k) out += fmt::format(",mult_re{},mult_im{}", k, k);
+  for (std::size_t k = 1; k <= count; ++k) out += fmt::format(",x0_{}", k);
   out += "\n";
   for (const auto& point : s.points) {
     for (const auto& row : point.rows) {
@@ -53,8 +57,10 @@ std::string composed_sweep_csv(const ComposedSweep& s, const std::string& name, 
         for (std::size_t m = 0; m < count; ++m)
           out += m < o.multipliers.size() ? fmt::format(",{},{}", o.multipliers[m].real(), o.multipliers[m].imag())
                                           : std::string(",,");
+        for (std::size_t m = 0; m < count; ++m)
+          out += m < o.state0.size() ? fmt::format(",{}", o.state0[m]) : std::string(",");
       } else {
-        out += std::string(7 + 2 * count, ',');
+        out += std::string(7 + 3 * count, ',');
       }
       out += "\n";
     }
@@ -82,9 +88,10 @@ std::string composed_sweep_text(const ComposedSweep& s, const std::string& name)
     if (!point.search_doubt.empty())
       out += fmt::format("warning: {}={}: unround race: {}\n", name, point.value, point.search_doubt);
     for (const auto& row : point.rows)
-      if (!row.orbit.status.ok())
-        out += fmt::format("{}: {}={}: {}: {}\n", row.lost ? "note" : "warning", name, point.value, row.orbit.kind,
-                           row.orbit.reason);
+      if (row.lost)
+        out += fmt::format("note: {}={}: {}\n", name, point.value, row.orbit.reason);
+      else if (!row.orbit.status.ok())
+        out += fmt::format("warning: {}={}: {}: {}\n", name, point.value, row.orbit.kind, row.orbit.reason);
   }
   for (const ComposedUnlocated& u : s.unlocated) out += fmt::format("warning: {}\n", u.reason);
   if (s.crossings.empty()) out += "no Floquet multiplier crosses the unit circle in the sweep\n";

@@ -14,7 +14,8 @@
 namespace abu {
 
 /// NAME,track,equilibrium,status,stability,rho_abs_max,decay_rate,q_abs_max,q_abs_min,band,
-/// steps_per_interval,mult_re1,mult_im1,... (modulus descending).
+/// steps_per_interval,mult_re1,mult_im1,... (modulus descending), x0_1..x0_(2n+4) (the orbit at
+/// t = 0, SI, rotating frame: a reference's start).
 std::string composed_sweep_csv(const ComposedSweep& s, const std::string& name, const std::string& header);
 /// orbit,NAME,kind,direction,mult_re,mult_im,mult_abs,bracket_lower,bracket_upper; the sign
 /// changes bisection could not follow as comment lines.
