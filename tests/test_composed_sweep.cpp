@@ -24,7 +24,7 @@ using namespace abu;
 namespace {
 
 // tests/scenes/composed/oval_anisotropic.toml at its mean support (k_bar = 10500, c_bar = 3.25).
-ParamsN oval_scene_params() {
+ParamsN composed_sweep_params() {
   ParamsN p;
   p.rotor = {0.2, 10500.0, 3.25, 8e-7};
   p.omega = 1100.0;
@@ -35,12 +35,12 @@ ParamsN oval_scene_params() {
   return p;
 }
 
-RaceShape oval_race(double amplitude_factor) {
+RaceShape composed_sweep_race(double amplitude_factor) {
   const RaceHarmonics h{{2, 3e-5 * amplitude_factor, 0.4}, {1, 1e-5 * amplitude_factor, 1.1}};
   return RaceShape{{h, h}};
 }
 
-ComposedAt omega_at(const ParamsN& base, const RaceShape& race) {
+ComposedAt composed_omega_at(const ParamsN& base, const RaceShape& race) {
   return [base, race](double w) {
     ParamsN p = base;
     p.omega = w;
@@ -48,14 +48,14 @@ ComposedAt omega_at(const ParamsN& base, const RaceShape& race) {
   };
 }
 
-std::vector<std::complex<double>> by_modulus(std::vector<std::complex<double>> v) {
+std::vector<std::complex<double>> composed_by_modulus(std::vector<std::complex<double>> v) {
   std::sort(v.begin(), v.end(), [](auto a, auto b) {
     return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : std::arg(a) > std::arg(b);
   });
   return v;
 }
 
-bool same_angles(const std::vector<double>& state0, const EquilibriumN& e) {
+bool composed_same_angles(const std::vector<double>& state0, const EquilibriumN& e) {
   for (int i = 0; i < 2; ++i)
     if (std::abs(std::remainder(state0[std::size_t(2 + i)] - double(e.position(2 + i)), 2 * std::numbers::pi)) > 1e-6)
       return false;
@@ -68,10 +68,10 @@ TEST_CASE("composed sweep: a race round to rounding gives the anisotropic suppor
   // Both multiplier sets are accurate to ~1e-10 (Hill/Magnus cross-checked to 1e-6 relative
   // at worst, typically 1e-11; the orbit's discretization target 1e-10): they agree to 1e-7 of
   // max(|rho|, 1e-6), the acceptance's figure.
-  const ParamsN p = oval_scene_params();
+  const ParamsN p = composed_sweep_params();
   const AnisotropicSupport support{12000.0, 9000.0, -800.0, 4.0, 2.5, 0.6};
   const std::vector<double> values{900.0, 1100.0, 1300.0};
-  const ComposedSweep composed = composed_sweep(support, omega_at(p, oval_race(1e-30 / 3e-5)), values);
+  const ComposedSweep composed = composed_sweep(support, composed_omega_at(p, composed_sweep_race(1e-30 / 3e-5)), values);
   const FloquetSweep alone = floquet_sweep(p, support, *parse_param("omega", 2), values, {});
   INFO(composed.status.reason);
   REQUIRE(composed.status.ok());
@@ -81,10 +81,10 @@ TEST_CASE("composed sweep: a race round to rounding gives the anisotropic suppor
     for (std::size_t k = 0; k < alone.points[i].balanced.size(); ++k) {
       const EquilibriumN& e = alone.points[i].balanced[k];
       const auto row = std::find_if(composed.points[i].rows.begin(), composed.points[i].rows.end(),
-                                    [&](const ComposedOrbitRow& r) { return same_angles(r.orbit.state0, e); });
+                                    [&](const ComposedOrbitRow& r) { return composed_same_angles(r.orbit.state0, e); });
       REQUIRE(row != composed.points[i].rows.end());
       CHECK(row->orbit.q_abs_max <= 1e-20);  // the balanced state: q = 0 (to the race's 1e-30)
-      const auto a = by_modulus(alone.points[i].floquet[k].multipliers), b = by_modulus(row->orbit.multipliers);
+      const auto a = composed_by_modulus(alone.points[i].floquet[k].multipliers), b = composed_by_modulus(row->orbit.multipliers);
       REQUIRE(a.size() == b.size());
       for (std::size_t m = 0; m < a.size(); ++m) CHECK(std::abs(a[m] - b[m]) <= 1e-7 * std::max(std::abs(a[m]), 1e-6));
       ++compared;
@@ -98,11 +98,11 @@ TEST_CASE("composed sweep: an isotropic support in the anisotropic form gives th
   // Each orbit is its equilibrium (no forcing): the moduli of its multipliers over pi/omega are
   // exp(Re lambda pi/omega) of the equilibrium's refined eigenvalues, to 1e-7 relative (the
   // acceptance's figure; the shooting's own error is ~1e-10).
-  const ParamsN p = oval_scene_params();
+  const ParamsN p = composed_sweep_params();
   const AnisotropicSupport isotropic{10500.0, 10500.0, 0.0, 3.25, 3.25, 0.0};
-  const RaceShape race = oval_race(1.0);
+  const RaceShape race = composed_sweep_race(1.0);
   const std::vector<double> values{900.0, 1100.0, 1300.0};
-  const ComposedSweep s = composed_sweep(isotropic, omega_at(p, race), values);
+  const ComposedSweep s = composed_sweep(isotropic, composed_omega_at(p, race), values);
   INFO(s.status.reason);
   REQUIRE(s.status.ok());
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -132,10 +132,10 @@ TEST_CASE("composed sweep: an orbit followed from the previous value is the one 
   // equilibrium are two routes to one orbit: x(0) agrees to the shooting's accuracy (Newton to
   // 1e-13 scaled, both refined to the 1e-10 target), far inside the match tolerance 1e-6, and the
   // largest multiplier to 1e-9 relative.
-  const ParamsN p = oval_scene_params();
+  const ParamsN p = composed_sweep_params();
   const AnisotropicSupport support{12000.0, 9000.0, -800.0, 4.0, 2.5, 0.6};
-  const RaceShape race = oval_race(1.0);
-  const ComposedSweep s = composed_sweep(support, omega_at(p, race), {1000.0, 1100.0});
+  const RaceShape race = composed_sweep_race(1.0);
+  const ComposedSweep s = composed_sweep(support, composed_omega_at(p, race), {1000.0, 1100.0});
   REQUIRE(s.status.ok());
   REQUIRE(s.points[0].rows.size() == 8);
   CHECK(s.tracks == 8);  // every orbit at 1000 continues to one at 1100, none lost, none new

@@ -38,11 +38,11 @@ double composed_orbit_distance(const ParamsN& p, const std::vector<double>& a, c
 // |rho| underflows).
 GrowthSample composed_growth(const ForcedOrbit& o) { return {o.log_moduli.front(), o.multipliers.front()}; }
 
-bool usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
+bool composed_orbit_usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
 
 // This value's orbits: every equilibrium of the race on the mean support continued in delta
 // (what `equilibria` reports, §20.4).
-ComposedSweepPoint orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
+ComposedSweepPoint composed_orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
                              const ForcedOrbitOptions& o) {
   ComposedSweepPoint point;
   point.value = value;
@@ -62,7 +62,7 @@ ComposedSweepPoint orbits_at(const AnisotropicSupport& support, const ComposedMa
 // The orbit `from` (at value a) continued to value b by Newton (forced_orbit_near); where
 // Newton fails over the whole step, in 2, 4, ... 16 equal sub-steps (natural-parameter
 // continuation: a long grid step near a resonance, where the orbits move fast).
-ForcedOrbit continued_orbit(const ForcedOrbit& from, double a, double b, const AnisotropicSupport& support,
+ForcedOrbit composed_orbit_continued(const ForcedOrbit& from, double a, double b, const AnisotropicSupport& support,
                             const ComposedAt& at, const ComposedSweepOptions& o) {
   ForcedOrbit last;
   for (int parts = 1; parts <= 16; parts *= 2) {
@@ -70,29 +70,29 @@ ForcedOrbit continued_orbit(const ForcedOrbit& from, double a, double b, const A
     for (int k = 1; k <= parts; ++k) {
       const ComposedMachineAt m = at(k == parts ? b : a + (b - a) * k / parts);
       last = forced_orbit_near(m.params, RigidMachine{&m.race, &support}, last, from.kind, o.orbit);
-      if (!usable(last)) break;
+      if (!composed_orbit_usable(last)) break;
     }
-    if (usable(last)) return last;
+    if (composed_orbit_usable(last)) return last;
   }
   return last;
 }
 
 // Gives this point's orbits the tracks of the previous point's: each previous orbit continued
-// to this value (continued_orbit) and matched to this value's orbit at the same x(0); a
+// to this value (composed_orbit_continued) and matched to this value's orbit at the same x(0); a
 // previous orbit that does not continue, or continues to none of them, is a lost row. The
 // orbits left unmatched start new tracks.
-void follow_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point, const AnisotropicSupport& support,
+void follow_composed_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point, const AnisotropicSupport& support,
                    const ComposedAt& at, const ComposedSweepOptions& o, int& tracks) {
   const ParamsN params = at(point.value).params;
   std::vector<ComposedOrbitRow> lost;
   for (const ComposedOrbitRow& before : previous.rows) {
     if (before.lost || before.track == 0) continue;
     throw_if_stopped("sweep: composed orbits");
-    const ForcedOrbit next = continued_orbit(before.orbit, previous.value, point.value, support, at, o);
+    const ForcedOrbit next = composed_orbit_continued(before.orbit, previous.value, point.value, support, at, o);
     ComposedOrbitRow* match = nullptr;
-    if (usable(next))
+    if (composed_orbit_usable(next))
       for (ComposedOrbitRow& row : point.rows)
-        if (row.track == 0 && usable(row.orbit) &&
+        if (row.track == 0 && composed_orbit_usable(row.orbit) &&
             composed_orbit_distance(params, next.state0, row.orbit.state0) <= o.match_tolerance)
           match = &row;
     if (match) {
@@ -103,7 +103,7 @@ void follow_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point
     row.orbit.kind = before.orbit.kind;
     row.orbit.period = next.period;
     const std::string why =
-        usable(next) ? fmt::format("it continues (Newton from the orbit at {}) to an orbit that none of this value's "
+        composed_orbit_usable(next) ? fmt::format("it continues (Newton from the orbit at {}) to an orbit that none of this value's "
                                    "equilibria continues to in delta",
                                    previous.value)
                      : fmt::format("Newton from the orbit at {} fails here, also in 16 sub-steps ({}): no orbit "
@@ -115,11 +115,11 @@ void follow_tracks(const ComposedSweepPoint& previous, ComposedSweepPoint& point
     lost.push_back(std::move(row));
   }
   for (ComposedOrbitRow& row : point.rows)
-    if (row.track == 0 && usable(row.orbit)) row.track = ++tracks;
+    if (row.track == 0 && composed_orbit_usable(row.orbit)) row.track = ++tracks;
   for (ComposedOrbitRow& row : lost) point.rows.push_back(std::move(row));
 }
 
-const ComposedOrbitRow* find_track(const ComposedSweepPoint& point, int track) {
+const ComposedOrbitRow* find_composed_track(const ComposedSweepPoint& point, int track) {
   for (const ComposedOrbitRow& row : point.rows)
     if (!row.lost && row.track == track) return &row;
   return nullptr;
@@ -132,9 +132,9 @@ void locate_composed_crossings(ComposedSweep& s, const AnisotropicSupport& suppo
                                const ComposedSweepOptions& o) {
   for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
     for (const ComposedOrbitRow& row : s.points[i].rows) {
-      if (row.lost || row.track == 0 || !usable(row.orbit)) continue;
-      const ComposedOrbitRow* next = find_track(s.points[i + 1], row.track);
-      if (!next || !usable(next->orbit)) continue;
+      if (row.lost || row.track == 0 || !composed_orbit_usable(row.orbit)) continue;
+      const ComposedOrbitRow* next = find_composed_track(s.points[i + 1], row.track);
+      if (!next || !composed_orbit_usable(next->orbit)) continue;
       const GrowthSample a = composed_growth(row.orbit), b = composed_growth(next->orbit);
       if (!((a.growth < 0.0 && b.growth > 0.0) || (a.growth > 0.0 && b.growth < 0.0))) continue;
       ForcedOrbit guess = row.orbit;
@@ -143,7 +143,7 @@ void locate_composed_crossings(ComposedSweep& s, const AnisotropicSupport& suppo
         throw_if_stopped("sweep: composed crossing");
         const ComposedMachineAt m = at(value);
         ForcedOrbit orbit = forced_orbit_near(m.params, RigidMachine{&m.race, &support}, guess, guess.kind, o.orbit);
-        if (!usable(orbit)) {
+        if (!composed_orbit_usable(orbit)) {
           failure = orbit.reason;
           return std::nullopt;
         }
@@ -176,12 +176,12 @@ ComposedSweep composed_sweep(const AnisotropicSupport& support, const ComposedAt
   for (std::size_t i = 0; i < values.size(); ++i) {
     throw_if_stopped("sweep: composed orbits");
     const ComposedMachineAt m = at(values[i]);
-    ComposedSweepPoint point = orbits_at(support, m, values[i], o.orbit);
+    ComposedSweepPoint point = composed_orbits_at(support, m, values[i], o.orbit);
     if (i == 0) {
       for (ComposedOrbitRow& row : point.rows)
-        if (usable(row.orbit)) row.track = ++s.tracks;
+        if (composed_orbit_usable(row.orbit)) row.track = ++s.tracks;
     } else {
-      follow_tracks(s.points.back(), point, support, at, o, s.tracks);
+      follow_composed_tracks(s.points.back(), point, support, at, o, s.tracks);
     }
     for (const ComposedOrbitRow& row : point.rows)
       if (!row.orbit.status.ok())

@@ -25,7 +25,7 @@ constexpr double kUnresolvedAngle = 1e-6;
 
 // ln max |rho| (negative stable, positive unstable; the function whose root is the crossing)
 // and the largest multiplier.
-GrowthSample sample_of(const BalancedFloquet& f) { return {std::log(f.max_modulus), f.multipliers.front()}; }
+GrowthSample balanced_growth_sample(const BalancedFloquet& f) { return {std::log(f.max_modulus), f.multipliers.front()}; }
 
 }  // namespace
 
@@ -123,12 +123,12 @@ void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, cons
       const int member = s.points[i].balanced[k].member;
       const int j = find_member(s.points[i + 1], member);
       if (j < 0) continue;
-      const GrowthSample a = sample_of(s.points[i].floquet[k]), b = sample_of(s.points[i + 1].floquet[std::size_t(j)]);
+      const GrowthSample a = balanced_growth_sample(s.points[i].floquet[k]), b = balanced_growth_sample(s.points[i + 1].floquet[std::size_t(j)]);
       if (!((a.growth < 0.0 && b.growth > 0.0) || (a.growth > 0.0 && b.growth < 0.0))) continue;
       const GrowthAt at = [&](double value) -> std::optional<GrowthSample> {
         const std::optional<BalancedFloquet> f = floquet_at(value, member, bisecting);
         if (!f) return std::nullopt;
-        return sample_of(*f);
+        return balanced_growth_sample(*f);
       };
       std::optional<FloquetCrossing> c = bisect_unit_circle(values[i], values[i + 1], a, b, at, options);
       if (!c) continue;

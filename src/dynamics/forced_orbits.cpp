@@ -326,7 +326,7 @@ std::string kind_of(const EquilibriumN& e, int n) {
 }
 
 // The scaling D of the shooting unknowns (model.md (10.14.3)).
-Eigen::VectorXd orbit_scale(const ParamsN& p) {
+Eigen::VectorXd forced_orbit_scale(const ParamsN& p) {
   const int n = p.n_balls(), d = 2 * n + 4;
   const double L = displacement_scale(p), w = p.omega;
   Eigen::VectorXd D = Eigen::VectorXd::Ones(d);
@@ -336,7 +336,7 @@ Eigen::VectorXd orbit_scale(const ParamsN& p) {
   return D;
 }
 
-ForcedOrbit refined_orbit(ForcedProblem& problem, Eigen::VectorXd u, const ForcedOrbitOptions& o, ForcedOrbit& out) {
+ForcedOrbit refined_forced_orbit(ForcedProblem& problem, Eigen::VectorXd u, const ForcedOrbitOptions& o, ForcedOrbit& out) {
   const auto fail = [&](Outcome outcome, std::string why) {
     out.status.merge(outcome, "see reason");
     out.reason = std::move(why);
@@ -406,7 +406,7 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
   if (!machine.support) return fail(Outcome::numerical_issue, "no support to continue in (machine.support is null)");
   if (x0.size() != d || !x0.allFinite()) return fail(Outcome::numerical_issue, "the start is not a finite state of this machine");
   if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
-  const Eigen::VectorXd D = orbit_scale(p);
+  const Eigen::VectorXd D = forced_orbit_scale(p);
   ForcedProblem problem(p, machine, D, o);
   const int M = o.intervals;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -426,7 +426,7 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
     }
     u = r.last;
   }
-  return refined_orbit(problem, u, o, out);
+  return refined_forced_orbit(problem, u, o, out);
 }
 
 ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, const ForcedOrbit& guess,
@@ -443,7 +443,7 @@ ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, con
   if (!machine.support) return fail(Outcome::numerical_issue, "no support (machine.support is null)");
   if (int(guess.state0.size()) != d || !(o.intervals >= 1) || !(o.steps_per_interval >= 2))
     return fail(Outcome::numerical_issue, "the guess is not an orbit of this machine, or bad options");
-  const Eigen::VectorXd D = orbit_scale(p);
+  const Eigen::VectorXd D = forced_orbit_scale(p);
   ForcedOrbitOptions fixed = o;
   fixed.steps_per_interval = std::clamp(guess.steps_per_interval, o.steps_per_interval, o.max_steps_per_interval);
   ForcedProblem problem(p, machine, D, fixed);
@@ -460,7 +460,7 @@ ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, con
   if (c.status != Outcome::converged)
     return fail(c.status, fmt::format("Newton from the neighbouring orbit: {}", c.reason));
   out.steps = 1;
-  return refined_orbit(problem, c.u, fixed, out);
+  return refined_forced_orbit(problem, c.u, fixed, out);
 }
 
 
