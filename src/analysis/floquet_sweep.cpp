@@ -23,8 +23,9 @@ int find_member(const FloquetAnalysis& a, int member) {
 // thousand times Magnus' relative error on it, so a resolved angle is never taken as real.
 constexpr double kUnresolvedAngle = 1e-6;
 
-// ln max |rho|: negative stable, positive unstable; the function whose root is the crossing.
-double growth(const BalancedFloquet& f) { return std::log(f.max_modulus); }
+// ln max |rho| (negative stable, positive unstable; the function whose root is the crossing)
+// and the largest multiplier.
+GrowthSample balanced_growth_sample(const BalancedFloquet& f) { return {std::log(f.max_modulus), f.multipliers.front()}; }
 
 }  // namespace
 
@@ -70,6 +71,44 @@ void locate_floquet_crossings(FloquetSweep& s, const ParamsN& base, const Anisot
       options);
 }
 
+std::optional<FloquetCrossing> bisect_unit_circle(double lo, double hi, GrowthSample a, GrowthSample b,
+                                                  const GrowthAt& growth_at, const FloquetSweepOptions& options,
+                                                  double* lost_at) {
+  // Bisection on the parameter keeps the sign change of ln max|rho|; the root is then
+  // interpolated linearly in the last bracket (ln |rho| is smooth in it).
+  FloquetCrossing c;
+  c.to_unstable = b.growth > 0.0;
+  while (c.evaluations < options.max_bisections &&
+         std::abs(hi - lo) > options.bracket_tolerance * std::max(std::abs(lo), std::abs(hi))) {
+    const double mid = 0.5 * (lo + hi);
+    const std::optional<GrowthSample> at = growth_at(mid);
+    ++c.evaluations;
+    if (!at) {  // the state left the bracket (existence boundary): stop there
+      if (lost_at) *lost_at = mid;
+      return std::nullopt;
+    }
+    if (at->growth == 0.0) {
+      lo = hi = mid, a = b = *at;
+      break;
+    }
+    if ((at->growth < 0.0) == (a.growth < 0.0))
+      lo = mid, a = *at;
+    else
+      hi = mid, b = *at;
+  }
+  c.lower = lo;
+  c.upper = hi;
+  c.value = b.growth == a.growth ? lo : lo - a.growth * (hi - lo) / (b.growth - a.growth);
+  c.multiplier = (std::abs(a.growth) <= std::abs(b.growth) ? a : b).leading;
+  // A pair whose angle is below kUnresolvedAngle from the real axis is taken as real
+  // (the stuck coulomb balls' pair 1 +- 7e-8 i: a frequency Magnus does not resolve).
+  const double angle = std::abs(std::arg(c.multiplier));
+  c.kind = angle <= kUnresolvedAngle                     ? FloquetCrossing::Kind::fold
+           : angle >= std::numbers::pi - kUnresolvedAngle ? FloquetCrossing::Kind::flip
+                                                          : FloquetCrossing::Kind::neimark_sacker;
+  return c;
+}
+
 void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, const FloquetSweepOptions& options) {
   // In the bisection Magnus alone (no Hill when undecided: near the root every verdict is
   // marginal); its sign of ln|rho| is followed down to the bracket tolerance, so the root is
@@ -78,54 +117,23 @@ void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, cons
   bisecting.hill_when_undecided = false;
   const std::vector<double>& values = s.values;
   // A crossing between neighbouring values: the same balanced state (member) at both, its
-  // ln max|rho| of opposite signs. Bisection on the parameter keeps the sign change; the
-  // root is then interpolated linearly in the last bracket (ln |rho| is smooth in it).
+  // ln max|rho| of opposite signs.
   for (std::size_t i = 0; i + 1 < values.size(); ++i) {
     for (std::size_t k = 0; k < s.points[i].balanced.size(); ++k) {
       const int member = s.points[i].balanced[k].member;
       const int j = find_member(s.points[i + 1], member);
       if (j < 0) continue;
-      double lo = values[i], hi = values[i + 1];
-      BalancedFloquet f_lo = s.points[i].floquet[k], f_hi = s.points[i + 1].floquet[std::size_t(j)];
-      double g_lo = growth(f_lo), g_hi = growth(f_hi);
-      if (!((g_lo < 0.0 && g_hi > 0.0) || (g_lo > 0.0 && g_hi < 0.0))) continue;
-      FloquetCrossing c;
-      c.member = member;
-      c.to_unstable = g_hi > 0.0;
-      bool lost = false;  // the state left the bracket (existence boundary): stop there
-      while (c.evaluations < options.max_bisections &&
-             std::abs(hi - lo) > options.bracket_tolerance * std::max(std::abs(lo), std::abs(hi))) {
-        const double mid = 0.5 * (lo + hi);
-        const std::optional<BalancedFloquet> at = floquet_at(mid, member, bisecting);
-        ++c.evaluations;
-        if (!at) {
-          lost = true;
-          break;
-        }
-        const BalancedFloquet& f = *at;
-        const double g = growth(f);
-        if (g == 0.0) {
-          lo = hi = mid, f_lo = f_hi = f, g_lo = g_hi = 0.0;
-          break;
-        }
-        if ((g < 0.0) == (g_lo < 0.0))
-          lo = mid, f_lo = f, g_lo = g;
-        else
-          hi = mid, f_hi = f, g_hi = g;
-      }
-      if (lost) continue;
-      c.lower = lo;
-      c.upper = hi;
-      c.value = g_hi == g_lo ? lo : lo - g_lo * (hi - lo) / (g_hi - g_lo);
-      const BalancedFloquet& near = std::abs(g_lo) <= std::abs(g_hi) ? f_lo : f_hi;
-      c.multiplier = near.multipliers.front();
-      // A pair whose angle is below kUnresolvedAngle from the real axis is taken as real
-      // (the stuck coulomb balls' pair 1 +- 7e-8 i: a frequency Magnus does not resolve).
-      const double angle = std::abs(std::arg(c.multiplier));
-      c.kind = angle <= kUnresolvedAngle                     ? FloquetCrossing::Kind::fold
-               : angle >= std::numbers::pi - kUnresolvedAngle ? FloquetCrossing::Kind::flip
-                                                              : FloquetCrossing::Kind::neimark_sacker;
-      s.crossings.push_back(c);
+      const GrowthSample a = balanced_growth_sample(s.points[i].floquet[k]), b = balanced_growth_sample(s.points[i + 1].floquet[std::size_t(j)]);
+      if (!((a.growth < 0.0 && b.growth > 0.0) || (a.growth > 0.0 && b.growth < 0.0))) continue;
+      const GrowthAt at = [&](double value) -> std::optional<GrowthSample> {
+        const std::optional<BalancedFloquet> f = floquet_at(value, member, bisecting);
+        if (!f) return std::nullopt;
+        return balanced_growth_sample(*f);
+      };
+      std::optional<FloquetCrossing> c = bisect_unit_circle(values[i], values[i + 1], a, b, at, options);
+      if (!c) continue;
+      c->member = member;
+      s.crossings.push_back(*c);
     }
   }
 }

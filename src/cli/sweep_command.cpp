@@ -19,6 +19,7 @@
 #include "abu/output/report.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "composed_commands.hpp"
 #include "shaft_commands.hpp"
 #include "stick_options.hpp"
 #include "unround_commands.hpp"
@@ -209,6 +210,12 @@ Action add_sweep_command(CLI::App& app) {
       check_output_directory(o->output_dir);
       return shaft_campbell_sweep(scene, o->scene, omega_input(o->scene, o->from), omega_input(o->scene, o->to),
                                   o->steps, o->logarithmic, o->shaft, o->chart, o->output_dir);
+    }
+    if (unround_on_anisotropic_support(scene)) {  // every state a periodic orbit (model.md §20.6)
+      refuse_unmodelled(scene, "sweep", {.unround_anisotropic = true});
+      check_output_directory(o->output_dir);
+      if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
+      return sweep_composed(scene, o->scene, {o->param, o->from, o->to, o->steps, o->logarithmic, o->chart, o->output_dir});
     }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per value (model.md §14, §20.5)
     // model.md §11.10; coulomb-set balls on an unround race take the stick-set path (§20.5)

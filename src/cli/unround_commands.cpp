@@ -25,6 +25,7 @@ namespace abu::cli {
 
 namespace {
 constexpr int kMaxUnroundSteps = 100000;
+}  // namespace
 
 // The scene's race times `factor`: every ball's path must still keep the rules of §11.1.
 RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option) {
@@ -37,6 +38,7 @@ RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double 
   return out;
 }
 
+namespace {
 void require_unround(const Scene& scene, const std::string& option) {
   if (scene.race.round())
     throw InputError(option, 0, kUnroundnessParam,

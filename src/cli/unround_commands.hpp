@@ -7,6 +7,7 @@
 #include <string>
 
 #include "abu/continuation/arclength.hpp"
+#include "abu/model/unround_race.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {
@@ -20,6 +21,10 @@ struct SweepPaths {
   std::filesystem::path csv, summary, png;
 };
 SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name);
+
+/// The scene's race (`race`, race_shape(scene)) with every amplitude times `factor`; throws
+/// InputError at `option` where a ball's path breaks a rule of model.md §11.1.
+RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option);
 
 struct UnroundGrid {
   std::string param;  ///< "unroundness" or a parameter symbol (omega, U, ...)

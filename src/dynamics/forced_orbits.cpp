@@ -176,6 +176,20 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
   void commit(Vec&, Vec&, arclength::Stage) {}
   bool folded() const { return folded_; }
 
+  // The shooting states of u (delta from u) filled by one uninterrupted run from y1: y_j at t_j.
+  bool chain(const Vec& y1, Vec& u) const {
+    ctx_.delta = delta(u);
+    Vec acc(dim_), y = y1;
+    std::string_view why;
+    for (int j = 0; j < m_; ++j) {
+      u.segment(dim_ * j, dim_) = y;
+      if (!run(j * interval(), y, steps_, interval(), acc, nullptr, nullptr, [](const Vec&) {}, why)) return false;
+      y += acc;
+    }
+    cache_.u.resize(0);
+    return y.allFinite();
+  }
+
   // The multipliers of the discrete monodromy at u with the current step count.
   ProductEigenvalues multipliers(const Vec& u) const { return product_eigenvalues(at(u).transitions); }
 
@@ -283,6 +297,8 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
     double sum = 0;
     for (double v : qabs) sum += v;  // uniform samples of a periodic function: the trapezoid rule
     o.q_abs_mean = sum / double(qabs.size());
+    for (double& v : qabs) v = -v;
+    o.q_abs_min = -detail::periodic_max(qabs);
     o.ball_min.clear();
     o.ball_max.clear();
     for (auto& v : balls) {
@@ -309,6 +325,48 @@ std::string kind_of(const EquilibriumN& e, int n) {
   return fmt::format("{} {}", to_string(e.family), e.member);
 }
 
+// The scaling D of the shooting unknowns (model.md (10.14.3)).
+Eigen::VectorXd forced_orbit_scale(const ParamsN& p) {
+  const int n = p.n_balls(), d = 2 * n + 4;
+  const double L = displacement_scale(p), w = p.omega;
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(d);
+  D.segment(n + 2, n + 2).setConstant(w);
+  D.head(2) *= L;
+  D.segment(n + 2, 2) *= L;
+  return D;
+}
+
+ForcedOrbit refined_forced_orbit(ForcedProblem& problem, Eigen::VectorXd u, const ForcedOrbitOptions& o, ForcedOrbit& out) {
+  const auto fail = [&](Outcome outcome, std::string why) {
+    out.status.merge(outcome, "see reason");
+    out.reason = std::move(why);
+    return out;
+  };
+  // The discretization's error, a posteriori (model.md §10.18): the multipliers with half the
+  // steps on the same unknowns; while their difference exceeds the target, the steps double
+  // and Newton (delta fixed by the border) corrects the orbit on the finer grid.
+  Eigen::VectorXd fix = Eigen::VectorXd::Zero(problem.size());
+  fix(problem.param_index()) = 1;
+  for (;;) {
+    const int steps = problem.steps_per_interval();
+    problem.set_steps(std::max(1, steps / 2));
+    const ProductEigenvalues coarse = problem.multipliers(u);
+    problem.set_steps(steps);
+    problem.describe(u, coarse, out);
+    if (!out.status.ok()) return out;
+    if (out.discretization_error <= o.accuracy || 2 * steps > o.max_steps_per_interval) break;
+    problem.set_steps(2 * steps);
+    const auto c = arclength::correct(problem, u, fix);
+    out.newton_iterations += c.iterations;
+    if (c.status != Outcome::converged)
+      return fail(c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
+    u = c.u;
+  }
+  // Still above the target at max_steps_per_interval (a near-double multiplier, whose members
+  // move by the square root of the monodromy's error, can do that): the orbit is kept, and
+  // the band, which contains the estimate, carries it into the verdict.
+  return out;
+}
 }  // namespace
 
 ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const EquilibriumN& e,
@@ -348,12 +406,7 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
   if (!machine.support) return fail(Outcome::numerical_issue, "no support to continue in (machine.support is null)");
   if (x0.size() != d || !x0.allFinite()) return fail(Outcome::numerical_issue, "the start is not a finite state of this machine");
   if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
-  // Scaling D (model.md (10.14.3)).
-  const double L = displacement_scale(p), w = p.omega;
-  Eigen::VectorXd D = Eigen::VectorXd::Ones(d);
-  D.segment(n + 2, n + 2).setConstant(w);
-  D.head(2) *= L;
-  D.segment(n + 2, 2) *= L;
+  const Eigen::VectorXd D = forced_orbit_scale(p);
   ForcedProblem problem(p, machine, D, o);
   const int M = o.intervals;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -373,30 +426,42 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
     }
     u = r.last;
   }
-  // The discretization's error, a posteriori (model.md §10.18): the multipliers with half the
-  // steps on the same unknowns; while their difference exceeds the target, the steps double
-  // and Newton (delta fixed by the border) corrects the orbit on the finer grid.
+  return refined_forced_orbit(problem, u, o, out);
+}
+
+ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, const ForcedOrbit& guess,
+                              std::string kind, const ForcedOrbitOptions& o) {
+  ForcedOrbit out;
+  const int n = p.n_balls(), d = 2 * n + 4;
+  out.kind = std::move(kind);
+  out.period = std::numbers::pi / p.omega;
+  const auto fail = [&](Outcome outcome, std::string why) {
+    out.status.merge(outcome, "see reason");
+    out.reason = std::move(why);
+    return out;
+  };
+  if (!machine.support) return fail(Outcome::numerical_issue, "no support (machine.support is null)");
+  if (int(guess.state0.size()) != d || !(o.intervals >= 1) || !(o.steps_per_interval >= 2))
+    return fail(Outcome::numerical_issue, "the guess is not an orbit of this machine, or bad options");
+  const Eigen::VectorXd D = forced_orbit_scale(p);
+  ForcedOrbitOptions fixed = o;
+  fixed.steps_per_interval = std::clamp(guess.steps_per_interval, o.steps_per_interval, o.max_steps_per_interval);
+  ForcedProblem problem(p, machine, D, fixed);
+  // The shooting unknowns from the guess's x(0): the states one uninterrupted run of this
+  // machine at delta_end reaches at t_j (model.md (10.14.3)), delta / delta_end = 1.
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  u(problem.param_index()) = 1;
+  if (!problem.chain(Eigen::Map<const Eigen::VectorXd>(guess.state0.data(), d).cwiseQuotient(D), u))
+    return fail(Outcome::numerical_issue, "integrating the guess over the period failed");
   Eigen::VectorXd fix = Eigen::VectorXd::Zero(problem.size());
   fix(problem.param_index()) = 1;
-  for (;;) {
-    const int steps = problem.steps_per_interval();
-    problem.set_steps(std::max(1, steps / 2));
-    const ProductEigenvalues coarse = problem.multipliers(u);
-    problem.set_steps(steps);
-    problem.describe(u, coarse, out);
-    if (!out.status.ok()) return out;
-    if (out.discretization_error <= o.accuracy || 2 * steps > o.max_steps_per_interval) break;
-    problem.set_steps(2 * steps);
-    const auto c = arclength::correct(problem, u, fix);
-    out.newton_iterations += c.iterations;
-    if (c.status != Outcome::converged)
-      return fail(c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
-    u = c.u;
-  }
-  // Still above the target at max_steps_per_interval (a near-double multiplier, whose members
-  // move by the square root of the monodromy's error, can do that): the orbit is kept, and
-  // the band, which contains the estimate, carries it into the verdict.
-  return out;
+  const auto c = arclength::correct(problem, u, fix);
+  out.newton_iterations = c.iterations;
+  if (c.status != Outcome::converged)
+    return fail(c.status, fmt::format("Newton from the neighbouring orbit: {}", c.reason));
+  out.steps = 1;
+  return refined_forced_orbit(problem, c.u, fixed, out);
 }
+
 
 }  // namespace abu

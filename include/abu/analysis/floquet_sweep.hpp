@@ -70,6 +70,23 @@ using FloquetAt = std::function<std::optional<BalancedFloquet>(double value, int
 /// samples of an n-ball branch, model.md §10.16, whose free angles the branch holds).
 void locate_floquet_crossings(FloquetSweep& s, const FloquetAt& floquet_at, const FloquetSweepOptions& options = {});
 
+/// One end of a bracket of the unit-circle search: ln max|rho| of a state and its largest multiplier.
+struct GrowthSample {
+  double growth = 0.0;
+  std::complex<double> leading;
+};
+/// The same state at a parameter value; nullopt where it is lost (an existence boundary).
+using GrowthAt = std::function<std::optional<GrowthSample>(double value)>;
+/// The crossing of |rho| = 1 between lo and hi, where the samples `a` (at lo) and `b` (at hi)
+/// have ln max|rho| of opposite signs: bisection on the parameter to the options' bracket
+/// tolerance, the root interpolated linearly in the last bracket, the kind by the multiplier
+/// at the end nearer to |rho| = 1 (member left 1). nullopt where growth_at loses the state
+/// inside the bracket (then *lost_at, if given, is where). Any machine whose states have
+/// multipliers uses it: the balanced states (above), the composed machine's orbits (§20.6).
+std::optional<FloquetCrossing> bisect_unit_circle(double lo, double hi, GrowthSample a, GrowthSample b,
+                                                  const GrowthAt& growth_at, const FloquetSweepOptions& options,
+                                                  double* lost_at = nullptr);
+
 /// One row per balanced state per value: the parameter, member, stability, rho_abs_max,
 /// decay_rate, method, deflated, then mult_re1, mult_im1, ... (modulus descending).
 std::string floquet_sweep_csv(const FloquetSweep& s, const std::string& header);

@@ -55,6 +55,7 @@ struct ForcedOrbit {
   double delta = 0;  ///< the last delta reached (delta_end when converged)
   double period = 0;  ///< pi / omega [s]
   double q_abs_max = 0, q_abs_mean = 0;  ///< over the period [m] (rotating frame; fixed-frame whirl radius, §2)
+  double q_abs_min = 0;                  ///< the least |q| over the period [m] (trigonometric interpolation, as q_abs_max)
   std::vector<double> ball_min, ball_max;  ///< range of each beta_i over the period [rad]
   /// All 2n + 4 multipliers over pi/omega, modulus descending; log_moduli keeps those below 1e-308.
   std::vector<std::complex<double>> multipliers;
@@ -87,5 +88,13 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& support, co
 /// labelled `kind`. `machine.support` must be set; its delta is ignored (the continuation's).
 ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const State<double, any_balls>& start,
                          std::string kind, const ForcedOrbitOptions& options = {});
+
+/// The orbit of `machine` at delta_end near `guess` (an orbit of a neighbouring parameter value,
+/// e.g. the previous value of a sweep, model.md §20.6): Newton on the shooting equations from
+/// the states one run from guess.state0 reaches, with guess's step count, then the same
+/// a-posteriori refinement as forced_orbit. status not converged (with the reason) where Newton
+/// fails: the neighbouring orbit does not continue to this value within Newton's reach.
+ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, const ForcedOrbit& guess, std::string kind,
+                              const ForcedOrbitOptions& options = {});
 
 }  // namespace abu

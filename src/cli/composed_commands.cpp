@@ -1,0 +1,112 @@
+// `sweep` on an unround race with an anisotropic support (composed_commands.hpp, model.md §20.6).
+#include "composed_commands.hpp"
+
+#include <fmt/format.h>
+
+#include "abu/analysis/composed_sweep.hpp"
+#include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
+#include "abu/input/race_scene.hpp"
+#include "abu/input/ranges.hpp"
+#include "abu/output/chart_labels.hpp"
+#include "abu/output/files.hpp"
+#include "abu/output/gnuplot.hpp"
+#include "abu/output/provenance.hpp"
+#include "abu/output/report_composed_sweep.hpp"
+#include "abu/scan/scan.hpp"
+
+namespace abu::cli {
+
+namespace {
+constexpr int kMaxComposedSteps = 10000;  // each value costs the orbits of `equilibria` (~0.2 s an orbit)
+
+// One message for the parameters this machine does not sweep: what they are and what to use.
+[[noreturn]] void refuse_composed_param(const Scene& scene, const std::string& param, const std::string& why) {
+  throw InputError("--param", 0, param,
+                   fmt::format("{} has an unround race on an anisotropic support (model.md §20): {}", scene.file, why));
+}
+
+// The machine at a value: a copy of the scene with the parameter set (the race re-read: surface
+// harmonics follow l and r), or the race scaled by the unroundness factor.
+ComposedAt composed_machine_at(const Scene& scene, const std::string& param, std::optional<ParamRef> ref) {
+  const RaceShape race = race_shape(scene);
+  return [scene, param, ref, race](double v) {
+    if (!ref) return ComposedMachineAt{params_of<any_balls>(scene), checked_scaled_race(scene, race, v, "--from/--to")};
+    Scene s = scene;
+    set_checked(s, *ref, v, "--from/--to");
+    return ComposedMachineAt{params_of<any_balls>(s), race_shape(s)};
+  };
+}
+}  // namespace
+
+int sweep_composed(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
+  if (g.param == "n")
+    refuse_composed_param(scene, g.param, "the ball count is not swept here (each ball has its own path); sweep each "
+                                          "count's scene separately");
+  std::optional<ParamRef> ref;
+  std::string name = kUnroundnessParam, unit_name = "-";
+  if (g.param != kUnroundnessParam) {
+    ref = parse_param(g.param, int(scene.balls.size()));
+    if (!ref)
+      throw InputError("--param", 0, g.param,
+                       unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
+                                         fmt::format("{}, or {} (the race's amplitudes times a factor)",
+                                                     param_symbols_help(), kUnroundnessParam)));
+    if (ref->quantity == Quantity::stiffness || ref->quantity == Quantity::damping)
+      refuse_composed_param(scene, g.param,
+                            "k and c are the anisotropic support's means (stiffness_x, ... in [rotor]), not one "
+                            "parameter; edit the support's keys in the scene, or sweep omega, U, the balls' "
+                            "parameters or unroundness");
+    name = to_string(*ref);
+    unit_name = std::string(unit(ref->quantity));
+  }
+  if (g.steps < 1 || g.steps > kMaxComposedSteps)
+    throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxComposedSteps, g.steps));
+  if (g.logarithmic && !(g.from > 0 && g.to > 0))
+    throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
+  if (!ref && !(g.from >= 0 && g.to >= 0))
+    throw InputError("--from/--to", 0, kUnroundnessParam,
+                     fmt::format("the unroundness factor is >= 0 (got {} .. {})", g.from, g.to));
+  const std::vector<double> values = grid_values(g.from, g.to, g.steps, g.logarithmic);
+  for (double v : {g.from, g.to}) {  // the ends decide: every value between keeps the rules
+    if (!ref) {
+      checked_scaled_race(scene, race_shape(scene), v, "--from/--to");
+      continue;
+    }
+    Scene s = scene;
+    set_checked(s, *ref, v, "--from/--to");
+    check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
+  }
+  const ComposedSweep s = composed_sweep(*scene.support, composed_machine_at(scene, g.param, ref), values);
+
+  const ParamsN first = params_of<any_balls>(scene);
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const std::filesystem::path dir(g.output_dir);
+  const auto csv_path = dir / fmt::format("sweep_{}.csv", name);
+  const auto crossings_path = dir / fmt::format("floquet_crossings_{}.csv", name);
+  const auto png_path = dir / fmt::format("sweep_{}.png", name);
+  OutputTransaction out;
+  const auto staged_csv = out.stage(csv_path, composed_sweep_csv(s, name, header));
+  const auto staged_crossings = out.stage(crossings_path, composed_crossings_csv(s, name, header));
+  if (g.chart)
+    run_gnuplot(plots_dir() / "sweep_composed.gp",
+                {{"csv", staged_csv.string()},
+                 {"crossings", staged_crossings.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", name},
+                 {"unit", unit_name},
+                 {"logx", g.logarithmic ? "1" : "0"},
+                 {"has_crossings", s.crossings.empty() ? "0" : "1"},
+                 {"title", fmt::format("{}: sweep of {} (unround race on an anisotropic support: periodic orbits)",
+                                       scene.file, name)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  fmt::print(stderr, "{}", composed_sweep_text(s, name));
+  std::size_t rows = 0;
+  for (const auto& point : s.points) rows += point.rows.size();
+  fmt::print(stderr, "{} orbit(s) followed over {} values ({} rows); wrote {} and {}{}\n", s.tracks, values.size(), rows,
+             csv_path.string(), crossings_path.string(), g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return exit_ok;
+}
+
+}  // namespace abu::cli

@@ -1,0 +1,18 @@
+// `sweep` on an unround race with an anisotropic support (docs/model.md §20.6): the glue
+// between the sweep command's options and analysis/composed_sweep. Private to the CLI.
+#pragma once
+
+#include "abu/input/scene.hpp"
+#include "cli.hpp"
+#include "unround_commands.hpp"
+
+namespace abu::cli {
+
+/// The sweep's parameters on this machine: omega and the other scene parameters that keep it
+/// one (U, M_r, m, l, r, d, mu, kappa, ..., and `unroundness`, the race's amplitudes times a
+/// factor); the ball count and the support's means k, c are refused (exit 2, naming what to use
+/// instead) before any work. Writes sweep_NAME.csv, floquet_crossings_NAME.csv and (chart)
+/// sweep_NAME.png; the crossings, lost tracks and failures on stderr. Returns the exit code.
+int sweep_composed(const Scene& scene, const SceneOptions& options, const UnroundGrid& grid);
+
+}  // namespace abu::cli
