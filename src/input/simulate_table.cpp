@@ -130,8 +130,8 @@ SimulateSettings read_simulate_table(Problems& p, const toml::table& table, cons
     } else if (name == "method") {
       const auto* str = node.as_string();
       const std::string m = str ? str->get() : std::string();
-      if (str && split_names(kMethods).end() !=
-                     std::find(split_names(kMethods).begin(), split_names(kMethods).end(), std::string_view(m)))
+      const auto methods = split_names(kMethods);  // one list: its begin and end compared below
+      if (str && std::find(methods.begin(), methods.end(), std::string_view(m)) != methods.end())
         s.method = m;
       else
         p.add(pos, key,
