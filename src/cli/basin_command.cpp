@@ -144,7 +144,8 @@ Action add_basin_command(CLI::App& app) {
       throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", b.sim.t_end));
     if (!(b.sim.every >= 0 && std::isfinite(b.sim.every)))
       throw InputError("--every", 0, "", "the sample interval must be > 0 s");
-    if (!(b.sim.rtol > 0 && b.sim.rtol < 0.1)) throw InputError("--rtol", 0, "", "the tolerance must lie in (0, 0.1)");
+    if (!(b.sim.rtol >= 1e-14 && b.sim.rtol < 0.1))
+      throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in [1e-14, 0.1): below 1e-14 no double-precision step meets it (unit roundoff 1.1e-16) (got {})", b.sim.rtol));
     if (!(b.settle_radius > 0 && b.settle_radius < 1)) throw InputError("--settle-radius", 0, "", "must lie in (0, 1)");
     if (!(b.sim.settle_tolerance > 0 && b.sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");

@@ -271,7 +271,17 @@ Action add_simulate_command(CLI::App& app) {
     refuse_unmodelled(scene, "simulate", handles_of("simulate"));
     apply_scene_settings(scene, *sub, *o);
     check_output_directory(o->output);  // refused before any work
-    if (!o->summary.empty()) check_output_target(o->summary, "--summary");
+    if (!o->summary.empty()) {
+      check_output_target(o->summary, "--summary");
+      // The summary and the run's own files are three files: one written over another would
+      // leave a chart where the JSON was said to be.
+      namespace fs = std::filesystem;
+      const fs::path summary = fs::weakly_canonical(o->summary);
+      for (const char* own : {"simulation.csv", "simulation.png"})
+        if (summary == fs::weakly_canonical(fs::path(o->output) / own))
+          throw InputError("--summary", 0, o->summary,
+                           fmt::format("is the run's own {} in -o {}: give the summary another name", own, o->output));
+    }
     // --units converts --set omega; a run-up profile stays in rad/s (docs/views.md).
     if (o->scene.speed_unit() != SpeedUnit::rad_per_s && (!o->ramp.empty() || !o->profile_file.empty()))
       throw InputError(!o->ramp.empty() ? "--ramp" : "--speed-profile", 0, "units",

@@ -149,8 +149,8 @@ void check_simulation_input(const SimulationOptions& o, int dim, const double* x
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
   if (o.record && o.t_end / every > 2e7)
     throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
-  if (!(o.rtol > 0 && o.rtol < 0.1))
-    throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in (0, 0.1) (got {})", o.rtol));
+  if (!(o.rtol >= 1e-14 && o.rtol < 0.1))
+    throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in [1e-14, 0.1): below 1e-14 no double-precision step meets it (unit roundoff 1.1e-16) (got {})", o.rtol));
   if (size != dim)
     throw InputError("--from-state", 0, "", fmt::format("a state has 2n + 4 = {} values, got {}", dim, size));
   for (int i = 0; i < dim; ++i)

@@ -122,10 +122,10 @@ SimulateSettings read_simulate_table(Problems& p, const toml::table& table, cons
       }
     } else if (name == "rtol") {
       if (auto x = real(p, key, node, pos)) {
-        if (*x > 0 && *x < 0.1)
+        if (*x >= 1e-14 && *x < 0.1)
           s.rtol = *x;
         else
-          p.add(pos, key, fmt::format("the tolerance must lie in (0, 0.1) (got {})", *x));
+          p.add(pos, key, fmt::format("the tolerance must lie in [1e-14, 0.1): below 1e-14 no double-precision step meets it (unit roundoff 1.1e-16) (got {})", *x));
       }
     } else if (name == "method") {
       const auto* str = node.as_string();

@@ -81,6 +81,14 @@ bad "unknown equilibrium"         "$scene" --from-equilibrium sideways
 bad "perturb without equilibrium" "$scene" --balls 2,4 --perturb 1e-3
 bad "unknown method"              "$scene" --balls 2,4 --method euler
 bad "rtol out of range"           "$scene" --balls 2,4 --rtol 0
+bad "rtol below double rounding"  "$scene" --balls 2,4 --rtol 1e-17
+# The summary named as the run's own chart: refused before any work (it would be overwritten
+# by the chart, and the JSON said written).
+mkdir -p "$work/clash"
+(cd "$work/clash" && "$bin" simulate "$scene" --balls 2,4 --t-end 0.01 -o out --summary out/simulation.png \
+  >"$work/out" 2>"$work/err")
+check "summary at the chart's path: exit 2, nothing written, the option named" \
+  "[ $? -eq 2 ] && [ -z \"\$(ls -A '$work/clash')\" ] && grep -q -- '--summary' '$work/err'"
 bad "negative every"              "$scene" --balls 2,4 --every -1
 
 # --- Ctrl-C keeps what was computed ----------------------------------------------------------
