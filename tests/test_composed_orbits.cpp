@@ -17,7 +17,7 @@
 #include "abu/analysis/floquet_states.hpp"
 #include "abu/dynamics/forced_orbits.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 
 using namespace abu;
 

@@ -8,7 +8,8 @@
 #include <numbers>
 
 #include "abu/equilibria/stick_set.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
+#include "abu/linear/unround_stick_set.hpp"
 
 using namespace abu;
 

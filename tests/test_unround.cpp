@@ -10,7 +10,7 @@
 
 #include "abu/continuation/unround_branches.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/model.hpp"
 #include "abu/model/unround_race.hpp"
 

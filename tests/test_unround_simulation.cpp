@@ -9,7 +9,7 @@
 
 #include "abu/dynamics/simulation.hpp"
 #include "abu/dynamics/unround_simulation.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/model.hpp"
 #include "abu/model/unround_field.hpp"
 

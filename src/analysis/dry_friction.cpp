@@ -2,6 +2,7 @@
 #include "abu/analysis/dry_friction.hpp"
 
 #include "abu/core/errors.hpp"
+#include "abu/linear/unround_stick_set.hpp"
 #include "abu/model/unround_race.hpp"
 
 namespace abu {

@@ -8,6 +8,7 @@
 #include "abu/analysis/machine_parts.hpp"
 #include "abu/core/widen_params.hpp"
 #include "abu/input/race_scene.hpp"
+#include "abu/linear/unround_stick_set.hpp"
 
 namespace abu {
 

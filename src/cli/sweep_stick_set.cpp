@@ -5,6 +5,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/input/race_scene.hpp"
+#include "abu/linear/unround_stick_set.hpp"
 #include "abu/output/chart_labels.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"

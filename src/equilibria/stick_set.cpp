@@ -10,7 +10,6 @@
 
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
 #include "stick_set_model.hpp"
 
 namespace abu {
@@ -119,27 +118,14 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
   return S;
 }
 
-StickSet stick_set(const ParamsN& p, const RaceShape& race, const StickSetOptions& options) {
-  if (race.round()) return stick_set(p, options);
+void check_stick_set_defined(const ParamsN& p) {
+  static_cast<void>(StickModel(p));  // its constructor refuses what has no stick set
+}
+
+StickSet stick_set_on_race(const ParamsN& p, const RaceShape& race, std::vector<StickSeed> seeds,
+                           const StickSetOptions& options) {
   const StickModel m(p, &race);
-  // The race's equilibria (tau = 0, always in E, model.md §11.4) as seeds; the stable one of
-  // least |q| anchors V (model.md §20.5). Stable as with viscous rolling resistance: with the
-  // rotor's damping too the system is fully damped, and its equilibria are stable exactly
-  // where the rotating frame's effective potential has a minimum, whatever d > 0 is.
-  ParamsN smooth = p;
-  smooth.law = FrictionLaw::viscous;
-  for (auto& b : smooth.balls) b.d = 1e-3;
-  const UnroundResult found = find_unround_equilibria(smooth, race);
-  std::vector<StickSeed> seeds;
-  for (std::size_t k = 0; k < found.list.size(); ++k) {
-    const UnroundEquilibrium& e = found.list[k];
-    StickSeed sd;
-    sd.family = fmt::format("equilibrium {}", k + 1);
-    for (int i = 0; i < m.n; ++i) sd.beta.push_back(double(wrap_angle(e.position[2 + i])));
-    sd.q_abs = std::abs(m.q(sd.beta.data()));
-    sd.anchor = found.best_stable && *found.best_stable == k;
-    seeds.push_back(sd);
-  }
+  for (StickSeed& sd : seeds) sd.q_abs = std::abs(m.q(sd.beta.data()));
   StickSet S = sampled_set(m, options, std::move(seeds));
   S.unround_race = true;
   S.anchor = "least-|q| stable equilibrium of the race";

@@ -148,7 +148,7 @@ Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN
   return s;
 }
 
-UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
+UnroundRoot unround_root_at(const LongParamsN& p, const RaceShape& race, const Angles& beta) {
   const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
@@ -156,7 +156,7 @@ UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape&
   L load = p.rotor.unbalance;
   for (int i = 0; i < n; ++i)
     load += p.balls[std::size_t(i)].mass * path_bounds(harmonics_of(race, i), p.balls[std::size_t(i)].race_radius).p0;
-  UnroundEquilibrium e;
+  UnroundRoot e;
   const UnroundReduced r = reduced(p, race, beta);
   Angles g;
   e.position = unround_rotor_and_residual(p, race, beta, g);
@@ -175,14 +175,13 @@ UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape&
     res = std::max(res, std::abs(b(2 + i)) / (ball.mass * w2 * ball.race_radius * ball.race_radius));
   }
   e.residual = double(res);
-  e.spectrum = compute_spectrum<any_balls>(unround_linearization(p, race, e.position));
   return e;
 }
 
 namespace {
 // §11.4's exclusion box search on T^n (n = 2, 3): the zeros of g, every one (see the header).
 std::vector<Angles> box_search(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
-                               UnroundResult& result) {
+                               UnroundRoots& result) {
   const int n = p.n_balls();
   const L w2 = p.omega * p.omega;
   const L dyn = std::hypot(p.rotor.stiffness - w2 * p.total_mass(), p.rotor.damping * p.omega);
@@ -297,7 +296,7 @@ std::vector<Angles> box_search(const LongParamsN& p, const RaceShape& race, cons
 // unroundness) and from search.multistart quasi-random points of T^n (Halton). Not
 // proven complete: the result says so.
 std::vector<Angles> multistart(const LongParamsN& p, const RaceShape& race, const UnroundSearch& search,
-                               UnroundResult& result) {
+                               UnroundRoots& result) {
   const int n = p.n_balls();
   std::vector<Angles> starts;
   for (const auto& e : find_equilibria(p.cast<double>()).list) starts.push_back(e.position.tail(n).cast<L>());
@@ -331,7 +330,7 @@ std::vector<Angles> multistart(const LongParamsN& p, const RaceShape& race, cons
 }
 }  // namespace
 
-UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
+UnroundRoots find_unround_roots(const ParamsN& pd, const RaceShape& race, const UnroundSearch& search) {
   const int n = pd.n_balls();
   const LongParamsN p = pd.cast<L>();
   const L w2 = p.omega * p.omega;
@@ -341,24 +340,19 @@ UnroundResult find_unround_equilibria(const ParamsN& pd, const RaceShape& race, 
                                      "balls (model.md §11.4)",
                                      pd.omega));
 
-  UnroundResult result;
+  UnroundRoots result;
   const std::vector<Angles> zeros = n <= 3 ? box_search(p, race, search, result) : multistart(p, race, search, result);
   for (const Angles& beta : zeros) {
-    UnroundEquilibrium e = unround_equilibrium_at(p, race, beta);
+    UnroundRoot e = unround_root_at(p, race, beta);
     result.search.index_sum += e.index;
     result.list.push_back(std::move(e));
   }
-  std::sort(result.list.begin(), result.list.end(), [](const UnroundEquilibrium& a, const UnroundEquilibrium& b) {
+  std::sort(result.list.begin(), result.list.end(), [](const UnroundRoot& a, const UnroundRoot& b) {
     if (a.amplitude != b.amplitude) return a.amplitude < b.amplitude;
     for (Eigen::Index i = 2; i < a.position.size(); ++i)
       if (a.position(i) != b.position(i)) return a.position(i) < b.position(i);
     return false;
   });
-  for (std::size_t k = 0; k < result.list.size(); ++k)
-    if (result.list[k].spectrum.stability == Stability::stable) {
-      result.best_stable = k;
-      break;
-    }
   if (n > 3)
     result.doubt = fmt::format("not proven complete: with {} balls the equilibria come from Newton at the round race's "
                                "equilibria and {} quasi-random starts, not from the box search of model.md §11.4 "

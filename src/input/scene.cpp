@@ -1,4 +1,5 @@
-// Scene files: TOML parsing and validation (the schema is documented in scene.hpp).
+// Scene files: TOML parsing and validation (the schema is documented in scene.hpp); [rotor]'s
+// support is read in support_reading.cpp, parameters set after parsing in scene_parameters.cpp.
 //
 // Validation collects every violation together with its source position and then
 // reports the one that comes first in the file. toml++ iterates table keys in sorted
@@ -14,7 +15,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -35,6 +35,7 @@
 #include "scene_reading.hpp"
 #include "shaft_reading.hpp"
 #include "simulate_table.hpp"
+#include "support_reading.hpp"
 #include "toml_guard.hpp"
 
 namespace abu {
@@ -104,14 +105,6 @@ void assemble_geometry(BallT<double>& ball, const std::vector<Slot>& slots) {
   derive_specified(ball);
 }
 
-}  // namespace scene_reading
-
-namespace {
-
-using namespace scene_reading;
-
-constexpr std::string_view kLawNames = "none, viscous, coulomb, stribeck, lugre or coulomb-set";
-
 std::string law_mismatch(FrictionLaw law, Quantity q) {
   std::string used;
   for (const auto& c : kCoefficients)
@@ -119,6 +112,27 @@ std::string law_mismatch(FrictionLaw law, Quantity q) {
   return fmt::format("friction law '{}' does not use '{}' ({})", to_string(law), to_string(ParamRef{q, -1}),
                      used.empty() ? std::string("it uses no coefficients") : "it uses " + used);
 }
+
+// LuGre's levels (model.md §12.1): g(v) = mu_c + (mu_s - mu_c) exp(-(v/v_s)^2) divides the
+// bristle rate, so mu_c > 0 keeps it away from 0 at every speed, and mu_c <= mu_s makes
+// |z| <= mu_s / sigma0 invariant (§12.1). Judged per ball on its effective values, and
+// reported at the key that set the offending one (the ball's own, else [friction]'s).
+std::optional<std::string> lugre_level_violation(double mu_c, double mu_s) {
+  if (!(mu_c > 0.0)) return fmt::format("must be > 0 for friction law 'lugre' (got {}): the Stribeck level g(v) "
+                                        "divides the bristle rate (model.md §12.1)", mu_c);
+  if (mu_c > mu_s)
+    return fmt::format("must be <= mu_s for friction law 'lugre' (got mu_c {} > mu_s {}): the Coulomb level "
+                       "cannot exceed the breakaway level (model.md §12.1)", mu_c, mu_s);
+  return std::nullopt;
+}
+
+}  // namespace scene_reading
+
+namespace {
+
+using namespace scene_reading;
+
+constexpr std::string_view kLawNames = "none, viscous, coulomb, stribeck, lugre or coulomb-set";
 
 // Cross rule: the ball must fit inside its race (r = l would put it on the axis).
 // Reported at the radius, unless only the race radius came from a ring override. A ball
@@ -156,19 +170,6 @@ void check_fit(Problems& p, const BallInput& b) {
   else
     p.add(r->pos, r->key,
           fmt::format("must be < race_radius (got radius {} >= race_radius {}){}", *r->value, *l->value, which));
-}
-
-// LuGre's levels (model.md §12.1): g(v) = mu_c + (mu_s - mu_c) exp(-(v/v_s)^2) divides the
-// bristle rate, so mu_c > 0 keeps it away from 0 at every speed, and mu_c <= mu_s makes
-// |z| <= mu_s / sigma0 invariant (§12.1). Judged per ball on its effective values, and
-// reported at the key that set the offending one (the ball's own, else [friction]'s).
-std::optional<std::string> lugre_level_violation(double mu_c, double mu_s) {
-  if (!(mu_c > 0.0)) return fmt::format("must be > 0 for friction law 'lugre' (got {}): the Stribeck level g(v) "
-                                        "divides the bristle rate (model.md §12.1)", mu_c);
-  if (mu_c > mu_s)
-    return fmt::format("must be <= mu_s for friction law 'lugre' (got mu_c {} > mu_s {}): the Coulomb level "
-                       "cannot exceed the breakaway level (model.md §12.1)", mu_c, mu_s);
-  return std::nullopt;
 }
 
 void check_lugre_levels(Problems& p, const std::vector<BallInput>& balls, const std::vector<Slot>& friction_slots) {
@@ -220,130 +221,6 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
 #endif
 }
 
-std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string_view::npos) return {};
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-double& global_field(Scene& scene, Quantity q) {
-  switch (q) {
-    case Quantity::unbalance: return scene.rotor.unbalance;
-    case Quantity::stiffness: return scene.rotor.stiffness;
-    case Quantity::damping: return scene.rotor.damping;
-    case Quantity::rotor_mass: return scene.rotor.mass;
-    case Quantity::kappa: return scene.kappa;
-    default: return scene.omega;
-  }
-}
-
-// "ball index out of range: the scene has 3 balls (m1..m3)".
-std::string index_out_of_range(std::string_view symbol, std::size_t n) {
-  std::size_t digits = symbol.size();
-  while (digits > 0 && symbol[digits - 1] >= '0' && symbol[digits - 1] <= '9') --digits;
-  const auto base = symbol.substr(0, digits);
-  return fmt::format("ball index out of range: the scene has {} balls ({}1..{}{})", n, base, base, n);
-}
-
-// [rotor]: the isotropic stiffness/damping, or the fixed-frame matrices of an anisotropic
-// support (docs/model.md §10.1), never both; the matrices' definiteness is checked here.
-std::optional<AnisotropicSupport> read_support(Problems& p, const toml::table& table, std::vector<Slot>& slots) {
-  std::vector<Slot> matrix{{"stiffness_x", Quantity::stiffness, false},
-                           {"stiffness_y", Quantity::stiffness, false},
-                           {"damping_x", Quantity::damping, false},
-                           {"damping_y", Quantity::damping, false}};
-  struct Cross {
-    bool seen = false;
-    double value = 0.0;
-    toml::source_position pos{};
-    std::string key;
-  } k_xy, c_xy;
-  auto other = [&](std::string_view name, const toml::node& node, const std::string& key, toml::source_position pos) {
-    if (Slot* s = find(matrix, name)) {
-      s->seen = true, s->pos = pos, s->key = key;
-      s->value = read_number(p, key, node, pos, s->quantity);
-      return true;
-    }
-    Cross* x = name == "stiffness_xy" ? &k_xy : name == "damping_xy" ? &c_xy : nullptr;
-    if (!x) return false;
-    x->seen = true, x->pos = pos, x->key = key;
-    if (const auto* i = node.as_integer()) x->value = double(i->get());
-    else if (const auto* f = node.as_floating_point()) x->value = f->get();
-    else p.add(pos, key, fmt::format("must be a number, got {}", describe(node)));
-    if (!std::isfinite(x->value)) p.add(pos, key, fmt::format("must be a finite number (got {})", x->value));
-    return true;
-  };
-  read_table(p, table, "rotor", slots,
-             "mass, stiffness, damping, unbalance, stiffness_x, stiffness_y, stiffness_xy, damping_x, damping_y, "
-             "damping_xy",
-             other);
-  const Slot* k = find(slots, "stiffness");
-  const Slot* c = find(slots, "damping");
-  // The last key of each form, for "both forms" (reported at the later of the two).
-  const Slot* iso = nullptr;
-  for (const Slot* s : {k, c})
-    if (s->seen && (!iso || before(iso->pos, s->pos))) iso = s;
-  std::optional<std::pair<toml::source_position, std::string>> aniso;
-  for (const Slot& s : matrix)
-    if (s.seen && (!aniso || before(aniso->first, s.pos))) aniso = {s.pos, s.key};
-  for (const Cross* x : {&k_xy, &c_xy})
-    if (x->seen && (!aniso || before(aniso->first, x->pos))) aniso = {x->pos, x->key};
-  const auto header = table.source().begin;
-  if (iso && aniso) {
-    if (before(iso->pos, aniso->first))
-      p.add(aniso->first, aniso->second,
-            fmt::format("the fixed-frame support matrix keys and the isotropic stiffness/damping ({}, line {}) exclude "
-                        "each other: give one form",
-                        iso->key, iso->pos.line));
-    else
-      p.add(iso->pos, iso->key,
-            fmt::format("the isotropic stiffness/damping and the fixed-frame support matrix keys ({}, line {}) "
-                        "exclude each other: give one form",
-                        aniso->second, aniso->first.line));
-    return std::nullopt;
-  }
-  if (!aniso) {
-    for (const Slot* s : {k, c})
-      if (!s->seen)
-        p.add_missing(header, fmt::format("rotor.{}", s->name),
-                      "missing required key (or the anisotropic support's stiffness_x, stiffness_y, damping_x, "
-                      "damping_y)");
-    return std::nullopt;
-  }
-  bool complete = true;
-  for (const Slot& s : matrix) {
-    if (!s.seen)
-      p.add_missing(header, fmt::format("rotor.{}", s.name),
-                    "missing required key (an anisotropic support gives stiffness_x, stiffness_y, damping_x, "
-                    "damping_y; stiffness_xy, damping_xy default to 0)");
-    complete = complete && s.value.has_value();
-  }
-  if (!complete) return std::nullopt;
-  AnisotropicSupport s{*find(matrix, "stiffness_x")->value, *find(matrix, "stiffness_y")->value, k_xy.value,
-                       *find(matrix, "damping_x")->value,   *find(matrix, "damping_y")->value,   c_xy.value};
-  // Reported at the last key of the matrix in the file.
-  auto last_of = [&](std::string_view a, std::string_view b, const Cross& x) {
-    const Slot* sa = find(matrix, a);
-    const Slot* sb = find(matrix, b);
-    std::pair<toml::source_position, std::string> at{sa->pos, sa->key};
-    if (before(at.first, sb->pos)) at = {sb->pos, sb->key};
-    if (x.seen && before(at.first, x.pos)) at = {x.pos, x.key};
-    return at;
-  };
-  bool ok = true;
-  if (auto bad = stiffness_matrix_violation(s.k_x, s.k_y, s.k_xy)) {
-    const auto at = last_of("stiffness_x", "stiffness_y", k_xy);
-    p.add(at.first, at.second, *bad);
-    ok = false;
-  }
-  if (auto bad = damping_matrix_violation(s.c_x, s.c_y, s.c_xy)) {
-    const auto at = last_of("damping_x", "damping_y", c_xy);
-    p.add(at.first, at.second, *bad);
-    ok = false;
-  }
-  if (!ok) return std::nullopt;
-  return s;
-}
 
 }  // namespace
 
@@ -621,137 +498,5 @@ Scene load_scene(const std::string& path) {
   if (in.bad()) throw InputError(path, 0, "", "cannot read file: read error");
   return parse_scene(text.str(), path);
 }
-
-void set_checked(Scene& scene, ParamRef ref, double value, const std::string& origin) {
-  const std::string key = to_string(ref);
-  const auto n = scene.balls.size();
-  if (scene.support && (ref.quantity == Quantity::stiffness || ref.quantity == Quantity::damping))
-    throw InputError(origin, 0, key,
-                     "the scene's support is anisotropic (stiffness_x, ... in [rotor], docs/model.md §10): k and c are "
-                     "its means and cannot be set alone; edit the matrix keys in the scene");
-  if (scene.shaft && (ref.quantity == Quantity::stiffness || ref.quantity == Quantity::damping ||
-                      ref.quantity == Quantity::rotor_mass))
-    throw InputError(origin, 0, key,
-                     "the scene is a flexible shaft ([shaft], model.md §18.10): its mass is the discs' and the shaft's "
-                     "and its support the bearings'; edit [[disc]], [[shaft.element]] or [[bearing]] in the scene");
-  if (is_per_ball(ref.quantity) && ref.ball >= int(n)) throw InputError(origin, 0, key, index_out_of_range(key, n));
-  if (!law_uses(scene.law, ref.quantity)) throw InputError(origin, 0, key, law_mismatch(scene.law, ref.quantity));
-  if (auto bad = range_violation(ref.quantity, value)) throw InputError(origin, 0, key, *bad);
-  if (scene.law == FrictionLaw::lugre && (ref.quantity == Quantity::mu_c || ref.quantity == Quantity::mu_s)) {
-    const std::size_t from = ref.ball < 0 ? 0 : std::size_t(ref.ball);
-    const std::size_t to = ref.ball < 0 ? n : from + 1;
-    for (std::size_t i = from; i < to; ++i) {
-      const auto& b = scene.balls[i];
-      const double mu_c = ref.quantity == Quantity::mu_c ? value : b.mu_c;
-      const double mu_s = ref.quantity == Quantity::mu_s ? value : b.mu_s;
-      if (auto bad = lugre_level_violation(mu_c, mu_s)) throw InputError(origin, 0, key, *bad + fmt::format(" (ball {})", i + 1));
-    }
-  }
-
-  // The balls this touches: one, all, or (for a global quantity) none.
-  std::size_t first = 0, last = 0;
-  if (is_per_ball(ref.quantity)) {
-    first = ref.ball < 0 ? 0 : std::size_t(ref.ball);
-    last = ref.ball < 0 ? n : first + 1;
-  }
-  // Cross rule r_i < l_i, checked for every ball before anything changes, on the ball as
-  // it would be (with R_s given, r moves l = R_s - r; model.md (1.1.3)).
-  for (std::size_t i = first; i < last; ++i) {
-    const auto& b = scene.balls[i];
-    BallT<double> changed = b;
-    set_ball(changed, ref.quantity, value);
-    if (changed.radius < changed.race_radius) continue;
-    if (ref.quantity == Quantity::ball_radius && !(b.specified & specified::surface_radius))
-      throw InputError(origin, 0, key,
-                       fmt::format("must be < race_radius (l{} = {}, got {})", i + 1, b.race_radius, value));
-    if (ref.quantity == Quantity::race_radius)
-      throw InputError(origin, 0, key,
-                       fmt::format("must be > ball radius, as radius < race_radius (r{} = {}, got {})", i + 1,
-                                   b.radius, value));
-    throw InputError(origin, 0, key,
-                     fmt::format("gives ball {} l = R_s - r = {} m, which must be > r = {} m (got {}; model.md (1.1.3))",
-                                 i + 1, changed.race_radius, changed.radius, value));
-  }
-  if (!is_per_ball(ref.quantity)) {
-    global_field(scene, ref.quantity) = value;
-    return;
-  }
-  for (std::size_t i = first; i < last; ++i) set_ball(scene.balls[i], ref.quantity, value);
-
-  // The ring follows: every ball -> the template (no ball differs in this field any more,
-  // active or not); one ball -> that ball's override.
-  if (!scene.ring) return;
-  BallRing& ring = *scene.ring;
-  const BallField f = field_of(ref.quantity);
-  auto& overrides = ring.overrides;
-  if (ref.ball < 0) {
-    set_ball(ring.ball, ref.quantity, value);
-    // The value and the specification that gives it are one field (m and rho, mu and f,
-    // l and R_s): an override of either would undo the every-ball setting for its ball.
-    const BallField partner = specification_partner(f);
-    std::erase_if(overrides, [&](const RingOverride& o) { return o.field == f || o.field == partner; });
-    if (f == BallField::mass) {
-      ring.total_mass_held = false;
-      ring.total_mass = 0.0;
-    }
-  } else {
-    const auto same = std::find_if(overrides.begin(), overrides.end(),
-                                   [&](const RingOverride& o) { return o.ball == ref.ball && o.field == f; });
-    RingOverride o{ref.ball, f, value, origin, 0, key};
-    if (same != overrides.end())
-      *same = std::move(o);
-    else
-      overrides.push_back(std::move(o));
-  }
-}
-
-void apply_override(Scene& scene, std::string_view assignment) {
-  const auto eq = assignment.find('=');
-  const auto name = trim(assignment.substr(0, eq));
-  const auto text = eq == std::string_view::npos ? std::string_view() : trim(assignment.substr(eq + 1));
-  if (name.empty() || text.empty()) throw InputError("--set", 0, std::string(assignment), "expected NAME=VALUE");
-
-  const int n = int(scene.balls.size());
-  const auto ref = parse_param(name, n);
-  if (!ref) {
-    // Tell a known symbol with a ball index beyond this scene apart from a typo.
-    const bool index_too_large = parse_param(name, std::numeric_limits<int>::max()).has_value();
-    throw InputError("--set", 0, std::string(name),
-                     index_too_large ? index_out_of_range(name, std::size_t(n))
-                                     : unknown_name_rule("unknown parameter", closest_param(name), "known",
-                                                         param_symbols_help()));
-  }
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ptr != end || (ec != std::errc() && ec != std::errc::result_out_of_range))
-    throw InputError("--set", 0, std::string(name), fmt::format("not a number (got '{}')", text));
-  if (ec == std::errc::result_out_of_range)
-    throw InputError("--set", 0, std::string(name), fmt::format("must be a finite number (got '{}')", text));
-  set_checked(scene, *ref, value, "--set");
-}
-
-template <int N>
-ParamsT<double, N> params_of(const Scene& scene) {
-  if constexpr (N == any_balls) {
-    if (scene.balls.size() > std::size_t(max_balls))  // the parser refuses such scenes already
-      throw NotSupportedError(fmt::format("scene has {} balls; at most {} are supported", scene.balls.size(), max_balls));
-  } else if (scene.balls.size() != std::size_t(N)) {
-    throw NotSupportedError(fmt::format("scene has {} balls: not supported yet by this command ({} balls only)",
-                                        scene.balls.size(), N));
-  }
-  ParamsT<double, N> p;
-  if constexpr (N == any_balls) p.balls.resize(scene.balls.size());
-  p.rotor = scene.rotor;
-  p.omega = scene.omega;
-  p.law = scene.law;
-  p.kappa = scene.kappa;
-  std::copy(scene.balls.begin(), scene.balls.end(), p.balls.begin());
-  return p;
-}
-
-template ParamsT<double, 2> params_of<2>(const Scene&);
-template ParamsT<double, 3> params_of<3>(const Scene&);
-template ParamsT<double, any_balls> params_of<any_balls>(const Scene&);
 
 }  // namespace abu

@@ -1,6 +1,7 @@
-// The reading machinery shared by the scene parser (scene.cpp) and the [balls] ring
-// (ball_ring.cpp): private to src/input. Every rule is collected with its source position
-// and the first in the file is reported (scene.cpp's header says why).
+// The reading machinery shared by the scene parser (scene.cpp, support_reading.cpp), the
+// [balls] ring (ball_ring.cpp) and the parameters set after parsing (scene_parameters.cpp):
+// private to src/input. Every rule is collected with its source position and the first in
+// the file is reported (scene.cpp's header says why).
 #pragma once
 
 #include <algorithm>
@@ -347,6 +348,11 @@ void check_ball_form(Problems& p, const BallInput& b, bool listed);
 // (default steel), l = surface_radius - r; mass, radius, race_radius as given otherwise.
 // The slots must have passed check_ball_form. Friction is not touched.
 void assemble_geometry(BallT<double>& ball, const std::vector<Slot>& slots);
+
+// Rules of both the parser and set_checked (scene.cpp): the message for a coefficient the law
+// does not use, and LuGre's levels mu_c > 0, mu_c <= mu_s (model.md §12.1; nullopt: obeyed).
+std::string law_mismatch(FrictionLaw law, Quantity q);
+std::optional<std::string> lugre_level_violation(double mu_c, double mu_s);
 
 // The [balls] table read, its rules checked (ball_ring.cpp).
 RingInput read_ring(Problems& p, const toml::table& table);

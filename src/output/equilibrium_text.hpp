@@ -1,5 +1,5 @@
-// How an equilibrium is named and measured in every report (report.cpp, report_views.cpp):
-// its |q|, its sign pattern and its label ("balanced 1", "aligned +-+ 2").
+// How an equilibrium is named and measured in every report (report.cpp, report_views.cpp,
+// report_campbell.cpp): its |q|, its sign pattern and its label ("balanced 1", "aligned +-+ 2").
 #pragma once
 
 #include <fmt/format.h>

@@ -13,7 +13,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/dynamics/unround_simulation.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
 

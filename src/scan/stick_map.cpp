@@ -7,6 +7,7 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/equilibria/stick_set.hpp"
+#include "abu/linear/unround_stick_set.hpp"
 
 namespace abu {
 

@@ -7,7 +7,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 
 namespace abu {
 

@@ -29,9 +29,9 @@
 #include "abu/analysis/lugre_states.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/equilibria/stick_set.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/input/scene.hpp"
 #include "abu/linear/kappa_sensitivity.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/unround_race.hpp"
 #include "abu/scan/scan.hpp"
 

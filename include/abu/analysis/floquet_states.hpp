@@ -7,8 +7,8 @@
 
 #include "abu/dynamics/forced_orbits.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
 #include "abu/linear/balanced_floquet.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/anisotropic_support.hpp"
 
 namespace abu {

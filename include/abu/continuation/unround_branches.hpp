@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "abu/continuation/arclength.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 
 namespace abu {
 

@@ -10,7 +10,7 @@
 #pragma once
 
 #include "abu/dynamics/simulation.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 
 namespace abu {
 

@@ -118,9 +118,16 @@ StickPoint stick_point(const ParamsN& p, const RaceShape& race, const std::vecto
 /// K = C = 0 (q undefined).
 StickSet stick_set(const ParamsN& p, const StickSetOptions& options = {});
 
-/// The same on an unround race (model.md §20.5): the grid method for every n (two balls too,
-/// at the stated resolution), the race's equilibria (§11.4) as seeds, V over the components
-/// holding its stable equilibrium of least |q|. A round `race` gives stick_set(p, options).
-StickSet stick_set(const ParamsN& p, const RaceShape& race, const StickSetOptions& options = {});
+/// Throws what stick_set throws for p before it computes anything: NotSupportedError if some
+/// mu_i <= 0 or K = C = 0.
+void check_stick_set_defined(const ParamsN& p);
+
+/// The same on an unround race (model.md §20.5) from given seeds, the race's equilibria
+/// (§11.4): their angles, names and anchors (the stable one of least |q|); each seed's q_abs
+/// is computed here. The grid method for every n (two balls too, at the stated resolution), V
+/// over the components holding an anchor. Which equilibrium is stable takes their spectra:
+/// linear/unround_stick_set.hpp's stick_set(p, race, options) finds the seeds and calls this.
+StickSet stick_set_on_race(const ParamsN& p, const RaceShape& race, std::vector<StickSeed> seeds,
+                           const StickSetOptions& options = {});
 
 }  // namespace abu

@@ -1,6 +1,7 @@
-// Every equilibrium of the balancer on an unround race (model.md §11.4), with its
-// spectrum (§11.5) and stability: for n = 2 or 3 balls all of them; for n >= 4 those a
-// multistart Newton finds (not proven complete, and said so: model.md §11.11).
+// Every equilibrium of the balancer on an unround race (model.md §11.4): for n = 2 or 3 balls
+// all of them; for n >= 4 those a multistart Newton finds (not proven complete, and said so:
+// model.md §11.11). Their spectra (§11.5) and stability are the linear layer's
+// (linear/unround_spectrum.hpp: find_unround_equilibria).
 //
 // With s' = 0 the rotor equation gives q(beta) = omega^2 (U + sum m_i p_i(beta_i)) / (K + iC)
 // and the ball conditions become n equations on the torus T^n,
@@ -15,16 +16,14 @@
 // leaf whose Newton fails is counted as unresolved and reported. The zeros found are checked
 // against Poincare-Hopf: their indices sign det(dg/dbeta) sum to chi(T^n) = 0.
 //
-//   abu::UnroundResult r = abu::find_unround_equilibria(p, race);
-//   for (const auto& e : r.list) ... e.amplitude ... e.spectrum.stability ...
+//   abu::UnroundRoots r = abu::find_unround_roots(p, race);
+//   for (const auto& e : r.list) ... e.amplitude ... e.index ...
 #pragma once
 
 #include <complex>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "abu/linear/spectrum.hpp"
 #include "abu/model/unround_race.hpp"
 
 namespace abu {
@@ -39,13 +38,13 @@ struct UnroundSearch {
   int multistart = 4096;
 };
 
-struct UnroundEquilibrium {
+/// An equilibrium of the race: a zero of the reduced ball conditions g(beta) = 0 (§11.4).
+struct UnroundRoot {
   Coordinates<long double, any_balls> position;  ///< (q1, q2, beta_1..beta_n), beta in [0, 2 pi)
   double residual = 0;                    ///< max |b_i(s, 0)| / its natural size (§11.4)
   bool converged = false;
   int index = 0;        ///< sign det(dg/dbeta): +1 / -1, 0 if singular to rounding
   double amplitude = 0; ///< |q| [m], the residual whirl radius (fixed frame)
-  SpectrumN spectrum;   ///< eigenvalues of the rotating-frame Jacobian [1/s]
 };
 
 struct UnroundSearchReport {
@@ -56,10 +55,9 @@ struct UnroundSearchReport {
   bool budget_exhausted = false;
 };
 
-struct UnroundResult {
-  std::vector<UnroundEquilibrium> list;  ///< sorted by |q|, then by beta
+struct UnroundRoots {
+  std::vector<UnroundRoot> list;  ///< sorted by |q|, then by beta
   UnroundSearchReport search;
-  std::optional<std::size_t> best_stable;  ///< the stable equilibrium of least |q|
   std::string doubt;  ///< empty when the search is complete, else what makes the list doubtful
 };
 
@@ -75,10 +73,10 @@ struct UnroundReduced {
 };
 UnroundReduced unround_reduced(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
 
-/// The equilibrium at angles beta that solve g = 0: position, |q|, index, residual of the
-/// full static equations (§11.3) and spectrum (§11.5). Shared by the search and the
-/// continuation in the unroundness (§11.10).
-UnroundEquilibrium unround_equilibrium_at(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
+/// The equilibrium at angles beta that solve g = 0: position, |q|, index and residual of the
+/// full static equations (§11.3). Shared by the search and, with its spectrum
+/// (unround_spectrum.hpp), the continuation in the unroundness (§11.10).
+UnroundRoot unround_root_at(const LongParamsN& p, const RaceShape& race, const UnroundAngles& beta);
 
 /// The reduced residual g(beta) of §11.4 and q(beta). Exposed for tests.
 Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN& p, const RaceShape& race,
@@ -89,6 +87,6 @@ Coordinates<long double, any_balls> unround_rotor_and_residual(const LongParamsN
 /// equilibria Newton finds from the round race's equilibria and `search.multistart`
 /// quasi-random starts, with `doubt` saying the list is not proven complete (§11.11).
 /// Throws NumericalError for K = C = 0 (no q(beta)).
-UnroundResult find_unround_equilibria(const ParamsN& p, const RaceShape& race, const UnroundSearch& search = {});
+UnroundRoots find_unround_roots(const ParamsN& p, const RaceShape& race, const UnroundSearch& search = {});
 
 }  // namespace abu

@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "abu/continuation/unround_branches.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 
 namespace abu {
 

@@ -21,7 +21,7 @@
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/model/speed_profile.hpp"
-#include "abu/equilibria/unround_equilibria.hpp"
+#include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/unround_race.hpp"
 #include "abu/scan/basin_certificate.hpp"
 #include "abu/scan/map_driver.hpp"
