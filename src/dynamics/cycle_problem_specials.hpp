@@ -4,8 +4,9 @@
 // (cycle_problem.hpp); internal to src/dynamics.
 #pragma once
 
-#include <gsl/gsl_roots.h>
+#include <optional>
 
+#include "abu/core/bracketed_root.hpp"
 #include "cycle_problem.hpp"
 
 namespace abu::cycle_problem {
@@ -88,62 +89,46 @@ inline bool CycleProblem<Chord>::root_on_branch(unsigned k, const arclength::Seg
   if (Chord && o_.extrapolate_newton_matrix && !radau_ && kept_count_ >= 1 && kept_[2].u.size() == seg.from.size() &&
       kept_[2].u == seg.from && cache_accurate_ && cache_.u.size() == seg.to.size() && cache_.u == seg.to)
     segment_ends_.emplace(kept_[2], Kept{seg.to, cache_.jacobian, {}, {}});
-  struct Context {
-    CycleProblem* self;
-    unsigned k;
-    const Vec* from;
-    Vec d;
-    const Vec* previous;
-    double length, at_from, at_to;  // the chord's length, the test's values at its ends
-    bool failed = false;
-    double last_sigma = -1, last_value = 0;  // the last value's sigma, orbit and value
-    Vec last_u;
-  } ctx{this, k, &seg.from, chord / length, &seg.from_tangent, length, last_tests_[k], pending_tests_[k], false, -1, 0, Vec()};
-  gsl_function fn;
-  fn.params = &ctx;
-  fn.function = [](double sigma, void* raw) -> double {
-    auto& c = *static_cast<Context*>(raw);
+  const Vec d = chord / length;
+  const double at_from = last_tests_[k], at_to = pending_tests_[k];  // the test's values at the chord's ends
+  double last_sigma = -1, last_value = 0;  // the last value's sigma, orbit and value
+  Vec last_u;
+  const auto test = [&](double sigma) -> std::optional<double> {
     // The ends are the two accepted orbits, their values known (GSL asks for them first).
-    if (sigma == 0.0) return c.at_from;
-    if (sigma == c.length) return c.at_to;
+    if (sigma == 0.0) return at_from;
+    if (sigma == length) return at_to;
     Vec u;
-    if (!c.self->on_branch(*c.from, c.d, sigma, u)) {
-      c.failed = true;
-      return 0.0;  // ends the search: the caller falls back to the interpolation
-    }
-    c.last_sigma = sigma;
-    c.last_u = u;
-    const double v = c.self->test_value(c.k, u, *c.previous);
-    c.last_value = v;
-    if (!std::isfinite(v)) c.failed = true;
-    return std::isfinite(v) ? v : 0.0;
+    if (!on_branch(seg.from, d, sigma, u)) return std::nullopt;  // the caller falls back to the interpolation
+    last_sigma = sigma;
+    last_u = u;
+    const double v = test_value(k, u, seg.from_tangent);
+    last_value = v;
+    if (!std::isfinite(v)) return std::nullopt;
+    return v;
   };
-  gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  bool ok = solver && gsl_root_fsolver_set(solver, &fn, 0.0, length) == GSL_SUCCESS;
   // Stops on a bracket below 1e-9 of the chord, on a value below 1e-8 of the ends' (the
   // zero within ~1e-8 of the chord where the test is linear), or on two roots 1e-8 of the
   // chord apart: the test functions' own noise (the LPC's tangent component at ~1e-7 of its
   // values at the ends on the viscous branch) stops Brent's bracket from shrinking further.
-  const double value_tolerance = 1e-8 * std::max(std::abs(ctx.at_from), std::abs(ctx.at_to));
-  double root = 0.5 * length;
-  for (int it = 0; ok && !ctx.failed && it < 60; ++it) {
-    const double before = root;
-    if (gsl_root_fsolver_iterate(solver) != GSL_SUCCESS) ok = false;
-    root = gsl_root_fsolver_root(solver);
-    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 1e-9 * length,
-                               0.0) == GSL_SUCCESS ||
-        (root == ctx.last_sigma && std::abs(ctx.last_value) <= value_tolerance) ||
-        (it > 0 && std::abs(root - before) <= 1e-8 * length))
-      break;
-  }
-  if (solver) gsl_root_fsolver_free(solver);
+  // 60 iterations at most, the last estimate taken after them.
+  const double value_tolerance = 1e-8 * std::max(std::abs(at_from), std::abs(at_to));
+  RootSearch search;
+  search.absolute_width = 1e-9 * length;
+  search.max_iterations = 60;
+  search.stop = [&](double root, double previous, int iteration) {
+    return (root == last_sigma && std::abs(last_value) <= value_tolerance) ||
+           (iteration > 0 && std::abs(root - previous) <= 1e-8 * length);
+  };
+  const BracketedRoot found = bracketed_root(test, 0.0, length, search);
+  bool ok = found.converged() || found.end == BracketedRoot::End::max_iterations;
+  const double root = found.root;
   Vec u;
-  if (ok && !ctx.failed && root == ctx.last_sigma) {
-    u = ctx.last_u;  // Brent's root is usually its last value's orbit
+  if (ok && root == last_sigma) {
+    u = last_u;  // Brent's root is usually its last value's orbit
   } else {
-    ok = ok && !ctx.failed && on_branch(seg.from, ctx.d, root, u);
+    ok = ok && on_branch(seg.from, d, root, u);
   }
-  ok = ok && !ctx.failed && (u - seg.from).norm() <= 2 * length && (u - seg.to).norm() <= 2 * length;
+  ok = ok && (u - seg.from).norm() <= 2 * length && (u - seg.to).norm() <= 2 * length;
   if (ok) {
     CycleOrbit at_root;
     ok = sample(u, at_root);
