@@ -323,17 +323,17 @@ BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>
 
 std::string basin_csv_header(const BasinJob& job) {
   std::string h = job.provenance;
-  h += "i,j,beta1_0,beta2_0";
-  for (int k = 3; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_0", k);
-  h += ",attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
+  h += "i,j,beta1_0,beta2_0,attractor,member,by_settle_test,t_settle,t_end,q_abs_end,max_q_abs";
   for (int k = 1; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_end", k);
-  h += set_valued(job) ? ",steps,rejected,max_abs_s,in_stick_set\n" : ",steps,rejected\n";
+  h += set_valued(job) ? ",steps,rejected,max_abs_s,in_stick_set" : ",steps,rejected";
+  // Last, so that the columns before keep their places for every ball count.
+  for (int k = 3; k <= job.n_balls(); ++k) h += fmt::format(",beta{}_0", k);
+  h += '\n';
   return h;
 }
 
 std::string basin_row(const BasinCell& c) {
   std::string row = fmt::format("{},{},{:.10g},{:.10g}", c.i, c.j, c.beta1, c.beta2);
-  for (double b : c.beta_others) row += fmt::format(",{:.10g}", b);
   row += fmt::format(",{},{},{},{},{:.10g},{:.6e},{:.6e}", c.attractor, c.member == 0 ? std::string() : std::to_string(c.member),
                                 c.by_settle_test, c.t_settle >= 0 ? fmt::format("{:.6g}", c.t_settle) : "",
                                 c.t_end, c.q_abs_end, c.max_q_abs);
@@ -346,6 +346,7 @@ std::string basin_row(const BasinCell& c) {
   }
   row += fmt::format(",{},{}", c.steps, c.rejected);
   if (c.max_abs_s >= 0) row += fmt::format(",{:.9f},{}", c.max_abs_s, c.in_stick_set);
+  for (double b : c.beta_others) row += fmt::format(",{:.10g}", b);
   row += '\n';
   return row;
 }

@@ -100,10 +100,13 @@ for r in rows:
     k ^= k >> 1
     assert abs(float(r['beta3_0']) - 2 * math.pi * vdc(k)) <= 1e-9, (r['i'], r['j'], r['beta3_0'])
 assert len({r['beta3_0'] for r in rows}) == 9  # every cell its own angle
+# The fractions count attractors, whatever columns the ball count adds.
+labels = [l.split(',')[0] for l in open('$work/n3/basin_fractions.csv') if not l.startswith('#')][1:]
+assert labels and all(a.split(':')[0] in ('balanced', 'aligned', 'periodic', 'stuck', 'stuck_outside', 'slipping', 'not_settled') for a in labels), labels
 \" && grep -q '^# others: balls 3..3' '$work/n3/basin.csv'"
 "$bin" basin "$work/ring3.toml" --grid 3 --t-end 0.05 --no-chart --quiet --others symmetric -o "$work/n3s" 2>/dev/null
 check "three balls, --others symmetric: ball 3 at 4 pi / 3 in every cell" \
-  "grep -q '^# fixed: balls 3..3 start at 4.18879' '$work/n3s/basin.csv' && [ \$(grep -v '^#' '$work/n3s/basin.csv' | tail -n +2 | cut -d, -f5 | sort -u) = 4.188790205 ]"
+  "grep -q '^# fixed: balls 3..3 start at 4.18879' '$work/n3s/basin.csv' && [ \$(grep -v '^#' '$work/n3s/basin.csv' | tail -n +2 | awk -F, '{print \$NF}' | sort -u) = 4.188790205 ]"
 
 # --- bad input: exit 2, nothing written -------------------------------------------------------
 bad() {  # name, then the arguments; -o inside an empty directory

@@ -112,9 +112,10 @@ double shortest_arc(std::vector<double> angles);
 
 BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j);
 
-/// Long CSV: comment block, then `i,j,beta1_0,beta2_0,[beta3_0..betan_0,]attractor,member,by_settle_test,
+/// Long CSV: comment block, then `i,j,beta1_0,beta2_0,attractor,member,by_settle_test,
 /// t_settle,t_end,q_abs_end,max_q_abs,beta1_end..betan_end,steps,rejected` (model.md §15.5),
-/// for coulomb-set followed by `max_abs_s,in_stick_set` (model.md §14.8).
+/// for coulomb-set followed by `max_abs_s,in_stick_set` (model.md §14.8); for n >= 3 last the
+/// start angles of balls 3..n, `beta3_0..betan_0`.
 std::string basin_csv_header(const BasinJob& job);
 std::string basin_row(const BasinCell& c);
 /// The resume manifest: everything that determines the bytes.
