@@ -19,21 +19,14 @@
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/linear/unround_spectrum.hpp"
 
+#include "composed_params.hpp"
+
 using namespace abu;
 
 namespace {
 
 // The viscous two-ball scene of tests/scenes/anisotropic/ref_viscous.toml at its mean support.
-ParamsN unequal_balls() {
-  ParamsN p;
-  p.rotor = {0.2, 10500.0, 3.25, 8e-7};
-  p.omega = 1100.0;
-  p.law = FrictionLaw::viscous;
-  p.balls.resize(2);
-  p.balls[0] = {4e-5, 0.02, 1e-3, 1.4, 0, 2e-3, 0, 0, 0};
-  p.balls[1] = {3e-5, 0.021, 1.2e-3, 1.0, 0, 2e-3, 0, 0, 0};
-  return p;
-}
+ParamsN unequal_balls() { return test::composed_mean_params(); }
 
 // Multipliers sorted by modulus, then argument: the two lists pair up in order.
 std::vector<std::complex<double>> sorted(std::vector<std::complex<double>> v) {

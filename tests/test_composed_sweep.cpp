@@ -19,21 +19,14 @@
 #include "abu/analysis/floquet_sweep.hpp"
 #include "abu/equilibria/unround_equilibria.hpp"
 
+#include "composed_params.hpp"
+
 using namespace abu;
 
 namespace {
 
 // tests/scenes/composed/oval_anisotropic.toml at its mean support (k_bar = 10500, c_bar = 3.25).
-ParamsN composed_sweep_params() {
-  ParamsN p;
-  p.rotor = {0.2, 10500.0, 3.25, 8e-7};
-  p.omega = 1100.0;
-  p.law = FrictionLaw::viscous;
-  p.balls.resize(2);
-  p.balls[0] = {4e-5, 0.02, 1e-3, 1.4, 0, 2e-3, 0, 0, 0};
-  p.balls[1] = {3e-5, 0.021, 1.2e-3, 1.0, 0, 2e-3, 0, 0, 0};
-  return p;
-}
+ParamsN composed_sweep_params() { return test::composed_mean_params(); }
 
 RaceShape composed_sweep_race(double amplitude_factor) {
   const RaceHarmonics h{{2, 3e-5 * amplitude_factor, 0.4}, {1, 1e-5 * amplitude_factor, 1.1}};

@@ -336,12 +336,22 @@ Eigen::VectorXd forced_orbit_scale(const ParamsN& p) {
   return D;
 }
 
+// `out` with its failure recorded: the outcome merged into its status, the reason kept.
+ForcedOrbit failed(ForcedOrbit& out, Outcome outcome, std::string why) {
+  out.status.merge(outcome, "see reason");
+  out.reason = std::move(why);
+  return out;
+}
+
+// The result of an orbit of kind `kind` of the machine at p: period pi/omega.
+ForcedOrbit orbit_at(const ParamsN& p, std::string kind) {
+  ForcedOrbit out;
+  out.kind = std::move(kind);
+  out.period = std::numbers::pi / p.omega;
+  return out;
+}
+
 ForcedOrbit refined_forced_orbit(ForcedProblem& problem, Eigen::VectorXd u, const ForcedOrbitOptions& o, ForcedOrbit& out) {
-  const auto fail = [&](Outcome outcome, std::string why) {
-    out.status.merge(outcome, "see reason");
-    out.reason = std::move(why);
-    return out;
-  };
   // The discretization's error, a posteriori (model.md §10.18): the multipliers with half the
   // steps on the same unknowns; while their difference exceeds the target, the steps double
   // and Newton (delta fixed by the border) corrects the orbit on the finer grid.
@@ -359,7 +369,7 @@ ForcedOrbit refined_forced_orbit(ForcedProblem& problem, Eigen::VectorXd u, cons
     const auto c = arclength::correct(problem, u, fix);
     out.newton_iterations += c.iterations;
     if (c.status != Outcome::converged)
-      return fail(c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
+      return failed(out, c.status, fmt::format("refining the orbit with {} steps per interval: {}", 2 * steps, c.reason));
     u = c.u;
   }
   // Still above the target at max_steps_per_interval (a near-double multiplier, whose members
@@ -394,18 +404,11 @@ ForcedOrbit forced_orbit(const ParamsN& p, const AnisotropicSupport& s, const Eq
 
 ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const StateX& x0, std::string kind,
                          const ForcedOrbitOptions& o) {
-  ForcedOrbit out;
-  const int n = p.n_balls(), d = 2 * n + 4;
-  out.kind = std::move(kind);
-  out.period = std::numbers::pi / p.omega;
-  const auto fail = [&](Outcome outcome, std::string why) {
-    out.status.merge(outcome, "see reason");
-    out.reason = std::move(why);
-    return out;
-  };
-  if (!machine.support) return fail(Outcome::numerical_issue, "no support to continue in (machine.support is null)");
-  if (x0.size() != d || !x0.allFinite()) return fail(Outcome::numerical_issue, "the start is not a finite state of this machine");
-  if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return fail(Outcome::numerical_issue, "bad options");
+  ForcedOrbit out = orbit_at(p, std::move(kind));
+  const int d = 2 * p.n_balls() + 4;
+  if (!machine.support) return failed(out, Outcome::numerical_issue, "no support to continue in (machine.support is null)");
+  if (x0.size() != d || !x0.allFinite()) return failed(out, Outcome::numerical_issue, "the start is not a finite state of this machine");
+  if (!(o.intervals >= 1) || !(o.steps_per_interval >= 2) || !(o.delta_end >= 0)) return failed(out, Outcome::numerical_issue, "bad options");
   const Eigen::VectorXd D = forced_orbit_scale(p);
   ForcedProblem problem(p, machine, D, o);
   const int M = o.intervals;
@@ -421,7 +424,7 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
     out.newton_iterations = r.stats.newton_iterations;
     if (r.end != arclength::End::end_of_interval) {
       out.delta = problem.delta(r.last);
-      return fail(r.status == Outcome::converged ? Outcome::not_converged : r.status,
+      return failed(out, r.status == Outcome::converged ? Outcome::not_converged : r.status,
                   fmt::format("{} at delta = {:.6g}: {}", to_string(r.end), out.delta, r.reason));
     }
     u = r.last;
@@ -431,18 +434,11 @@ ForcedOrbit forced_orbit(const ParamsN& p, const RigidMachine& machine, const St
 
 ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, const ForcedOrbit& guess,
                               std::string kind, const ForcedOrbitOptions& o) {
-  ForcedOrbit out;
-  const int n = p.n_balls(), d = 2 * n + 4;
-  out.kind = std::move(kind);
-  out.period = std::numbers::pi / p.omega;
-  const auto fail = [&](Outcome outcome, std::string why) {
-    out.status.merge(outcome, "see reason");
-    out.reason = std::move(why);
-    return out;
-  };
-  if (!machine.support) return fail(Outcome::numerical_issue, "no support (machine.support is null)");
+  ForcedOrbit out = orbit_at(p, std::move(kind));
+  const int d = 2 * p.n_balls() + 4;
+  if (!machine.support) return failed(out, Outcome::numerical_issue, "no support (machine.support is null)");
   if (int(guess.state0.size()) != d || !(o.intervals >= 1) || !(o.steps_per_interval >= 2))
-    return fail(Outcome::numerical_issue, "the guess is not an orbit of this machine, or bad options");
+    return failed(out, Outcome::numerical_issue, "the guess is not an orbit of this machine, or bad options");
   const Eigen::VectorXd D = forced_orbit_scale(p);
   ForcedOrbitOptions fixed = o;
   fixed.steps_per_interval = std::clamp(guess.steps_per_interval, o.steps_per_interval, o.max_steps_per_interval);
@@ -452,13 +448,13 @@ ForcedOrbit forced_orbit_near(const ParamsN& p, const RigidMachine& machine, con
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
   u(problem.param_index()) = 1;
   if (!problem.chain(Eigen::Map<const Eigen::VectorXd>(guess.state0.data(), d).cwiseQuotient(D), u))
-    return fail(Outcome::numerical_issue, "integrating the guess over the period failed");
+    return failed(out, Outcome::numerical_issue, "integrating the guess over the period failed");
   Eigen::VectorXd fix = Eigen::VectorXd::Zero(problem.size());
   fix(problem.param_index()) = 1;
   const auto c = arclength::correct(problem, u, fix);
   out.newton_iterations = c.iterations;
   if (c.status != Outcome::converged)
-    return fail(c.status, fmt::format("Newton from the neighbouring orbit: {}", c.reason));
+    return failed(out, c.status, fmt::format("Newton from the neighbouring orbit: {}", c.reason));
   out.steps = 1;
   return refined_forced_orbit(problem, c.u, fixed, out);
 }
