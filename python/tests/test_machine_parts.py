@@ -18,6 +18,7 @@ MACHINES = [
     ("unround/oval_offset_viscous.toml", "unround"),
     ("composed/oval_anisotropic.toml", "unround_anisotropic"),
     ("composed/oval_coulomb_set.toml", "set_valued"),
+    ("composed/shaft_coulomb_set.toml", "set_valued"),
 ]
 
 

@@ -145,9 +145,9 @@ EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions&
     case Route::unround: r.states = unround_states(scene, o, r.warnings); break;
     case Route::anisotropic: r.states = anisotropic_states(scene, o); break;
     case Route::unround_anisotropic: r.states = unround_anisotropic_states(scene, o, r.warnings); break;
-    case Route::set_valued: {
-      const ParamsN p = params_of<any_balls>(scene);
-      r.states = StickSetStates{p, stick_set(p, race_shape(scene), o.stick)};  // on the race's paths if unround (§20.5)
+    case Route::set_valued: {  // on the race's paths if unround (§20.5), through the shaft on a shaft (§18.17)
+      SceneStickSet s = scene_stick_set(scene, o.stick);
+      r.states = StickSetStates{std::move(s.params), std::move(s.set), std::move(s.shaft)};
       break;
     }
     case Route::lugre: r.states = lugre_states(scene, o); break;

@@ -25,6 +25,7 @@ std::string_view to_string(Route route) {
 Route route_of(const Scene& scene) {
   if (unround_on_anisotropic_support(scene)) return Route::unround_anisotropic;  // model.md §20
   if (set_valued_on_unround_race(scene)) return Route::set_valued;               // on the race's paths, §20.5
+  if (set_valued_on_shaft(scene)) return Route::set_valued;                      // the equivalent rigid balancer's, §18.17
   refuse_combined_extensions(scene);
   if (scene.shaft) return Route::shaft;
   if (!scene.race.round()) return Route::unround;
@@ -44,13 +45,14 @@ struct CommandParts {
 constexpr CommandParts kCommandParts[] = {
     {"equilibria",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
-      .unround_set_valued = true}},
+      .unround_set_valued = true, .shaft_set_valued = true}},
     {"sweep",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
-      .unround_set_valued = true}},
+      .unround_set_valued = true, .shaft_set_valued = true}},
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map",
-     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true}},
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true,
+      .shaft_set_valued = true}},
     {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true, .unround = true}},
 };
@@ -122,6 +124,10 @@ bool set_valued_on_unround_race(const Scene& scene) {
   return scene.law == FrictionLaw::coulomb_set && !scene.race.round() && !scene.support && !scene.shaft;
 }
 
+bool set_valued_on_shaft(const Scene& scene) {
+  return scene.law == FrictionLaw::coulomb_set && scene.shaft && scene.race.round() && !scene.support;
+}
+
 void refuse_combined_extensions(const Scene& scene, Handles handles) {
   // The extensions are modelled one at a time (model.md §10-§12, §14) except an unround race
   // on an anisotropic support (§20): a scene that combines them otherwise is refused rather
@@ -137,6 +143,13 @@ void refuse_combined_extensions(const Scene& scene, Handles handles) {
     throw NotSupportedError(fmt::format("{} has coulomb-set balls on an unround race (model.md §20.5): only {} "
                                         "that combination so far (the stick set on the race's paths)",
                                         scene.file, only_commands(&Handles::unround_set_valued, "analyse")));
+  }
+  if (set_valued_on_shaft(scene)) {
+    if (handles.shaft_set_valued) return;
+    throw NotSupportedError(fmt::format("{} has coulomb-set balls on a flexible shaft (model.md §18.17): only {} "
+                                        "that combination so far (the stick set of the rigid balancer the balls see "
+                                        "through the shaft)",
+                                        scene.file, only_commands(&Handles::shaft_set_valued, "analyse")));
   }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +
@@ -154,6 +167,7 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   // A combination the command answers as one (model.md §20) needs no single-part handling.
   if (handles.unround_set_valued && set_valued_on_unround_race(scene)) handles.unround = handles.set_valued = true;
   if (handles.unround_anisotropic && unround_on_anisotropic_support(scene)) handles.unround = handles.anisotropic = true;
+  if (handles.shaft_set_valued && set_valued_on_shaft(scene)) handles.shaft = handles.set_valued = true;
   if (!handles.lugre) refuse_lugre(scene, command);
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);

@@ -1,5 +1,7 @@
 #include "abu/analysis/map_setup.hpp"
 
+#include "abu/input/shaft_scene.hpp"
+
 #include "abu/input/race_scene.hpp"
 
 #include <fmt/format.h>
@@ -161,23 +163,20 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
     job.stick = request.stick;
     job.race = race_shape(scene);
     if (!job.race.round()) job.provenance_notes += describe_race(job.race, "# ");
+    if (scene.shaft) {  // through the shaft (model.md §18.17); its numbers in the tiles' manifest
+      job.shaft = std::make_shared<const ShaftSpec>(shaft_spec_of(scene));
+      job.provenance_notes += describe_shaft(*job.shaft, "# ");
+    }
     job.params_n = params_of<any_balls>(scene);
     job.command_line =
         request.command_line + (scene.balls.size() == 2
                                     ? fmt::format(" --stick-columns {} --stick-area-tolerance {}", request.stick.columns,
                                                   request.stick.area_tolerance)
                                     : fmt::format(" --stick-grid {}", request.stick.grid_budget));
-    // Every cell's set must be defined (mu > 0, not K = C = 0) before any work.
+    // Every cell's set must be defined (mu > 0, not K = C = 0, no undamped critical speed of a
+    // shaft) before any work.
     for (int ix = 0; ix < job.x.count; ++ix)
-      for (int iy = 0; iy < job.y.count; ++iy) {
-        const ParamsN p = stick_cell_params(job, ix, iy);
-        try {
-          (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
-        } catch (const NotSupportedError& e) {
-          throw NotSupportedError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {}", ix, iy, job.x.name(),
-                                             job.x.value(ix), job.y.name(), job.y.value(iy), e.what()));
-        }
-      }
+      for (int iy = 0; iy < job.y.count; ++iy) check_stick_cell_defined(job, ix, iy);
     return job;
   }
   const Axis* count_axis = job.x.ball_count ? &job.x : job.y.ball_count ? &job.y : nullptr;

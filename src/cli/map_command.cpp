@@ -96,7 +96,7 @@ Action add_map_command(CLI::App& app) {
   return [o]() -> int {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
-    if (scene.shaft) {  // a flexible shaft: the balanced state's stability (model.md §18.13)
+    if (scene.shaft && !set_valued_on_shaft(scene)) {  // the balanced state's stability (model.md §18.13)
       refuse_unmodelled(scene, "map", {.shaft = true});
       check_output_directory(o->output_dir);
       return map_shaft(scene, {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y),
@@ -117,7 +117,9 @@ Action add_map_command(CLI::App& app) {
                           o->threads, o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
-    refuse_unmodelled(scene, "map", {.lugre = true, .set_valued = true, .anisotropic = true, .unround_set_valued = true});
+    refuse_unmodelled(scene, "map",
+                      {.lugre = true, .set_valued = true, .anisotropic = true, .unround_set_valued = true,
+                       .shaft_set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     MapRequest request;
     request.x = omega_axis_input(o->scene, o->x);

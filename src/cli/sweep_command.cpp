@@ -198,7 +198,7 @@ Action add_sweep_command(CLI::App& app) {
   add_shaft_spectrum_options(*sub, o->shaft);
   return [o]() -> int {
     Scene scene = load(o->scene);
-    if (scene.shaft) {  // a flexible shaft: the Campbell diagram over omega (model.md §16.1, §18)
+    if (scene.shaft && !set_valued_on_shaft(scene)) {  // the Campbell diagram over omega (model.md §16.1, §18)
       refuse_unmodelled(scene, "sweep", {.shaft = true});
       if (o->param != "omega")
         throw InputError("--param", 0, o->param,
@@ -223,7 +223,7 @@ Action add_sweep_command(CLI::App& app) {
     refuse_unmodelled(scene, "sweep",
                       unround ? Handles{.unround = true}
                               : Handles{.lugre = true, .set_valued = true, .anisotropic = true,
-                                        .unround_set_valued = true});
+                                        .unround_set_valued = true, .shaft_set_valued = true});
     check_output_directory(o->output_dir);  // refused before any work
     if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
     if (unround)

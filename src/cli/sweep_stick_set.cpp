@@ -2,6 +2,7 @@
 // row each and a chart of V, V_E, the rotor without balls and the area.
 #include <fmt/format.h>
 
+#include "abu/analysis/scene_stick_set.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/input/race_scene.hpp"
@@ -19,36 +20,40 @@ namespace abu::cli {
 int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
   StickSetOptions options = in.stick;
   options.trace = false;  // the boundary curves are not part of a sweep's figures
-  // Every value's set must be defined (mu > 0, not K = C = 0) before any work: refused,
-  // nothing computed or written (stick_point checks what stick_set would).
+  // Every value's set must be defined (mu > 0, not K = C = 0, on a shaft no undamped critical
+  // speed) before any work: refused, nothing computed or written.
   for (std::size_t i = 0; i < in.scenes.size(); ++i) {
-    const ParamsN p = params_of<any_balls>(in.scenes[i]);
     try {
-      (void)stick_point(p, std::vector<double>(std::size_t(p.n_balls()), 0.0));
+      check_scene_stick_set_defined(in.scenes[i]);
     } catch (const NotSupportedError& e) {
       throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
     }
   }
   std::vector<StickSet> sets;
+  std::vector<ShaftStickFigures> shaft;  // a flexible shaft's figures per value (model.md §18.17)
   sets.reserve(in.values.size());
+  ParamsN first;
   for (std::size_t i = 0; i < in.scenes.size(); ++i) {
     throw_if_stopped("sweep");
     try {
-      // on the race's paths when the race is unround (model.md §20.5)
-      sets.push_back(stick_set(params_of<any_balls>(in.scenes[i]), race_shape(in.scenes[i]), options));
+      // on the race's paths when the race is unround (§20.5), through the shaft on a shaft (§18.17)
+      SceneStickSet s = scene_stick_set(in.scenes[i], options);
+      if (i == 0) first = s.params;
+      sets.push_back(std::move(s.set));
+      if (s.shaft) shaft.push_back(std::move(*s.shaft));
     } catch (const NotSupportedError& e) {
       throw NotSupportedError(fmt::format("at {}={}: {}", in.name, in.values[i], e.what()));
     }
     if (!sets.back().status.ok())
       fmt::print(stderr, "stability-scan: note: at {}={}: {}\n", in.name, in.values[i], sets.back().status.reason);
   }
-  const ParamsN first = params_of<any_balls>(in.scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(in.output_dir);
   const auto csv_path = dir / fmt::format("sweep_stick_{}.csv", in.name);
   const auto png_path = dir / fmt::format("sweep_stick_{}.png", in.name);
   OutputTransaction out;
-  const auto staged = out.stage(csv_path, stick_sweep_csv(in.name, in.unit, in.values, sets, header));
+  const auto staged = out.stage(csv_path, stick_sweep_csv(in.name, in.unit, in.values, sets, header,
+                                                          scene.shaft ? &shaft : nullptr));
   if (in.chart)
     run_gnuplot(plots_dir() / "stick_set_sweep.gp",
                 {{"csv", staged.string()},
@@ -59,7 +64,10 @@ int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
                  {"nballs", std::to_string(first.n_balls())},
                  {"anchor", sets.front().unround_race ? "the least-|q| stable equilibrium of the race" : "balance"},
                  {"title", fmt::format("{}: stick set of coulomb-set friction{}, sweep of {}", scene.file,
-                                       sets.front().unround_race ? " on the paths of an unround race" : "", in.name)},
+                                       sets.front().unround_race ? " on the paths of an unround race"
+                                       : scene.shaft             ? " on a flexible shaft (|q| at the balancer node)"
+                                                                 : "",
+                                       in.name)},
                  {"subtitle", chart_subtitle(scene, in.overrides)}});
   out.commit();
   fmt::print(stderr, "wrote {} ({} values){}\n", csv_path.string(), sets.size(),

@@ -112,7 +112,7 @@ Eigen::VectorXd ShaftEquilibrium::state() const {
   return x;
 }
 
-std::optional<std::complex<double>> balancer_dynamic_stiffness(const ShaftSystem& sys) {
+std::optional<Eigen::VectorXcd> node_receptances(const ShaftSystem& sys) {
   const ShaftRotatingMatrices r = rotating_matrices(sys);
   Eigen::SparseLU<Sparse> lu;
   lu.compute(r.stiffness);
@@ -121,10 +121,20 @@ std::optional<std::complex<double>> balancer_dynamic_stiffness(const ShaftSystem
   force(sys.balancer_dof()) = 1.0;
   const Eigen::VectorXd u = lu.solve(force);
   if (lu.info() != Eigen::Success || !u.allFinite()) return std::nullopt;
+  // K_r commutes with the 90-degree rotation of every pair, so a unit force along a1 gives
+  // each node's complex receptance: u1_k + i u2_k = H_k (model.md (18.8.1), (18.17.2)).
+  Eigen::VectorXcd h(sys.nodes());
+  for (int k = 0; k < sys.nodes(); ++k) h(k) = std::complex<double>(u(4 * k), u(4 * k + 1));
+  return h;
+}
+
+std::optional<std::complex<double>> balancer_dynamic_stiffness(const ShaftSystem& sys) {
+  const std::optional<Eigen::VectorXcd> h = node_receptances(sys);
+  if (!h) return std::nullopt;
   // A unit force along a1 at the balancer node deflects it by q = h (18.8.1).
-  const std::complex<double> h(u(sys.balancer_dof()), u(sys.balancer_dof() + 1));
-  if (h == 0.0) return std::nullopt;
-  const std::complex<double> z = 1.0 / h;
+  const std::complex<double> hb = (*h)(sys.spec.balancer_node);
+  if (hb == 0.0) return std::nullopt;
+  const std::complex<double> z = 1.0 / hb;
   if (!std::isfinite(z.real()) || !std::isfinite(z.imag())) return std::nullopt;
   return z;
 }

@@ -8,6 +8,17 @@
 
 namespace abu {
 
+namespace {
+std::optional<RangeViolation> unbalance_violation(double u, double capacity) {
+  if (u != 0 && !(u >= kMinUnbalanceRatio * capacity))
+    return RangeViolation{"U", fmt::format("U must be 0 or >= {:g} of the balls' capacity sum m_i l_i = {:.6g} kg m "
+                                           "(U >= {:.6g} kg m; below, the balanced states agree to rounding: give U = 0 "
+                                           "for a balanced rotor); got U = {:g} kg m",
+                                           kMinUnbalanceRatio, capacity, kMinUnbalanceRatio * capacity, u)};
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
   double balls_mass = 0, capacity = 0;
   for (const auto& b : scene.balls) {
@@ -15,6 +26,8 @@ std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
     capacity += b.mass * b.race_radius;
   }
   const double total = scene.rotor.mass + balls_mass;
+  // A flexible shaft has no single omega_n (model.md §18.11, rule 9): only the unbalance's rule.
+  if (scene.shaft) return unbalance_violation(scene.rotor.unbalance, capacity);
   const double omega_n = std::sqrt(scene.rotor.stiffness / total);
   const double ratio = scene.omega / omega_n;
   if (!(ratio >= kMinSpeedRatio && ratio <= kMaxSpeedRatio))
@@ -34,13 +47,7 @@ std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
                                                "{:.6g} s/rad; beyond, the stiff friction modes and the creep modes "
                                                "are too far apart for double precision); got kappa = {:g} s/rad",
                                                kMaxSharpness, omega_n, kMaxSharpness / omega_n, scene.kappa)};
-  const double u = scene.rotor.unbalance;
-  if (u != 0 && !(u >= kMinUnbalanceRatio * capacity))
-    return RangeViolation{"U", fmt::format("U must be 0 or >= {:g} of the balls' capacity sum m_i l_i = {:.6g} kg m "
-                                           "(U >= {:.6g} kg m; below, the balanced states agree to rounding: give U = 0 "
-                                           "for a balanced rotor); got U = {:g} kg m",
-                                           kMinUnbalanceRatio, capacity, kMinUnbalanceRatio * capacity, u)};
-  return std::nullopt;
+  return unbalance_violation(scene.rotor.unbalance, capacity);
 }
 
 void check_numerical_range(const Scene& scene, const std::string& origin, const std::string& what) {

@@ -73,14 +73,7 @@ std::vector<std::string> shaft_warnings(const Scene& scene) {
 }
 
 void check_shaft_range(const Scene& scene, const std::string& origin) {
-  double capacity = 0.0;
-  for (const auto& b : scene.balls) capacity += b.mass * b.race_radius;
-  const double u = scene.rotor.unbalance;
-  if (u != 0 && !(u >= kMinUnbalanceRatio * capacity))
-    throw InputError(origin, 0, "U",
-                     fmt::format("U must be 0 or >= {:g} of the balls' capacity sum m_i l_i = {:.6g} kg m (got U = {:g} "
-                                 "kg m)",
-                                 kMinUnbalanceRatio, capacity, u));
+  check_numerical_range(scene, origin);  // on a shaft only the unbalance's rule (model.md §18.11, rule 9)
 }
 
 namespace scene_reading {

@@ -218,4 +218,22 @@ ShaftMatrices assemble_shaft(const ShaftSpec& spec) {
   return {to_sparse(n, mass), to_sparse(n, stiffness), to_sparse(n, damping), to_sparse(n, gyroscopic)};
 }
 
+std::string describe_shaft(const ShaftSpec& spec, std::string_view prefix) {
+  std::string out = fmt::format("{}flexible shaft (model.md §18): {} nodes, balancer at node {}\n", prefix, spec.nodes(),
+                                spec.balancer_node);
+  for (std::size_t e = 0; e < spec.elements.size(); ++e) {
+    const ShaftElement& el = spec.elements[e];
+    out += fmt::format("{}element {} (nodes {}-{}): length {} m, outer {} m, inner {} m, E {} Pa, rho {} kg/m^3, G {} Pa\n",
+                       prefix, e, e, e + 1, el.length, el.outer_diameter, el.inner_diameter, el.youngs_modulus,
+                       el.density, el.shear_modulus);
+  }
+  for (const ShaftDisc& d : spec.discs)
+    out += fmt::format("{}disc at node {}: mass {} kg, I_p {} kg m^2, I_d {} kg m^2\n", prefix, d.node, d.mass,
+                       d.polar_inertia, d.transverse_inertia);
+  for (const ShaftBearing& b : spec.bearings)
+    out += fmt::format("{}bearing at node {}: k {} N/m, c {} N s/m, k_psi {} N m/rad, c_psi {} N m s/rad\n", prefix,
+                       b.node, b.stiffness, b.damping, b.tilt_stiffness, b.tilt_damping);
+  return out;
+}
+
 }  // namespace abu

@@ -1,4 +1,5 @@
 #include "abu/output/chart_labels.hpp"
+#include "abu/model/shaft.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -31,8 +32,13 @@ std::string chart_subtitle(const Scene& scene, const std::vector<std::string>& o
   for (const auto& s : overrides) out += fmt::format("--set {}  ", s);
   if (!overrides.empty()) out += "|";
   const auto& r = scene.rotor;
-  out += fmt::format("rotor M_r = {:.4g} kg, k = {:.4g} N/m, c = {:.4g} N s/m, U = {:.4g} kg m;  {} balls: ", r.mass,
-                     r.stiffness, r.damping, r.unbalance, scene.balls.size());
+  if (scene.shaft)  // the rotor's k, c, M_r are not used: the shaft's discs and bearings replace them (model.md §18.10)
+    out += fmt::format("flexible shaft: {} nodes, {} bearings, balancer at node {}, U = {:.4g} kg m;  {} balls: ",
+                       scene.shaft->nodes(), scene.shaft->bearings.size(), scene.shaft->balancer_node, r.unbalance,
+                       scene.balls.size());
+  else
+    out += fmt::format("rotor M_r = {:.4g} kg, k = {:.4g} N/m, c = {:.4g} N s/m, U = {:.4g} kg m;  {} balls: ", r.mass,
+                       r.stiffness, r.damping, r.unbalance, scene.balls.size());
   out += fmt::format("{}, {}", ball_range(scene, "m", "kg", [](const auto& b) { return b.mass; }),
                      ball_range(scene, "l", "m", [](const auto& b) { return b.race_radius; }));
   double capacity = 0;
@@ -65,8 +71,9 @@ std::string chart_subtitle(const Scene& scene, const std::vector<std::string>& o
                          ball_range(scene, "mu_s", "", [](const auto& b) { return b.mu_s; }), scene.balls.front().v_s);
       break;
   }
-  out += fmt::format(";  omega_n = sqrt(k / (M_r + sum m)) = {:.5g} rad/s ({:.5g} rpm)", natural_frequency(scene),
-                     natural_frequency(scene) * 30 / 3.14159265358979323846);
+  if (!scene.shaft)
+    out += fmt::format(";  omega_n = sqrt(k / (M_r + sum m)) = {:.5g} rad/s ({:.5g} rpm)", natural_frequency(scene),
+                       natural_frequency(scene) * 30 / 3.14159265358979323846);
   std::replace(out.begin(), out.end(), '\'', '"');
   return out;
 }

@@ -90,9 +90,10 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
             return lugre_equilibria_table(s.rows, s.params);
           },
           [&](const StickSetStates& s) {
-            if (format == "csv") return stick_set_csv(s.set, header(s.params));
-            if (format == "json") return stick_set_json(s.set, c.command_line, c.scene_file, s.params);
-            return stick_set_table(s.set, s.params);
+            const ShaftStickFigures* shaft = s.shaft ? &*s.shaft : nullptr;  // on a flexible shaft (§18.17)
+            if (format == "csv") return stick_set_csv(s.set, header(s.params), shaft);
+            if (format == "json") return stick_set_json(s.set, c.command_line, c.scene_file, s.params, shaft);
+            return stick_set_table(s.set, s.params, shaft);
           },
           [&](const UnroundStates& s) {
             if (format == "csv")
@@ -157,7 +158,7 @@ void stage_stick_set_files(OutputTransaction& out, const std::filesystem::path& 
   const StickSet& s = st->set;
   const ParamsN& p = st->params;
   const std::string header = provenance_header(c.command_line, c.scene_file, p);
-  out.stage(d / "stick_set.csv", stick_set_csv(s, header));
+  out.stage(d / "stick_set.csv", stick_set_csv(s, header, st->shaft ? &*st->shaft : nullptr));
   if (s.n_balls != 2) return;
   const auto boundary = out.stage(d / "stick_boundary.csv", stick_boundary_csv(s, header));
   const auto raster = out.stage(d / "stick_raster.dat", stick_raster_dat(p, 240));

@@ -33,11 +33,36 @@ std::string angles(const std::vector<double>& v) {
 constexpr double two_pi = 2 * std::numbers::pi;
 }  // namespace
 
-std::string stick_set_table(const StickSet& s, const ParamsN& p) {
-  const double omega_n = std::sqrt(p.rotor.stiffness / p.total_mass());
+std::string shaft_stick_lines(const ShaftStickFigures& f, const StickSet& s, std::string_view prefix) {
   std::string out = fmt::format(
-      "{} balls; omega = {} rad/s = {:.4f} omega_n (omega_n = {:.6g} rad/s), friction coulomb-set (model.md §14)\n",
-      s.n_balls, p.omega, p.omega / omega_n, omega_n);
+      "{}the balls sit on a flexible shaft (model.md §18.17): they see a rigid rotor with the balancer node's dynamic "
+      "stiffness K_eff + i C_eff = {:.9g} {} {:.9g} i N/m (18.8.1; the rotor's k, c and M listed are that "
+      "equivalent rigid balancer's, (18.8.2))\n",
+      prefix, f.dynamic_stiffness.real(), f.dynamic_stiffness.imag() < 0 ? '-' : '+', std::abs(f.dynamic_stiffness.imag()));
+  out += fmt::format("{}largest deflection along the shaft: node {} deflects {:.6g} x the balancer node's (18.17.2): "
+                     "{} m where V is attained, {:.9g} m where V_E is\n",
+                     prefix, f.worst_node, f.deflection_ratio[std::size_t(f.worst_node)],
+                     s.balanced_exists ? fmt::format("{:.9g}", f.worst_deflection) : std::string("not defined"),
+                     f.worst_deflection_any);
+  return out;
+}
+
+std::string shaft_stick_json(const ShaftStickFigures& f) {
+  return fmt::format("{{\"dynamic_stiffness\": [{}, {}], \"deflection_ratio\": {}, \"worst_node\": {}, "
+                     "\"worst_deflection\": {}, \"worst_deflection_any\": {}}}",
+                     num(f.dynamic_stiffness.real(), "K_eff"), num(f.dynamic_stiffness.imag(), "C_eff"),
+                     list(f.deflection_ratio, "ratio"), f.worst_node, num(f.worst_deflection, "deflection"),
+                     num(f.worst_deflection_any, "deflection"));
+}
+
+std::string stick_set_table(const StickSet& s, const ParamsN& p, const ShaftStickFigures* shaft) {
+  const double omega_n = std::sqrt(p.rotor.stiffness / p.total_mass());
+  std::string out =
+      shaft ? fmt::format("{} balls; omega = {} rad/s, friction coulomb-set (model.md §14)\n", s.n_balls, p.omega) +
+                  shaft_stick_lines(*shaft, s, "")
+            : fmt::format("{} balls; omega = {} rad/s = {:.4f} omega_n (omega_n = {:.6g} rad/s), friction coulomb-set "
+                          "(model.md §14)\n",
+                          s.n_balls, p.omega, p.omega / omega_n, omega_n);
   out += s.unround_race ? "stick set E on the unround race's paths: every arrangement where every ball can stick, "
                           "|Re(conj(p_i') (p_i + q))| / s_i' <= mu_i l_i (model.md (20.5))\n"
                         : "stick set E: every arrangement where every ball can stick, |q1 sin b_i - q2 cos b_i| <= mu_i l_i\n";
@@ -84,8 +109,9 @@ std::string stick_set_table(const StickSet& s, const ParamsN& p) {
   return out;
 }
 
-std::string stick_set_csv(const StickSet& s, const std::string& header) {
+std::string stick_set_csv(const StickSet& s, const std::string& header, const ShaftStickFigures* shaft) {
   std::string out = header;
+  if (shaft) out += shaft_stick_lines(*shaft, s, "# ");
   out += fmt::format("# stick set (model.md §14): area {} rad^{}, components {}, V {} m, V_E {} m, mean |q| {} m{}\n",
                      num(s.area, "area"), s.n_balls, s.components.size(), num(s.worst_q_abs, "V"),
                      num(s.worst_q_abs_any, "V_E"), num(s.mean_q_abs, "mean"),
@@ -142,14 +168,14 @@ std::string stick_set_json_object(const StickSet& s) {
 }
 
 std::string stick_set_json(const StickSet& s, std::string_view command_line, std::string_view scene_file,
-                           const ParamsN& p) {
+                           const ParamsN& p, const ShaftStickFigures* shaft) {
   return fmt::format(
       "{{\n  \"program\": \"stability-scan {}\",\n  \"command\": {},\n  \"scene\": {},\n  \"parameters\": {},\n  "
-      "\"balls\": {},\n  \"units\": {},\n  \"frame\": \"rotating\",\n  \"stick_set\": {}\n}}\n",
+      "\"balls\": {},\n  \"units\": {},\n  \"frame\": \"rotating\",\n  \"stick_set\": {}{}\n}}\n",
       ABU_VERSION, json_string(command_line), json_string(scene_file), json_string(describe_parameters(p)), p.n_balls(),
       json_string("area [rad^n], q [m], beta and spread [rad]; q is the rotor displacement in the rotating frame (a whirl of "
            "radius |q| in the fixed frame)"),
-      stick_set_json_object(s));
+      stick_set_json_object(s), shaft ? ",\n  \"shaft\": " + shaft_stick_json(*shaft) : std::string());
 }
 
 std::string stick_boundary_csv(const StickSet& s, const std::string& header) {
@@ -169,7 +195,8 @@ std::string stick_boundary_csv(const StickSet& s, const std::string& header) {
 }
 
 std::string stick_sweep_csv(std::string_view name, std::string_view unit, const std::vector<double>& values,
-                            const std::vector<StickSet>& sets, const std::string& header) {
+                            const std::vector<StickSet>& sets, const std::string& header,
+                            const std::vector<ShaftStickFigures>* shaft) {
   int n_max = 0;
   for (const auto& s : sets) n_max = std::max(n_max, s.n_balls);
   std::string out = header;
@@ -184,10 +211,15 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
       "#   spread_i [rad] = the largest angular spread of ball i over a balanced component (empty if none); |q| is in "
       "the rotating frame, the whirl radius in the fixed frame\n",
       name, unit);
+  if (shaft)
+    out += "# flexible shaft (model.md §18.17): q is the balancer node's; K_eff, C_eff [N/m] its dynamic stiffness "
+           "(18.8.1); worst_node = the node deflecting most per unit q, (18.17.2); worst_deflection [m] = its deflection "
+           "where V is attained (empty if no balanced state), worst_deflection_any [m] where V_E is\n";
   out += fmt::format("{},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,worst_q_abs_any,"
                      "mean_q_abs,bare_rotor_q_abs,worst_over_bare",
                      name);
   for (int i = 1; i <= n_max; ++i) out += fmt::format(",spread{}", i);
+  if (shaft) out += ",K_eff,C_eff,worst_node,worst_deflection,worst_deflection_any";
   out += "\n";
   for (std::size_t k = 0; k < sets.size(); ++k) {
     const StickSet& s = sets[k];
@@ -200,6 +232,12 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
     for (int i = 0; i < n_max; ++i) {
       out += ',';
       if (v && i < s.n_balls) out += num(s.spread[std::size_t(i)], "spread");
+    }
+    if (shaft) {
+      const ShaftStickFigures& f = (*shaft)[k];
+      out += fmt::format(",{},{},{},{},{}", num(f.dynamic_stiffness.real(), "K_eff"), num(f.dynamic_stiffness.imag(), "C_eff"),
+                         f.worst_node, v ? num(f.worst_deflection, "deflection") : std::string(),
+                         num(f.worst_deflection_any, "deflection"));
     }
     out += "\n";
   }

@@ -4,8 +4,11 @@
 #include <fmt/compile.h>
 
 #include <cmath>
+#include <optional>
 
 #include "abu/core/errors.hpp"
+#include "abu/equilibria/shaft_equilibria.hpp"
+#include "abu/equilibria/shaft_stick_set.hpp"
 #include "abu/equilibria/stick_set.hpp"
 #include "abu/linear/unround_stick_set.hpp"
 
@@ -40,13 +43,21 @@ std::string common_stick_header(const MapJob& job) {
 }
 
 // The common header, then `text` with {0}, {1} the axis names, {2}, {3} their units, {4} the
-// ball count and {5} one column per ball named by `per_ball` ("{}" the 1-based index).
+// ball count and {5} one column per ball named by `per_ball` ("{}" the 1-based index); on a shaft
+// {6} the comment on its columns and {7} their names (the summary's).
 std::string stick_header(const MapJob& job, std::string_view per_ball, std::string_view text) {
   const int n = job.params_n.n_balls();
   std::string columns;
   for (int i = 1; i <= n; ++i) columns += fmt::format(fmt::runtime(per_ball), i);
-  return common_stick_header(job) + fmt::format(fmt::runtime(text), job.x.name(), job.y.name(), axis_unit(job.x),
-                                                axis_unit(job.y), n, columns);
+  const bool shaft = job.shaft != nullptr;  // the summary's shaft columns (model.md §18.17)
+  return common_stick_header(job) +
+         fmt::format(fmt::runtime(text), job.x.name(), job.y.name(), axis_unit(job.x), axis_unit(job.y), n, columns,
+                     shaft ? "# flexible shaft (model.md §18.17): q is the balancer node's; K_eff, C_eff [N/m] its "
+                             "dynamic stiffness (18.8.1); worst_node = the node deflecting most per unit q (18.17.2); "
+                             "worst_deflection [m] = its deflection where V is attained (empty if no balanced state), "
+                             "worst_deflection_any [m] where V_E is\n"
+                           : "",
+                     shaft ? ",K_eff,C_eff,worst_node,worst_deflection,worst_deflection_any" : "");
 }
 
 void check_finite(double value, const MapJob& job, int ix, int iy, const char* what) {
@@ -80,15 +91,15 @@ std::string stick_summary_csv_header(const MapJob& job) {
                       "#   mean_q_abs [m] = mean |q| over E; bare_rotor_q_abs [m] = omega^2 U / |K + iC|, the rotor "
                       "without balls; spread_i [rad] = the largest angular spread of ball i over a balanced component "
                       "(empty if none); |q| is in the rotating frame, the whirl radius in the fixed frame\n"
-                      "ix,iy,{0},{1},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,"
-                      "worst_q_abs_any,mean_q_abs,bare_rotor_q_abs{5}\n");
+                      "{6}ix,iy,{0},{1},area,area_fraction,whole_torus,components,balanced_exists,worst_q_abs,"
+                      "worst_q_abs_any,mean_q_abs,bare_rotor_q_abs{5}{7}\n");
 }
 
 std::size_t stick_map_bytes_per_cell(const MapJob& job) {
   // summary ~ 13 numbers of up to 24 characters plus n spreads; long rows: a few
   // components (the scenes of tests/scenes/stick have up to 7), each ~10 + n numbers.
   const int n = job.params_n.n_balls();
-  return std::size_t((14 + n) * 25 + 8 * (10 + n) * 25);
+  return std::size_t((19 + n) * 25 + 8 * (10 + n) * 25);  // + the shaft's 5 columns, if any
 }
 
 ParamsN stick_cell_params(const MapJob& job, int ix, int iy) {
@@ -98,17 +109,44 @@ ParamsN stick_cell_params(const MapJob& job, int ix, int iy) {
   return p;
 }
 
+namespace {
+std::string cell_name(const MapJob& job, int ix, int iy) {
+  return fmt::format("map cell ({}, {}) = ({}={}, {}={})", ix, iy, job.x.name(), job.x.value(ix), job.y.name(),
+                     job.y.value(iy));
+}
+}  // namespace
+
+void check_stick_cell_defined(const MapJob& job, int ix, int iy) {
+  const ParamsN p = stick_cell_params(job, ix, iy);
+  try {
+    if (job.shaft) {
+      const ShaftSystem sys = stuck_balls_shaft(*job.shaft, p);
+      check_stick_set_defined(equivalent_rigid_params(sys, stuck_balls_dynamic_stiffness(sys)));
+    } else {
+      check_stick_set_defined(p);
+    }
+  } catch (const NotSupportedError& e) {
+    throw NotSupportedError(fmt::format("{}: {}", cell_name(job, ix, iy), e.what()));
+  }
+}
+
 int write_stick_cell(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y,
                      fmt::memory_buffer& rows, fmt::memory_buffer& summary) {
   const ParamsN p = stick_cell_params(job, ix, iy);
   StickSetOptions options = job.stick;
   options.trace = false;  // the boundary curves are not written per cell
   StickSet s;
+  std::optional<ShaftStickFigures> shaft;
   try {
-    s = stick_set(p, job.race, options);  // on the race's paths when unround (model.md §20.5)
+    if (job.shaft) {  // through the shaft (model.md §18.17)
+      ShaftStickSet ss = shaft_stick_set(stuck_balls_shaft(*job.shaft, p), options);
+      s = std::move(ss.set);
+      shaft = std::move(ss.shaft);
+    } else {
+      s = stick_set(p, job.race, options);  // on the race's paths when unround (model.md §20.5)
+    }
   } catch (const NotSupportedError& e) {
-    throw NotSupportedError(fmt::format("map cell ({}, {}) = ({}={}, {}={}): {}", ix, iy, job.x.name(), x,
-                                        job.y.name(), y, e.what()));
+    throw NotSupportedError(fmt::format("{}: {}", cell_name(job, ix, iy), e.what()));
   }
   const int n = s.n_balls;
   for (std::size_t c = 0; c < s.components.size(); ++c) {
@@ -138,6 +176,15 @@ int write_stick_cell(const MapJob& job, int ix, int iy, std::string_view x, std:
       check_finite(s.spread[std::size_t(i)], job, ix, iy, "a spread");
       fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), s.spread[std::size_t(i)]);
     }
+  }
+  if (shaft) {
+    for (double v : {shaft->dynamic_stiffness.real(), shaft->dynamic_stiffness.imag(), shaft->worst_deflection,
+                     shaft->worst_deflection_any})
+      check_finite(v, job, ix, iy, "a shaft figure");
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},{},{},"), shaft->dynamic_stiffness.real(),
+                   shaft->dynamic_stiffness.imag(), shaft->worst_node);
+    if (s.balanced_exists) fmt::format_to(fmt::appender(summary), FMT_COMPILE("{}"), shaft->worst_deflection);
+    fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}"), shaft->worst_deflection_any);
   }
   summary.push_back('\n');
   return int(s.components.size());

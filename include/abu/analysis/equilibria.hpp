@@ -7,7 +7,8 @@
 //                                                coulomb / stribeck, the dry-friction verdict (§14.10)
 //   LuGre friction                               the z = 0 equilibria and a stuck state, both
 //                                                one-sided spectra (§12)
-//   coulomb-set friction                         the stick set (§14)
+//   coulomb-set friction                         the stick set (§14; on a shaft its equivalent
+//                                                rigid balancer's, §18.17)
 //   unround race                                 every equilibrium by the box search (§11.4)
 //   anisotropic support                          the balanced states' Floquet verdicts and the
 //                                                other states' periodic orbits (§10)
@@ -28,6 +29,7 @@
 #include "abu/analysis/floquet_states.hpp"
 #include "abu/analysis/lugre_states.hpp"
 #include "abu/analysis/shaft_states.hpp"
+#include "abu/analysis/scene_stick_set.hpp"
 #include "abu/equilibria/stick_set.hpp"
 #include "abu/input/scene.hpp"
 #include "abu/linear/kappa_sensitivity.hpp"
@@ -66,8 +68,9 @@ struct LugreStates {
   std::vector<LugreRow> rows;
 };
 struct StickSetStates {
-  ParamsN params;
+  ParamsN params;  ///< on a shaft: the equivalent rigid balancer's (model.md (18.8.2))
   StickSet set;
+  std::optional<ShaftStickFigures> shaft;  ///< on a flexible shaft (model.md §18.17)
 };
 struct UnroundStates {
   ParamsN params;

@@ -25,6 +25,8 @@ Route route_of(const Scene& scene);
 bool unround_on_anisotropic_support(const Scene& scene);
 /// coulomb-set balls on an unround race, an isotropic support (model.md §20.5).
 bool set_valued_on_unround_race(const Scene& scene);
+/// coulomb-set balls on a flexible shaft with a round race (model.md §18.17).
+bool set_valued_on_shaft(const Scene& scene);
 
 /// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
@@ -43,6 +45,8 @@ struct Handles {
   bool unround_anisotropic = false;
   /// coulomb-set balls on an unround race (the stick set on the race's paths, model.md §20.5)
   bool unround_set_valued = false;
+  /// coulomb-set balls on a flexible shaft (the equivalent rigid balancer's stick set, model.md §18.17)
+  bool shaft_set_valued = false;
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
 /// coulomb-set, a shaft) is refused (NotSupportedError, naming the commands that answer it

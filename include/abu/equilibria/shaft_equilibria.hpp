@@ -60,6 +60,11 @@ struct ShaftEquilibriumSet {
 /// Every equilibrium (balanced samples and every aligned one).
 ShaftEquilibriumSet find_shaft_equilibria(const ShaftSystem& sys, const BalancedSampling& sampling = {});
 
+/// The complex receptance H_k of every node's translation to a force at the balancer node,
+/// u1_k + i u2_k = H_k (F1 + i F2) (model.md (18.17.2)); H at the balancer node is h of
+/// (18.8.1). nullopt if the rotating-frame stiffness is singular (an undamped critical speed).
+std::optional<Eigen::VectorXcd> node_receptances(const ShaftSystem& sys);
+
 /// K_eff + i C_eff = 1/h(omega) at the balancer node, from the sparse rotating-frame
 /// stiffness of rotating_matrices (balls' mass included); nullopt if it is singular.
 std::optional<std::complex<double>> balancer_dynamic_stiffness(const ShaftSystem& sys);

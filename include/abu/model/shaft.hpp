@@ -17,6 +17,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -95,5 +96,9 @@ double shear_coefficient(const ShaftElement& e);
 /// mass: model.md §18.9), or nullopt. The scene reader checks these with file and line;
 /// this is the model's own guard (make_shaft_system throws on it).
 std::optional<std::string> shaft_spec_violation(const ShaftSpec& spec);
+
+/// Every number of the shaft, one line per element, disc and bearing, each starting with
+/// `prefix`: what a map's tiles were computed for (their manifest), and its provenance.
+std::string describe_shaft(const ShaftSpec& spec, std::string_view prefix);
 
 }  // namespace abu

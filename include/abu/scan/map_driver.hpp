@@ -13,6 +13,7 @@
 //   abu::assemble(job, store, long_csv_stream, summary_csv_stream, &grid_stream);
 #pragma once
 
+#include "abu/model/shaft.hpp"
 #include "abu/model/unround_race.hpp"
 
 #include <atomic>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -75,6 +77,9 @@ struct MapJob {
   StickSetOptions stick;
   /// coulomb-set on an unround race (model.md §20.5): the stick set on its paths per cell.
   RaceShape race;
+  /// coulomb-set on a flexible shaft (model.md §18.17): per cell the stick set of the rigid
+  /// balancer the balls see through this shaft (`params_n` then gives omega, U and the balls).
+  std::shared_ptr<const ShaftSpec> shaft;
   /// The long CSV's rows (a row per equilibrium per cell, ~0.8 kB a cell) are formatted
   /// and kept in the tiles only when asked for (`map --long`); part of the tiles' manifest.
   bool long_rows = false;

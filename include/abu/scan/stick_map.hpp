@@ -34,7 +34,11 @@ std::string stick_summary_csv_header(const MapJob& job);
 std::size_t stick_map_bytes_per_cell(const MapJob& job);
 /// The parameters of cell (ix, iy) of a stick-set map.
 ParamsN stick_cell_params(const MapJob& job, int ix, int iy);
-/// Computes the stick set of cell (ix, iy) and appends its rows (x, y: the axis values as
+/// Throws NotSupportedError naming the cell where its set is not defined (mu_i <= 0,
+/// K = C = 0, on a shaft an undamped critical speed): the check before any work.
+void check_stick_cell_defined(const MapJob& job, int ix, int iy);
+/// Computes the stick set of cell (ix, iy) (on a shaft, job.shaft: its equivalent rigid
+/// balancer's, and the summary's shaft columns, model.md §18.17) and appends its rows (x, y: the axis values as
 /// written); returns the number of components. Throws NumericalError naming the cell if a
 /// figure is not finite, NotSupportedError naming it where the set is not defined (K = C = 0).
 int write_stick_cell(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y,
