@@ -184,7 +184,9 @@ int map_shaft(const Scene& scene, const ShaftMapRequest& request) {
   job.spectrum.eigenvalues = request.spectrum.eigenvalues;
   job.spectrum.band = request.spectrum.band;
   job.spectrum.sampling = request.sampling;
-  job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene));
+  // The shaft's numbers too: the tiles' manifest is this header, so --resume refuses a changed shaft.
+  job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene)) +
+                   describe_shaft(*scene.shaft, "# ");
   namespace fs = std::filesystem;
   const fs::path dir(request.output_dir);
   const auto csv_path = dir / fmt::format("shaft_map_{}_{}.csv", x.name, y.name);
