@@ -138,6 +138,7 @@ EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions&
     case Route::shaft: {  // its equilibria and rightmost eigenvalues (model.md §18)
       if (o.mode_shapes) throw NotSupportedError("--mode-shapes on a flexible shaft ([shaft], model.md §18)");
       ShaftStates st = analyze_shaft_states(shaft_system_of(scene), o.sampling, o.shaft);
+      st.dry = dry_friction_verdict(st.system, o.stick);  // coulomb / stribeck: where the balls really stop
       r.warnings = st.warnings;
       r.states = std::move(st);
       break;

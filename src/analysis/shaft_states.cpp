@@ -71,7 +71,7 @@ ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e
 
 ShaftStates analyze_shaft_states(const ShaftSystem& sys, const BalancedSampling& sampling,
                                  const ShaftSpectrumOptions& o) {
-  ShaftStates out{sys, o, {}, {}};
+  ShaftStates out{sys, o, {}, {}, {}};
   const ShaftEquilibriumSet set = find_shaft_equilibria(sys, sampling);
   for (const auto& e : set.list) {
     throw_if_stopped("equilibria (shaft)");

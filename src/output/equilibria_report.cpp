@@ -107,9 +107,15 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
           [&](const AnisotropicStates& s) { return anisotropic_text(s, format, c); },
           [&](const UnroundAnisotropicStates& s) { return unround_anisotropic_text(s, format, c); },
           [&](const ShaftStates& s) {
-            if (format == "csv") return shaft_states_csv(s, c.command_line, c.scene_file);
-            if (format == "json") return shaft_states_json(s, c.command_line, c.scene_file);
-            return shaft_states_table(s, c.scene_file);
+            if (format == "csv") {  // the verdict's lines close the comment block, before the column names
+              std::string csv = shaft_states_csv(s, c.command_line, c.scene_file);
+              return csv.insert(csv.find("\nequilibrium,") + 1, dry_friction_lines(s.dry, "# "));
+            }
+            if (format == "json") {
+              std::string json = shaft_states_json(s, c.command_line, c.scene_file);
+              return json.insert(2, dry_friction_json(s.dry));  // a member after the opening "{\n"
+            }
+            return shaft_states_table(s, c.scene_file) + dry_friction_lines(s.dry, "");
           },
       },
       r.states);

@@ -247,7 +247,9 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
 std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view prefix) {
   if (!d.applies) return {};
   std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md {}): ", prefix, d.which,
-                                d.set && d.set->unround_race ? "§20.5, on the race's paths" : "§14");
+                                d.set && d.set->unround_race ? "§20.5, on the race's paths"
+                                : d.shaft                    ? "§18.17, through the shaft's receptance"
+                                                             : "§14");
   if (!d.set) return out + fmt::format("not defined: {}\n", d.not_defined);
   const StickSet& s = *d.set;
   const std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
@@ -261,6 +263,12 @@ std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view pre
   else
     out += fmt::format("no balanced point in the stick set ({}); a stuck state leaves at most V_E = {:.6g} m; {}\n",
                        s.status.reason, s.worst_q_abs_any, set);
+  if (d.shaft)
+    out += fmt::format("{}  along the shaft: node {} deflects {:.4g} x the balancer node, {} m where V is attained, "
+                       "{:.6g} m where V_E is\n",
+                       prefix, d.shaft->worst_node, d.shaft->deflection_ratio[std::size_t(d.shaft->worst_node)],
+                       s.balanced_exists ? fmt::format("{:.6g}", d.shaft->worst_deflection) : std::string("not defined"),
+                       d.shaft->worst_deflection_any);
   out += fmt::format("{}  the smooth law's stability above is that of its arctan regularization: its creep modes "
                      "(lambda ~ 1/kappa) are the balls creeping through this set, not settling\n",
                      prefix);
@@ -271,13 +279,15 @@ std::string dry_friction_json(const DryFrictionVerdict& d) {
   if (!d.applies) return {};
   std::string out = fmt::format("  \"dry_friction\": {{\"law\": \"coulomb-set\", \"coefficients\": {}, \"model\": "
                                 "\"model.md {}\", ",
-                                json_string(d.which), d.set && d.set->unround_race ? "§20.5" : "§14");
+                                json_string(d.which),
+                                d.set && d.set->unround_race ? "§20.5" : d.shaft ? "§18.17" : "§14");
   if (!d.set) return out + fmt::format("\"defined\": false, \"not_defined\": {}}},\n", json_string(d.not_defined));
   const StickSet& s = *d.set;
   out += fmt::format("\"defined\": true, \"area\": {}, \"area_unit\": \"rad^{}\", \"area_fraction\": {}, "
                      "\"whole_torus\": {}, \"components\": {}, \"balanced_in_set\": {}, ",
                      num(s.area, "area"), s.n_balls, num(s.area_fraction, "area fraction"), s.whole_torus,
                      s.components.size(), s.balanced_exists);
+  if (d.shaft) out += fmt::format("\"shaft\": {}, ", shaft_stick_json(*d.shaft));
   out += fmt::format("\"worst_q_abs\": {}, \"worst_q_abs_any\": {}, \"bare_rotor_q_abs\": {}, \"status\": {}}},\n",
                      s.balanced_exists ? num(s.worst_q_abs, "V") : std::string("null"), num(s.worst_q_abs_any, "V_E"),
                      num(s.bare_rotor_q_abs, "bare rotor |q|"),

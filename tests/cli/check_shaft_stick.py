@@ -201,6 +201,19 @@ with tempfile.TemporaryDirectory() as tmp:
                 float(row["worst_deflection_any"]) != js["shaft"]["worst_deflection_any"]:
             failures.append(f"map cell ({row['ix']}, {row['iy']}) differs from equilibria")
 
+    # --- a smooth coulomb law on the shaft: its dry-friction verdict is this set (the same doubles,
+    # model.md §14.10: the verdict computes what it prints as the full scan does)
+    smooth = f"{tmp}/smooth.toml"
+    with open(smooth, "w") as f:
+        f.write(SCENE.format(mu=1e-4, omega=900.0).replace('law = "coulomb-set"', 'law = "coulomb"\nkappa = 100.0'))
+    dry = json.loads(run("equilibria", smooth, "--format", "json", *RES).stdout)["dry_friction"]
+    js = equilibria(scene, [], RES)
+    for key in ("area", "worst_q_abs", "worst_q_abs_any", "bare_rotor_q_abs"):
+        if dry[key] != js["stick_set"][key]:
+            failures.append(f"coulomb on the shaft: dry_friction {key} {dry[key]!r} != the coulomb-set set's {js['stick_set'][key]!r}")
+    if dry["shaft"]["worst_deflection"] != js["shaft"]["worst_deflection"]:
+        failures.append("coulomb on the shaft: the verdict's worst deflection differs from the coulomb-set set's")
+
     # --- what does not answer the combination refuses it, naming it; nothing written
     for args in (["continue", scene, "--param", "omega", "--to", "1000", "-o", f"{tmp}/c"], ["simulate", scene, "--balls", "1,2", "-o", f"{tmp}/x"],
                  ["basin", scene, "-o", f"{tmp}/b"]):

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "abu/analysis/dry_friction.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
 #include "abu/input/scene.hpp"
@@ -54,6 +55,7 @@ struct ShaftStates {
   ShaftSpectrumOptions spectrum;
   std::vector<ShaftState> states;
   std::string warnings;
+  DryFrictionVerdict dry;  ///< coulomb / stribeck: the stick set of the same mu through the shaft (§18.17)
 };
 
 /// The shaft system of a [shaft] scene. Throws InputError (file, key "shaft") for a rule the
