@@ -137,6 +137,19 @@ EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions&
   switch (route) {
     case Route::shaft: {  // its equilibria and rightmost eigenvalues (model.md §18)
       if (o.mode_shapes) throw NotSupportedError("--mode-shapes on a flexible shaft ([shaft], model.md §18)");
+      if (!scene.race.round()) {  // the race's equilibria on the shaft (model.md §18.18)
+        ShaftStates st = analyze_shaft_race_states(shaft_system_of(scene), race_shape(scene), o.shaft);
+        if (scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck) {
+          st.dry.applies = true;
+          st.dry.which = scene.law == FrictionLaw::stribeck ? "mu_i = mu_s" : "the same mu_i";
+          st.dry.not_defined =
+              "not computed on an unround race on a shaft: V is anchored at the race's least-|q| stable equilibrium "
+              "(model.md §20.5), whose stability here is the shaft's";
+        }
+        r.warnings = st.warnings;
+        r.states = std::move(st);
+        break;
+      }
       ShaftStates st = analyze_shaft_states(shaft_system_of(scene), o.sampling, o.shaft);
       st.dry = dry_friction_verdict(st.system, o.stick);  // coulomb / stribeck: where the balls really stop
       r.warnings = st.warnings;

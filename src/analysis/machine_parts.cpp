@@ -26,6 +26,7 @@ Route route_of(const Scene& scene) {
   if (unround_on_anisotropic_support(scene)) return Route::unround_anisotropic;  // model.md §20
   if (set_valued_on_unround_race(scene)) return Route::set_valued;               // on the race's paths, §20.5
   if (set_valued_on_shaft(scene)) return Route::set_valued;                      // the equivalent rigid balancer's, §18.17
+  if (unround_on_shaft(scene)) return Route::shaft;                              // the race's equilibria on it, §18.18
   refuse_combined_extensions(scene);
   if (scene.shaft) return Route::shaft;
   if (!scene.race.round()) return Route::unround;
@@ -45,7 +46,7 @@ struct CommandParts {
 constexpr CommandParts kCommandParts[] = {
     {"equilibria",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
-      .unround_set_valued = true, .shaft_set_valued = true}},
+      .unround_set_valued = true, .shaft_set_valued = true, .shaft_unround = true}},
     {"sweep",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .unround_set_valued = true, .shaft_set_valued = true}},
@@ -124,6 +125,11 @@ bool set_valued_on_unround_race(const Scene& scene) {
   return scene.law == FrictionLaw::coulomb_set && !scene.race.round() && !scene.support && !scene.shaft;
 }
 
+bool unround_on_shaft(const Scene& scene) {
+  return scene.shaft && !scene.race.round() && !scene.support && scene.law != FrictionLaw::lugre &&
+         scene.law != FrictionLaw::coulomb_set;
+}
+
 bool set_valued_on_shaft(const Scene& scene) {
   return scene.law == FrictionLaw::coulomb_set && scene.shaft && scene.race.round() && !scene.support;
 }
@@ -151,6 +157,13 @@ void refuse_combined_extensions(const Scene& scene, Handles handles) {
                                         "through the shaft)",
                                         scene.file, only_commands(&Handles::shaft_set_valued, "analyse")));
   }
+  if (unround_on_shaft(scene)) {
+    if (handles.shaft_unround) return;
+    throw NotSupportedError(fmt::format("{} has an unround race on a flexible shaft (model.md §18.18): only {} "
+                                        "that combination so far (the race's equilibria on the shaft with their "
+                                        "rightmost eigenvalues)",
+                                        scene.file, only_commands(&Handles::shaft_unround, "analyse")));
+  }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +
                          int(scene.shaft != nullptr);
@@ -168,6 +181,7 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   if (handles.unround_set_valued && set_valued_on_unround_race(scene)) handles.unround = handles.set_valued = true;
   if (handles.unround_anisotropic && unround_on_anisotropic_support(scene)) handles.unround = handles.anisotropic = true;
   if (handles.shaft_set_valued && set_valued_on_shaft(scene)) handles.shaft = handles.set_valued = true;
+  if (handles.shaft_unround && unround_on_shaft(scene)) handles.shaft = handles.unround = true;
   if (!handles.lugre) refuse_lugre(scene, command);
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);

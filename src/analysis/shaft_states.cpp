@@ -9,6 +9,8 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/input/shaft_scene.hpp"
+#include "abu/equilibria/shaft_race_equilibria.hpp"
+#include "abu/model/shaft_race.hpp"
 #include "abu/scan/shaft_map.hpp"
 
 namespace abu {
@@ -29,7 +31,7 @@ ShaftSystem shaft_system_of(const Scene& scene) {
 }
 
 ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e, const ShaftSpectrumOptions& o,
-                               bool vectors) {
+                               bool vectors, const RaceShape* race) {
   ShaftState pt;
   pt.eq = e;
   const Eigen::VectorXd& s = e.position;
@@ -39,7 +41,9 @@ ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e
     const double d = std::hypot(s[4 * k], s[4 * k + 1]);
     if (d > pt.max_deflection) pt.max_deflection = d, pt.max_node = k;
   }
-  pt.spectrum = shaft_rightmost(sys, e.state(), o.eigenvalues, o.band, vectors, &pt.merged);
+  pt.spectrum = race ? pencil_rightmost(shaft_pencil(linearize_shaft_on_race(sys, *race, s)), sys.balancer.omega,
+                                        o.eigenvalues, o.band, vectors, &pt.merged)  // model.md (18.18.2)
+                     : shaft_rightmost(sys, e.state(), o.eigenvalues, o.band, vectors, &pt.merged);
   // The verdict's rule and the structural zeros set aside: scan/shaft_map.hpp (shared with `map`).
   ShaftVerdict v = shaft_verdict(pt.spectrum, e.structural_zeros);
   pt.structural = std::move(v.structural);
@@ -71,7 +75,7 @@ ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e
 
 ShaftStates analyze_shaft_states(const ShaftSystem& sys, const BalancedSampling& sampling,
                                  const ShaftSpectrumOptions& o) {
-  ShaftStates out{sys, o, {}, {}, {}};
+  ShaftStates out{sys, o, {}, {}, {}, {}};
   const ShaftEquilibriumSet set = find_shaft_equilibria(sys, sampling);
   for (const auto& e : set.list) {
     throw_if_stopped("equilibria (shaft)");
@@ -91,6 +95,29 @@ ShaftStates analyze_shaft_states(const ShaftSystem& sys, const BalancedSampling&
     if (pt.spectrum.eigenpairs.empty())
       throw NumericalError(fmt::format("omega={}: ARPACK found no eigenvalue of a {} equilibrium: {}",
                                        sys.balancer.omega, to_string(pt.eq.family), pt.spectrum.status.reason));
+  return out;
+}
+
+ShaftStates analyze_shaft_race_states(const ShaftSystem& sys, const RaceShape& race, const ShaftSpectrumOptions& o) {
+  ShaftStates out{sys, o, {}, {}, {}, race};
+  const ShaftRaceEquilibria set = find_shaft_race_equilibria(sys, race);
+  if (!set.doubt.empty()) out.warnings += fmt::format("warning: omega={}: {}\n", sys.balancer.omega, set.doubt);
+  for (const auto& e : set.list) {
+    throw_if_stopped("equilibria (shaft, unround race)");
+    if (!e.status.ok())
+      out.warnings += fmt::format("warning: omega={}: race equilibrium {}'s polish: {} (residual {:.3g})\n",
+                                  sys.balancer.omega, e.member, e.status.reason, e.residual);
+    out.states.push_back(analyze_shaft_state(sys, e, o, false, &race));
+    const ShaftState& pt = out.states.back();
+    if (!pt.spectrum.status.ok())
+      out.warnings += fmt::format("warning: omega={}: race equilibrium {}: ARPACK: {} ({} eigenvalue(s) found)\n",
+                                  sys.balancer.omega, e.member, pt.spectrum.status.reason, pt.spectrum.eigenpairs.size());
+    if (pt.spectrum.eigenpairs.empty())
+      throw NumericalError(fmt::format("omega={}: ARPACK found no eigenvalue of race equilibrium {}: {}",
+                                       sys.balancer.omega, e.member, pt.spectrum.status.reason));
+  }
+  if (!set.status.ok())
+    out.warnings += fmt::format("warning: omega={}: shaft equilibria: {}\n", sys.balancer.omega, set.status.reason);
   return out;
 }
 

@@ -56,11 +56,11 @@ Paths paths_at(const ParamsN& p, const RaceShape& race, const State<double, any_
   return out;
 }
 
-// A(beta) of (11.3.3).
-DofM mass_of(const ParamsN& p, const Paths& paths) {
+// A(beta) of (11.3.3); without the translating mass M (`rotor` false) the balls' share only.
+DofM mass_of(const ParamsN& p, const Paths& paths, bool rotor = true) {
   const int n = p.n_balls();
   DofM A = DofM::Zero(n + 2, n + 2);
-  A(0, 0) = A(1, 1) = p.total_mass();
+  if (rotor) A(0, 0) = A(1, 1) = p.total_mass();
   for (int i = 0; i < n; ++i) {
     const auto& b = p.balls[std::size_t(i)];
     const auto& g = paths[std::size_t(i)];
@@ -71,15 +71,18 @@ DofM mass_of(const ParamsN& p, const Paths& paths) {
   return A;
 }
 
-// b(s, s') of (11.3.4) plus the run-up's Euler terms (15.6.1).
-Dof forces_of(const ParamsN& p, const Paths& paths, const State<double, any_balls>& x, double wd) {
+// b(s, s') of (11.3.4) plus the run-up's Euler terms (15.6.1); without the rotor's own terms
+// (M, k, c, U: `rotor` false) the balls' share only.
+Dof forces_of(const ParamsN& p, const Paths& paths, const State<double, any_balls>& x, double wd, bool rotor = true) {
   const int n = p.n_balls();
   const double w = p.omega, w2 = w * w, M = p.total_mass();
   const double q1 = x(0), q2 = x(1), dq1 = x(n + 2), dq2 = x(n + 3);
   const auto& r = p.rotor;
-  Dof b(n + 2);
-  b(0) = w2 * r.unbalance + M * (2 * w * dq2 + w2 * q1) - r.damping * (dq1 - w * q2) - r.stiffness * q1 + M * wd * q2;
-  b(1) = M * (-2 * w * dq1 + w2 * q2) - r.damping * (dq2 + w * q1) - r.stiffness * q2 - wd * r.unbalance - M * wd * q1;
+  Dof b = Dof::Zero(n + 2);
+  if (rotor) {
+    b(0) = w2 * r.unbalance + M * (2 * w * dq2 + w2 * q1) - r.damping * (dq1 - w * q2) - r.stiffness * q1 + M * wd * q2;
+    b(1) = M * (-2 * w * dq1 + w2 * q2) - r.damping * (dq2 + w * q1) - r.stiffness * q2 - wd * r.unbalance - M * wd * q1;
+  }
   for (int i = 0; i < n; ++i) {
     const auto& ball = p.balls[std::size_t(i)];
     const auto& g = paths[std::size_t(i)];
@@ -167,19 +170,21 @@ void round_race_field(const ParamsN& p, const RigidMachine& m, const State<doubl
 // Bs = db/ds - (dA/ds) s'' and Bv = db/ds' of (15.6.2), (15.6.4) with s'' = acc, and db/domega
 // (15.6.5): the race's and the mean support's terms.
 void race_derivatives(const ParamsN& p, const Paths& paths, const State<double, any_balls>& x, double wd,
-                      const Dof& acc, DofM& Bs, DofM& Bv, Dof& bw) {
+                      const Dof& acc, DofM& Bs, DofM& Bv, Dof& bw, bool rotor = true) {
   const int n = p.n_balls(), d = n + 2;
   const double w = p.omega, w2 = w * w, M = p.total_mass();
   const auto& r = p.rotor;
   const double q1 = x(0), q2 = x(1), dq1 = x(n + 2), dq2 = x(n + 3);
   Bs = DofM::Zero(d, d), Bv = DofM::Zero(d, d);
-  Bs(0, 0) = M * w2 - r.stiffness, Bs(0, 1) = r.damping * w + M * wd;
-  Bs(1, 0) = -r.damping * w - M * wd, Bs(1, 1) = M * w2 - r.stiffness;
-  Bv(0, 0) = -r.damping, Bv(0, 1) = 2 * M * w;
-  Bv(1, 0) = -2 * M * w, Bv(1, 1) = -r.damping;
-  bw = Dof(d);
-  bw(0) = 2 * w * r.unbalance + M * (2 * dq2 + 2 * w * q1) + r.damping * q2;
-  bw(1) = M * (-2 * dq1 + 2 * w * q2) - r.damping * q1;
+  bw = Dof::Zero(d);
+  if (rotor) {  // the rotor's own terms (M, k, c, U)
+    Bs(0, 0) = M * w2 - r.stiffness, Bs(0, 1) = r.damping * w + M * wd;
+    Bs(1, 0) = -r.damping * w - M * wd, Bs(1, 1) = M * w2 - r.stiffness;
+    Bv(0, 0) = -r.damping, Bv(0, 1) = 2 * M * w;
+    Bv(1, 0) = -2 * M * w, Bv(1, 1) = -r.damping;
+    bw(0) = 2 * w * r.unbalance + M * (2 * dq2 + 2 * w * q1) + r.damping * q2;
+    bw(1) = M * (-2 * dq1 + 2 * w * q2) - r.damping * q1;
+  }
   for (int i = 0; i < n; ++i) {
     const auto& ball = p.balls[std::size_t(i)];
     const auto& g = paths[std::size_t(i)];
@@ -263,6 +268,17 @@ void machine_field(const ParamsN& p, const RigidMachine& m, const State<double, 
   out.jacobian.bottomRightCorner(d, d) = llt.solve(Bv);
   out.omega_derivative = State<double, any_balls>::Zero(2 * d);
   out.omega_derivative.tail(d) = llt.solve(bw);
+}
+
+BallShare ball_share(const ParamsN& p, const RaceShape& race, const State<double, any_balls>& x,
+                     const Coordinates<double, any_balls>& acc, double omega_dot) {
+  const Paths paths = paths_at(p, race, x, true);
+  BallShare out;
+  out.mass = mass_of(p, paths, false);
+  out.force = forces_of(p, paths, x, omega_dot, false);
+  Dof bw;
+  race_derivatives(p, paths, x, omega_dot, acc, out.force_position, out.force_velocity, bw, false);
+  return out;
 }
 
 }  // namespace abu

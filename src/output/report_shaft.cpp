@@ -21,11 +21,14 @@ const ShiftRun* run_of(const SparseSpectrum& s, cplx shift) {
 }
 
 std::string pattern_text(const ShaftEquilibrium& e, int n) {
-  if (e.family == Family::balanced) return "";
+  if (e.family == Family::balanced || e.on_unround_race) return "";
   std::string s;
   for (int i = 0; i < n; ++i) s += (e.pattern >> i) & 1u ? '-' : '+';
   return s;
 }
+
+// "race" for an equilibrium of an unround race (model.md §18.18: member = its place by |q|).
+std::string_view family_text(const ShaftEquilibrium& e) { return e.on_unround_race ? "race" : to_string(e.family); }
 
 std::string spectrum_line(const SparseSpectrum& s) {
   int requested = 0, converged = 0;
@@ -55,13 +58,16 @@ std::string shaft_states_table(const ShaftStates& st, std::string_view file) {
   out += fmt::format("omega = {} rad/s, U = {} kg m; eigenvalues in the rotating frame [1/s], the {} rightmost with "
                      "|Im| <= {} 1/s (ARPACK shift-invert, model.md §19)\n",
                      sys.balancer.omega, sys.balancer.rotor.unbalance, o.eigenvalues, shaft_band(o, sys.balancer.omega));
+  if (st.race)
+    out += "the balls roll on an unround race (model.md §18.18): its equilibria, by |q| of the race on the equivalent "
+           "rigid balancer\n" + describe_race(*st.race, "  ");
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const ShaftState& pt = pts[i];
     const ShaftEquilibrium& e = pt.eq;
     std::string beta;
     for (int b = 0; b < n; ++b) beta += fmt::format("{}{:.9g}", b ? ", " : "", e.position[sys.ball_dof(b)]);
     out += fmt::format("\nequilibrium {}: {}{}{} member {}: {} (residual {:.3g}, {} Newton iterations)\n", i + 1,
-                       to_string(e.family), e.family == Family::balanced ? "" : " ", pattern_text(e, n), e.member,
+                       family_text(e), pattern_text(e, n).empty() ? "" : " ", pattern_text(e, n), e.member,
                        to_string(e.status.outcome), e.residual, e.newton_iterations);
     out += fmt::format("  balancer node |q| = {:.6g} m; beta = ({}) rad; largest shaft deflection {:.6g} m at node {}\n",
                        pt.q_abs, beta, pt.max_deflection, pt.max_node);
@@ -93,6 +99,7 @@ std::string shaft_states_csv(const ShaftStates& st, std::string_view command_lin
   const ShaftSpectrumOptions& o = st.spectrum;
   const int n = sys.n_balls();
   std::string out = shaft_header_lines(command_line, scene_file, sys);
+  if (st.race) out += describe_race(*st.race, "# ");  // family "race": its equilibria (model.md §18.18)
   out += fmt::format("# eigenvalues: rotating frame [1/s]; the {} rightmost with |Im| <= {} 1/s per equilibrium "
                      "(ARPACK shift-invert); q_abs, max_deflection [m], beta [rad]\n",
                      o.eigenvalues, shaft_band(o, sys.balancer.omega));
@@ -103,7 +110,7 @@ std::string shaft_states_csv(const ShaftStates& st, std::string_view command_lin
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const ShaftState& pt = pts[i];
     const ShaftEquilibrium& e = pt.eq;
-    std::string front = fmt::format("{},{},{},{},{},{},{},{},{}", i + 1, to_string(e.family), pattern_text(e, n),
+    std::string front = fmt::format("{},{},{},{},{},{},{},{},{}", i + 1, family_text(e), pattern_text(e, n),
                                     e.member, to_string(e.status.outcome), format_number(e.residual, "residual"),
                                     format_number(pt.q_abs, "|q|"), format_number(pt.max_deflection, "deflection"),
                                     pt.max_node);
@@ -143,6 +150,7 @@ std::string shaft_states_json(const ShaftStates& st, std::string_view command_li
   out += fmt::format("  \"spectrum_request\": {{\"eigenvalues\": {}, \"band\": {}, \"method\": \"ARPACK shift-invert, "
                      "rightmost in the band (model.md §19)\"}},\n",
                      o.eigenvalues, format_number(shaft_band(o, sys.balancer.omega)));
+  if (st.race) out += fmt::format("  \"race\": {},\n", json_string(describe_race(*st.race, "")));
   out += "  \"equilibria\": [";
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const ShaftState& pt = pts[i];
@@ -150,7 +158,7 @@ std::string shaft_states_json(const ShaftStates& st, std::string_view command_li
     out += i ? ",\n    {" : "\n    {";
     out += fmt::format("\"family\": \"{}\", \"pattern\": \"{}\", \"member\": {}, \"status\": \"{}\", \"residual\": {}, "
                        "\"q_abs\": {}, \"max_deflection\": {}, \"max_deflection_node\": {}, \"beta\": [",
-                       to_string(e.family), pattern_text(e, n), e.member, to_string(e.status.outcome),
+                       family_text(e), pattern_text(e, n), e.member, to_string(e.status.outcome),
                        format_number(e.residual), format_number(pt.q_abs), format_number(pt.max_deflection),
                        pt.max_node);
     for (int b = 0; b < n; ++b) out += fmt::format("{}{}", b ? ", " : "", format_number(e.position[sys.ball_dof(b)]));

@@ -44,9 +44,13 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
 
 SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x, int eigenvalues, double band,
                                bool vectors, int* merged) {
-  const ShaftPencil pencil = shaft_pencil(linearize_shaft(sys, x));
+  return pencil_rightmost(shaft_pencil(linearize_shaft(sys, x)), sys.balancer.omega, eigenvalues, band, vectors, merged);
+}
+
+SparseSpectrum pencil_rightmost(const ShaftPencil& pencil, double omega, int eigenvalues, double band, bool vectors,
+                                int* merged) {
   RightmostOptions ro;
-  ro.max_frequency = band > 0 ? band : 10.0 * sys.balancer.omega;
+  ro.max_frequency = band > 0 ? band : 10.0 * omega;
   ro.arpack.keep_vectors = vectors;
   const int k = std::max(1, std::min(eigenvalues, int(pencil.a.rows()) - 2));  // ARPACK: k < n - 1
   SparseSpectrum s = rightmost_eigenvalues(pencil.a, pencil.b, k, ro);

@@ -27,6 +27,8 @@ bool unround_on_anisotropic_support(const Scene& scene);
 bool set_valued_on_unround_race(const Scene& scene);
 /// coulomb-set balls on a flexible shaft with a round race (model.md §18.17).
 bool set_valued_on_shaft(const Scene& scene);
+/// A smooth law's balls on an unround race on a flexible shaft (model.md §18.18).
+bool unround_on_shaft(const Scene& scene);
 
 /// Commands built on the (2n + 4) vector field of the base model (sweep, continue, map,
 /// simulate) refuse a scene that needs more (exit 2, naming what to use instead): LuGre
@@ -47,6 +49,8 @@ struct Handles {
   bool unround_set_valued = false;
   /// coulomb-set balls on a flexible shaft (the equivalent rigid balancer's stick set, model.md §18.17)
   bool shaft_set_valued = false;
+  /// an unround race on a flexible shaft (the race's equilibria on it, model.md §18.18)
+  bool shaft_unround = false;
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
 /// coulomb-set, a shaft) is refused (NotSupportedError, naming the commands that answer it

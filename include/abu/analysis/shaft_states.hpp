@@ -23,6 +23,7 @@
 #include "abu/input/scene.hpp"
 #include "abu/linear/sparse_spectrum.hpp"
 #include "abu/model/shaft_system.hpp"
+#include "abu/model/unround_race.hpp"
 
 namespace abu {
 
@@ -56,6 +57,7 @@ struct ShaftStates {
   std::vector<ShaftState> states;
   std::string warnings;
   DryFrictionVerdict dry;  ///< coulomb / stribeck: the stick set of the same mu through the shaft (§18.17)
+  std::optional<RaceShape> race;  ///< an unround race (model.md §18.18): the states are its equilibria
 };
 
 /// The shaft system of a [shaft] scene. Throws InputError (file, key "shaft") for a rule the
@@ -64,12 +66,16 @@ ShaftSystem shaft_system_of(const Scene& scene);
 
 /// One equilibrium analysed; `vectors` keeps the eigenvectors (Campbell views).
 ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e, const ShaftSpectrumOptions& o,
-                               bool vectors);
+                               bool vectors, const RaceShape* race = nullptr);
 
 /// Every equilibrium of the system (find_shaft_equilibria) analysed. Throws NumericalError
 /// where ARPACK found no eigenvalue of an equilibrium.
 ShaftStates analyze_shaft_states(const ShaftSystem& sys, const BalancedSampling& sampling,
                                  const ShaftSpectrumOptions& o);
+
+/// Every equilibrium of the balls on an unround race (find_shaft_race_equilibria, model.md
+/// §18.18) analysed. Throws NumericalError where ARPACK found no eigenvalue of an equilibrium.
+ShaftStates analyze_shaft_race_states(const ShaftSystem& sys, const RaceShape& race, const ShaftSpectrumOptions& o);
 
 /// The forward share f+ of a mode (model.md (16.2.1)) over the shaft's nodes (translations and
 /// tilts, weighted by the diagonal of A) and the balls (absolute displacement

@@ -42,6 +42,9 @@ struct ShaftEquilibrium {
   bool is_set = false;           ///< representative of a circle (U = 0)
   bool on_balanced_set = false;  ///< sample of the balanced set of n >= 3 balls
   int structural_zeros = 0;      ///< as EquilibriumT::structural_zeros
+  /// An equilibrium of an unround race (model.md §18.18): `member` is its place in the race's
+  /// list (by |q|); family and pattern are not read.
+  bool on_unround_race = false;
 
   Eigen::VectorXd state() const;  ///< (s, 0)
 };

@@ -57,4 +57,19 @@ struct MachineFieldValue {
 void machine_field(const ParamsN& p, const RigidMachine& m, const State<double, any_balls>& x, double theta,
                    double omega_dot, MachineFieldValue& out, bool derivatives);
 
+/// The balls' share of (20.1) in the rigid layout s = (q1, q2, beta_1..beta_n), q the
+/// translation the balls ride on: every term model.md (11.3.3)-(11.3.4) and (15.6.2)-(15.6.4)
+/// owe to the balls except their translating mass on q (which the rotor's M includes) — their
+/// coupling and inertia in A, their forces in b, Bs = db/ds - (dA/ds) s'' with s'' = `acc`,
+/// and Bv = db/ds'. A flexible shaft adds it at its balancer node (model.md §18.18); the rigid
+/// field is it plus the rotor's M, k, c and U.
+struct BallShare {
+  DofMatrix<double, any_balls> mass;            ///< A's ball terms (zero on the q-q block)
+  Coordinates<double, any_balls> force;         ///< b's ball terms
+  DofMatrix<double, any_balls> force_position;  ///< Bs's ball terms
+  DofMatrix<double, any_balls> force_velocity;  ///< Bv's ball terms
+};
+BallShare ball_share(const ParamsN& p, const RaceShape& race, const State<double, any_balls>& x,
+                     const Coordinates<double, any_balls>& acc, double omega_dot = 0.0);
+
 }  // namespace abu

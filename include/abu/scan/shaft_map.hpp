@@ -76,6 +76,9 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros);
 /// (`merged`, if given, gets how many were dropped).
 SparseSpectrum shaft_rightmost(const ShaftSystem& sys, const Eigen::VectorXd& x, int eigenvalues, double band,
                                bool vectors = false, int* merged = nullptr);
+/// The same for any linearization's pencil (18.7.3) at spin speed omega (the band's default).
+SparseSpectrum pencil_rightmost(const ShaftPencil& pencil, double omega, int eigenvalues, double band,
+                                bool vectors = false, int* merged = nullptr);
 
 /// The balanced states of the shaft (u = 0; every sample of the set for n >= 3 balls):
 /// they do not depend on the shaft's support (model.md §18.8), so no sparse solve is made.
