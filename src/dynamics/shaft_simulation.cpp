@@ -30,13 +30,13 @@ struct Context {
   void at(double t) const { ode->set_speed(omega0 + omega_dot * (t - t0), omega_dot); }
 };
 
-int rhs(double t, const double y[], double f[], void* params) {
+int field_rhs(double t, const double y[], double f[], void* params) {
   const auto& c = *static_cast<Context*>(params);
   c.at(t);
   return c.ode->field(y, f) ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
-int jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
+int field_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* params) {
   const auto& c = *static_cast<Context*>(params);
   c.at(t);
   try {
@@ -46,9 +46,23 @@ int jacobian(double t, const double y[], double* dfdy, double dfdt[], void* para
   }
 }
 
+// The field for the dense output (model.md §15.1, §18.16): f, and y'' by differences of f along
+// (1, f) on the time scale of the fastest motion followed (dense_output.hpp).
+struct DenseField {
+  Context* ctx;
+  bool central;  // rtol < 1e-9: the central difference
+  double time_scale;
+  int dim;
+  int rhs(double t, const double* y, double* f) const { return field_rhs(t, y, f, ctx); }
+  int second(double t, const double* y, const double* f, double* g) const {
+    const auto field = [this](double tt, const double* yy, double* ff) { return rhs(tt, yy, ff); };
+    return dense::second_by_difference<shaft_simulation_max_states>(field, dim, time_scale, central, t, y, f, g);
+  }
+};
+
 // The largest |(y_pos, y_pos+1)| on the step's quintic Hermite interpolant from the values, rates
 // (y_vel) and accelerations (f_vel) at both ends (model.md (15.1.3)); `s` is reused storage.
-dense::QPeak pair_peak(dense::Step& s, double t0, double t1, const double* y0, const double* f0, const double* y1,
+dense::QPeak pair_peak(dense::StepN<2>& s, double t0, double t1, const double* y0, const double* f0, const double* y1,
                        const double* f1, int pos, int vel, double floor) {
   s.dim = 2;
   s.t0 = t0;
@@ -136,6 +150,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   run.displacement_scale = L;
 
   shaft_detail::ShaftOde ode(sys);
+  double follow = w_max + w_n;  // the fastest motion every stepper follows [1/s] (18.16.5)
   {  // the stiffness probe (model.md §15.1, §18.16): balls at rest relative to the rotor, omega_max
     std::vector<double> xs(x0.data(), x0.data() + dim);
     for (int i = 0; i < n; ++i) xs[std::size_t(d + ns + i)] = 0.0;
@@ -148,14 +163,15 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     // The ratio of the fastest decay to the fastest motion every stepper must follow: the spin
     // and omega_n as on the rigid rotor, or the shaft's fastest underdamped mode.
     run.spectral_radius = probe.decay;
-    run.stiffness_ratio = probe.decay / std::max(w_max + w_n, probe.oscillation);
+    follow = std::max(w_max + w_n, probe.oscillation);
+    run.stiffness_ratio = probe.decay / follow;
   }
   run.method = o.method;
   if (o.method == IntegrationMethod::automatic)
     run.method = run.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bsimp : IntegrationMethod::rk8pd;
 
   Context ctx{&ode};
-  gsl_odeiv2_system system{&rhs, &jacobian, std::size_t(dim), &ctx};
+  gsl_odeiv2_system system{&field_rhs, &field_jacobian, std::size_t(dim), &ctx};
   const double h0 = std::min(1e-3 / (w_max + w_n), 1e-2 * o.t_end);
   std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> drv(
       gsl_odeiv2_driver_alloc_y_new(&system, step_type(run.method), h0, o.rtol, o.rtol));
@@ -180,8 +196,8 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   if (int st = gsl_odeiv2_control_init(drv->c, gsl_rtol, gsl_rtol, 1.0, 0.0); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
 
-  std::vector<double> y(x0.data(), x0.data() + dim), y_start(y), f_start(y.size()), f_end(y.size());
-  double t = 0, h = h0, t_start = 0;
+  std::vector<double> y(x0.data(), x0.data() + dim), x_sample(y.size());
+  double t = 0, h = h0;
   const auto record = [&](double time, const double* x) {
     if (!o.record) return;
     TrajectorySample<any_balls> s;
@@ -206,6 +222,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     r.deflection_node.reserve(count);
   }
   record(0.0, y.data());
+  if (o.record) r.max_deflection = r.deflection[0], r.max_deflection_node = r.deflection_node[0];
 
   std::vector<double> breaks = speed.breakpoints(0.0, o.t_end);
   breaks.push_back(o.t_end);
@@ -221,57 +238,61 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     ctx.t0 = at;
     ctx.omega0 = speed.omega(at);
     ctx.omega_dot = speed.omega_dot(at);
-    t_start = at;
-    y_start = y;
-    if (int st = rhs(at, y.data(), f_start.data(), &ctx); st != GSL_SUCCESS)
-      fail(fmt::format("the field at the start of a segment: {}", failure_text(st)));
   };
   begin_segment(0.0);
   const auto accumulate = [&] {
     run.stats.steps += drv->e->count;
     run.stats.rejected += drv->e->failed_steps;
   };
-  // The samples are step ends (each step stops at the next sample time); between them the
-  // largest |q| of the balancer node and the largest node deflection are located on every
-  // step's quintic Hermite interpolant (model.md §18.16).
-  dense::PeakTracker q_peaks;
-  q_peaks.add({std::hypot(y[std::size_t(b)], y[std::size_t(b + 1)]), 0.0}, ctx.omega_dot != 0);
-  if (!r.deflection.empty()) r.max_deflection = r.deflection[0], r.max_deflection_node = r.deflection_node[0];
-  dense::Step work;
-  dense::SampleClock clock{every, o.t_end};
+  // Dense output as the rigid route's (model.md §15.1): the stepper runs freely to the next
+  // breakpoint; the samples come from each step's quintic Hermite interpolant, a step whose
+  // interpolant misses rtol where it is used is taken again shorter; the largest |q| of the
+  // balancer node and the largest node deflection are located on it (§15.4, §18.16). The
+  // stepper's arrays hold shaft_simulation_max_states values: on the heap, once per run.
+  auto dense = std::make_unique<dense::Stepper<DenseField, shaft_simulation_max_states>>(
+      DenseField{&ctx, o.rtol < 1e-9, 1.0 / follow, dim}, dim, o.rtol, cs->scale.data(), cs->relative.get());
+  const bool dense_on = o.record;
+  const bool retake_allowed = run.method != IntegrationMethod::bdf;  // msbdf keeps a history
   const bool exact_dydt_out = drv->s->type->gives_exact_dydt_out != 0;
+  dense::StepN<2> pair;  // one node's (u1, u2) interpolant
+  dense::SampleClock clock{every, o.t_end};
+  if (dense_on) {
+    if (int st = dense->start(t, y.data()); st != GSL_SUCCESS) fail(failure_text(st));
+    dense->peaks.add({std::hypot(y[std::size_t(b)], y[std::size_t(b + 1)]), 0.0}, ctx.omega_dot != 0);
+  }
   while (!stop && t < o.t_end) {
-    const double target = std::min(breaks[next_break], o.record ? clock.next() : o.t_end);
+    double target = breaks[next_break];
+    if (dense_on) target = dense->plan(t, h, clock.next(), target);
     const double h_before = h;
     if (int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &system, &t, target, &h, y.data()); st != GSL_SUCCESS) {
       fail(failure_text(st));
       break;
     }
     if (t == target && h < h_before) h = h_before;  // a step clamped to reach the target
-    if (exact_dydt_out)
-      std::copy(drv->e->dydt_out, drv->e->dydt_out + dim, f_end.begin());
-    else if (int st = rhs(t, y.data(), f_end.data(), &ctx); st != GSL_SUCCESS) {
-      fail(failure_text(st));
-      break;
-    }
-    if (o.record) {
-      q_peaks.add(pair_peak(work, t_start, t, y_start.data(), f_start.data(), y.data(), f_end.data(), b, d + b,
-                            q_peaks.all.q_abs),
-                  ctx.omega_dot != 0);
+    if (dense_on) {
+      if (int st = dense->finish(t, y.data(), exact_dydt_out ? drv->e->dydt_out : nullptr); st != GSL_SUCCESS) {
+        fail(failure_text(st));
+        break;
+      }
+      const auto& s = dense->step;
+      const dense::QPeak candidate = pair_peak(pair, s.t0, s.t1, s.y0, s.f0, s.y1, s.f1, b, d + b, dense->peaks.all.q_abs);
+      if (retake_allowed && dense->retake(clock.next(), candidate)) {  // the interpolant misses: again, shorter
+        t = s.t0;
+        std::copy(s.y0, s.y0 + dim, y.begin());
+        h = std::min(h, dense->h_limit);
+        accumulate();  // GSL's evolve keeps the end field of the step it returned: reset it
+        gsl_odeiv2_evolve_reset(drv->e);
+        continue;
+      }
       for (int k = 0; k < sys.nodes(); ++k) {
-        const dense::QPeak pk = pair_peak(work, t_start, t, y_start.data(), f_start.data(), y.data(), f_end.data(),
-                                          4 * k, d + 4 * k, r.max_deflection);
+        const dense::QPeak pk = pair_peak(pair, s.t0, s.t1, s.y0, s.f0, s.y1, s.f1, 4 * k, d + 4 * k, r.max_deflection);
         if (pk.q_abs > r.max_deflection) r.max_deflection = pk.q_abs, r.t_max_deflection = pk.t, r.max_deflection_node = k;
       }
-      if (t == clock.next()) {
-        record(t, y.data());
-        clock.taken(t);
-      }
+      dense->emit(clock, [&](double ts, const double* x) { return record(ts, x), false; }, candidate,
+                  ctx.omega_dot != 0, x_sample.data());
+      dense->advance();
     }
-    t_start = t;
-    y_start = y;  // same size: no allocation
-    std::swap(f_start, f_end);
-    if (run.stats.steps + drv->e->count > o.max_steps) {
+    if (run.stats.steps + drv->e->count - dense->retaken > o.max_steps) {
       run.status = SimulationStatus::failed;
       run.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
                                o.max_steps);
@@ -292,10 +313,15 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
       ++run.stats.restarts;
       ++next_break;
       begin_segment(t);
+      if (dense_on)
+        if (int st = dense->start(t, y.data()); st != GSL_SUCCESS) fail(failure_text(st));
     }
   }
   if (stop && o.record && run.samples.back().t < t) record(t, y.data());
   accumulate();
+  run.stats.steps -= dense->retaken;  // counted by GSL as accepted, then discarded
+  run.stats.rejected += dense->retaken;
+  run.stats.retaken = dense->retaken;
   run.stats.rhs_evaluations = ode.rhs_count;
   run.stats.jacobian_evaluations = ode.jacobian_count;
   r.x_end = Eigen::Map<const Eigen::VectorXd>(y.data(), dim);
@@ -306,7 +332,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   run.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (o.record) {
     run.summary = summarize(r.view, speed, run.samples, o);
-    q_peaks.merge_into(run.summary);
+    dense->peaks.merge_into(run.summary);
     // omega_n of the rigid view is the stall test's estimate, not a critical speed of the shaft:
     // no passages through it are listed (model.md §18.16).
     run.summary.t_omega_n.clear();
