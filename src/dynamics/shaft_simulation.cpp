@@ -87,6 +87,70 @@ std::string failure_text(int st) {
   return fmt::format("{} [GSL {}: {}]", why, st, gsl_strerror(st));
 }
 
+// The rigid route's 2n + 4 values of state x: the balancer node's (u1, u2) as q, the balls, their rates.
+State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x) {
+  const int n = sys.n_balls(), ns = sys.shaft_dofs(), d = sys.configuration_size(), b = sys.balancer_dof();
+  State<double, any_balls> v = State<double, any_balls>::Zero(2 * n + 4);
+  for (int k = 0; k < 2; ++k) v(k) = x[b + k], v(n + 2 + k) = x[d + b + k];
+  for (int i = 0; i < n; ++i) v(2 + i) = x[ns + i], v(n + 4 + i) = x[d + ns + i];
+  return v;
+}
+
+// The checks of simulate_shaft before any work (InputError naming the option and the rule).
+void check_shaft_input(const ShaftSystem& sys, const Eigen::VectorXd& x0, const SimulationOptions& o) {
+  if (o.race || o.support || !o.bristle_start.empty() || o.stop_at_sample)
+    throw std::invalid_argument("simulate_shaft: an unround race, a support, bristles or stop_at_sample are other routes");
+  const int n = sys.n_balls(), dim = sys.state_size();
+  if (dim > shaft_simulation_max_states)
+    throw InputError("[shaft]", 0, "",
+                     fmt::format("the shaft's state has 2 (4 N_nodes + n) = 2 (4 x {} + {}) = {} values; simulate takes "
+                                 "at most {} (its implicit steppers factor dense Jacobians: about {:.0f} MB at this "
+                                 "size); use fewer elements (segments)",
+                                 sys.nodes(), n, dim, shaft_simulation_max_states, 10.0 * 8.0 * dim * dim / 1e6));
+  if (int(x0.size()) != dim)
+    throw InputError("--from-state", 0, "",
+                     fmt::format("a state of this shaft has 2 (4 N_nodes + n) = 2 (4 x {} + {}) = {} values (u1,u2,psi1,"
+                                 "psi2 per node, beta1..beta{}, then their rates), got {}",
+                                 sys.nodes(), n, dim, n, x0.size()));
+  check_simulation_input(o, dim, x0.data(), dim);
+}
+
+// The stiffness probe (model.md §15.1, (18.16.5)): J at x0 with the balls at rest relative to the
+// rotor and omega = omega_max. Sets the run's spectral_radius (the fastest decay) and
+// stiffness_ratio; returns the fastest motion every stepper follows [1/s].
+double probe_stiffness(shaft_detail::ShaftOde& ode, const ShaftSystem& sys, const Eigen::VectorXd& x0, double w_max,
+                       double w_n, SimulationResult<any_balls>& run) {
+  std::vector<double> xs(x0.data(), x0.data() + x0.size());
+  for (int i = 0; i < sys.n_balls(); ++i) xs[std::size_t(sys.configuration_size() + sys.ball_dof(i))] = 0.0;
+  ode.set_speed(w_max, 0.0);
+  const shaft_detail::StiffnessProbe probe = ode.probe(xs.data());
+  if (!std::isfinite(probe.decay) || probe.decay > 1e150)
+    throw NumericalError(fmt::format("simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not finite "
+                                     "(an overflow of the model at these parameters)",
+                                     w_max));
+  // The spin and omega_n as on the rigid rotor, or the shaft's fastest underdamped mode.
+  const double follow = std::max(w_max + w_n, probe.oscillation);
+  run.spectral_radius = probe.decay;
+  run.stiffness_ratio = probe.decay / follow;
+  return follow;
+}
+
+// The scales of the error control (model.md §18.16): translations in L, tilts in L over the
+// shaft's length (or the race radius if larger), angles absolutely in rad; rates times omega_max.
+void set_scales(ScaledControlState& cs, const ShaftSystem& sys, double L, double w_max) {
+  const int d = sys.configuration_size(), ns = sys.shaft_dofs();
+  double reach = shaft_length(sys.spec);
+  for (const auto& ball : sys.balancer.balls) reach = std::max(reach, ball.race_radius);
+  cs.resize(std::size_t(2 * d));
+  for (int i = 0; i < 2 * d; ++i) {
+    const int c = i % d;
+    const bool angle = c >= ns;
+    const double size = angle ? 1.0 : (c % 4 < 2 ? L : L / reach);
+    cs.scale[std::size_t(i)] = size * (i >= d ? w_max : 1.0);
+    cs.relative[std::size_t(i)] = !(angle && i < d);
+  }
+}
+
 }  // namespace
 
 Eigen::VectorXd shaft_start_at_rest(const ShaftSystem& sys, const std::vector<double>& beta) {
@@ -121,22 +185,9 @@ ParamsN shaft_summary_params(const ShaftSystem& sys) {
 ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile& speed, const Eigen::VectorXd& x0,
                                      const SimulationOptions& o) {
   gsl_handler_off_once();
-  if (o.race || o.support || !o.bristle_start.empty() || o.stop_at_sample)
-    throw std::invalid_argument("simulate_shaft: an unround race, a support, bristles or stop_at_sample are other routes");
-  const int n = sys.n_balls(), ns = sys.shaft_dofs(), d = sys.configuration_size(), b = sys.balancer_dof();
+  check_shaft_input(sys, x0, o);
+  const int d = sys.configuration_size(), b = sys.balancer_dof();
   const int dim = sys.state_size();
-  if (dim > shaft_simulation_max_states)
-    throw InputError("[shaft]", 0, "",
-                     fmt::format("the shaft's state has 2 (4 N_nodes + n) = 2 (4 x {} + {}) = {} values; simulate takes "
-                                 "at most {} (its implicit steppers factor dense Jacobians: about {:.0f} MB at this "
-                                 "size); use fewer elements (segments)",
-                                 sys.nodes(), n, dim, shaft_simulation_max_states, 10.0 * 8.0 * dim * dim / 1e6));
-  if (int(x0.size()) != dim)
-    throw InputError("--from-state", 0, "",
-                     fmt::format("a state of this shaft has 2 (4 N_nodes + n) = 2 (4 x {} + {}) = {} values (u1,u2,psi1,"
-                                 "psi2 per node, beta1..beta{}, then their rates), got {}",
-                                 sys.nodes(), n, dim, n, x0.size()));
-  check_simulation_input(o, dim, x0.data(), dim);
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
 
   ShaftSimulationResult r;
@@ -150,22 +201,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   run.displacement_scale = L;
 
   shaft_detail::ShaftOde ode(sys);
-  double follow = w_max + w_n;  // the fastest motion every stepper follows [1/s] (18.16.5)
-  {  // the stiffness probe (model.md §15.1, §18.16): balls at rest relative to the rotor, omega_max
-    std::vector<double> xs(x0.data(), x0.data() + dim);
-    for (int i = 0; i < n; ++i) xs[std::size_t(d + ns + i)] = 0.0;
-    ode.set_speed(w_max, 0.0);
-    const shaft_detail::StiffnessProbe probe = ode.probe(xs.data());
-    if (!std::isfinite(probe.decay) || probe.decay > 1e150)
-      throw NumericalError(fmt::format("simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not "
-                                       "finite (an overflow of the model at these parameters)",
-                                       w_max));
-    // The ratio of the fastest decay to the fastest motion every stepper must follow: the spin
-    // and omega_n as on the rigid rotor, or the shaft's fastest underdamped mode.
-    run.spectral_radius = probe.decay;
-    follow = std::max(w_max + w_n, probe.oscillation);
-    run.stiffness_ratio = probe.decay / follow;
-  }
+  const double follow = probe_stiffness(ode, sys, x0, w_max, w_n, run);
   run.method = o.method;
   if (o.method == IntegrationMethod::automatic)
     run.method = run.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bsimp : IntegrationMethod::rk8pd;
@@ -180,18 +216,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   drv->c = gsl_odeiv2_control_alloc(&kScaledControl);
   if (!drv->c) throw NumericalError("simulate: GSL could not allocate the error control");
   auto* cs = static_cast<ScaledControlState*>(drv->c->state);
-  cs->resize(std::size_t(dim));
-  // Translations in L, tilts in L over the shaft's length (or the race radius if larger),
-  // angles absolutely in rad; rates times omega_max (model.md §18.16).
-  double reach = shaft_length(sys.spec);
-  for (const auto& ball : sys.balancer.balls) reach = std::max(reach, ball.race_radius);
-  for (int i = 0; i < dim; ++i) {
-    const int c = i % d;
-    const bool angle = c >= ns;
-    const double size = angle ? 1.0 : (c % 4 < 2 ? L : L / reach);
-    cs->scale[std::size_t(i)] = size * (i >= d ? w_max : 1.0);
-    cs->relative[std::size_t(i)] = !(angle && i < d);
-  }
+  set_scales(*cs, sys, L, w_max);
   const double gsl_rtol = o.rtol / tolerance_factor(run.method);
   if (int st = gsl_odeiv2_control_init(drv->c, gsl_rtol, gsl_rtol, 1.0, 0.0); st != GSL_SUCCESS)
     throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
@@ -203,9 +228,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     TrajectorySample<any_balls> s;
     s.t = time;
     s.omega = speed.omega(time);
-    s.x = State<double, any_balls>::Zero(2 * n + 4);
-    for (int k = 0; k < 2; ++k) s.x(k) = x[b + k], s.x(n + 2 + k) = x[d + b + k];
-    for (int i = 0; i < n; ++i) s.x(2 + i) = x[ns + i], s.x(n + 4 + i) = x[d + ns + i];
+    s.x = balancer_view(sys, x);
     run.samples.push_back(s);
     double worst = -1;
     int node = 0;
@@ -325,9 +348,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   run.stats.rhs_evaluations = ode.rhs_count;
   run.stats.jacobian_evaluations = ode.jacobian_count;
   r.x_end = Eigen::Map<const Eigen::VectorXd>(y.data(), dim);
-  run.x_end = State<double, any_balls>::Zero(2 * n + 4);
-  for (int k = 0; k < 2; ++k) run.x_end(k) = y[std::size_t(b + k)], run.x_end(n + 2 + k) = y[std::size_t(d + b + k)];
-  for (int i = 0; i < n; ++i) run.x_end(2 + i) = y[std::size_t(ns + i)], run.x_end(n + 4 + i) = y[std::size_t(d + ns + i)];
+  run.x_end = balancer_view(sys, y.data());
   run.t_reached = t;
   run.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (o.record) {
