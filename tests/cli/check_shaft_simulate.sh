@@ -66,6 +66,26 @@ import json, sys
 s = json.load(open('$work/ramp.json'))
 sys.exit(0 if s['max_q_abs_run_up'] is not None and s['max_q_abs_run_up'] > 0 else 1)\""
 
+# --- Ctrl-C keeps what was computed; a run out of steps says where and why ------------------------
+"$bin" simulate "$four" --balls 0.5,2,4 --t-end 1e4 --every 0.01 --no-chart --quiet -o "$work/int" \
+  --summary "$work/int.json" 2>"$work/int.err" &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid
+code=$?
+check "SIGINT exits 130" "[ $code -eq 130 ]"
+check "SIGINT keeps the CSV" "[ \$(grep -v '^#' '$work/int/simulation.csv' | tail -n +2 | wc -l) -gt 1 ]"
+check "SIGINT keeps the summary, status interrupted, x_end" "/usr/bin/python3 -c \"
+import json, sys
+s = json.load(open('$work/int.json'))
+sys.exit(0 if s['status'] == 'interrupted' and len(s['shaft']['x_end']) == 46 else 1)\""
+"$bin" simulate "$four" --balls 0.5,2,4 --t-end 0.01 --max-steps 10 --no-chart --quiet -o "$work/fail" 2>"$work/fail.err"
+code=$?
+check "step budget exceeded exits 3" "[ $code -eq 3 ]"
+check "it says where and why" "grep -q 'numerical failure: at t = .* s: more than 10 steps' '$work/fail.err'"
+check "the failed run keeps its CSV, no nan" "[ -s '$work/fail/simulation.csv' ] && ! grep -v '^#' '$work/fail/simulation.csv' | grep -qiE 'nan|inf'"
+
 # --- bad input: exit 2, one message, nothing written ---------------------------------------------
 bad() {  # name, expected text of the message, then the arguments; -o inside an empty directory
   local name=$1 text=$2
