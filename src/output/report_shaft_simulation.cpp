@@ -16,6 +16,15 @@ std::string shaft_simulation_csv(const ShaftSimulationResult& r, const ShaftSyst
                  fmt::format("# method: {} (stiffness ratio max|Re lambda(J)| / max(omega_max + omega_n, the fastest underdamped "
                              "|Im lambda|) = {:.4g}, max|Re lambda| = {:.4g} 1/s; model.md §18.16)",
                              to_string(r.run.method), r.run.stiffness_ratio, r.run.spectral_radius));
+  // The rigid route's derived M and omega_n (of k = 0 on a shaft): the summary's rigid view instead.
+  if (const std::size_t at = base.find("# derived: "); at != std::string::npos)
+    base.replace(at, base.find('\n', at) - at,
+                 fmt::format("# derived: the summary's rigid view of the shaft (model.md §18.16): M_r = {} kg (the "
+                             "balancer disc), k_static = {} N/m at the balancer node, omega_n = sqrt(k_static / (M_r + "
+                             "sum m)) = {} rad/s (the stall test's estimate, not a critical speed), L = {} m",
+                             format_number(r.view.rotor.mass, "M_r"), format_number(r.view.rotor.stiffness, "k"),
+                             format_number(r.run.summary.omega_n, "omega_n"),
+                             format_number(r.run.displacement_scale, "L")));
   std::string out;
   out.reserve(base.size() + r.deflection.size() * 32 + 400);
   std::size_t row = 0, pos = 0;
