@@ -54,7 +54,8 @@ constexpr CommandParts kCommandParts[] = {
     {"map",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true,
       .shaft_set_valued = true}},
-    {"simulate", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
+    {"simulate",
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true, .unround = true}},
 };
 }  // namespace

@@ -29,22 +29,26 @@
 #include "abu/output/report_simulation.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
+#include "simulate_options.hpp"
 
 namespace abu::cli {
 
+std::function<void(double)> simulate_progress(const SimulateOptions& o, double t_end) {
+  if (o.quiet || !(o.progress || isatty(STDERR_FILENO))) return {};
+  const auto t0 = std::chrono::steady_clock::now();
+  return [t0, t_end, last = t0, every = std::chrono::milliseconds(o.progress && !isatty(STDERR_FILENO) ? 5000 : 200)](
+             double t) mutable {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < every) return;
+    last = now;
+    const double frac = t / t_end, el = std::chrono::duration<double>(now - t0).count();
+    fmt::print(stderr, "\rsimulate: t = {:.4g} / {:.4g} s ({:5.1f} %), {:.0f} s elapsed, ETA {:.0f} s   ", t, t_end,
+               100 * frac, el, frac > 0 ? el * (1 - frac) / frac : 0.0);
+  };
+}
+
 namespace {
 
-struct SimulateOptions {
-  SceneOptions scene;
-  std::string ramp, profile_file;
-  std::string balls, from_state, from_equilibrium;
-  std::optional<double> perturb;
-  SimulationOptions sim;
-  std::string method = "auto";
-  std::string output = "out/simulate";
-  std::string summary;
-  bool chart = true, progress = false, quiet = false;
-};
 
 
 template <int N>
@@ -115,18 +119,7 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
 
   so.interrupt = &stop_flag();  // set by the CLI's signal thread (cli.cpp)
   const bool show = !o.quiet && (o.progress || isatty(STDERR_FILENO));
-  auto last = std::chrono::steady_clock::now();
-  const auto t0 = last;
-  if (show) {
-    so.progress = [&](double t) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last < std::chrono::milliseconds(o.progress && !isatty(STDERR_FILENO) ? 5000 : 200)) return;
-      last = now;
-      const double frac = t / so.t_end, el = std::chrono::duration<double>(now - t0).count();
-      fmt::print(stderr, "\rsimulate: t = {:.4g} / {:.4g} s ({:5.1f} %), {:.0f} s elapsed, ETA {:.0f} s   ", t, so.t_end,
-                 100 * frac, el, frac > 0 ? el * (1 - frac) / frac : 0.0);
-    };
-  }
+  so.progress = simulate_progress(o, so.t_end);
   // Set-valued Coulomb friction: event-driven stick-slip (model.md §14.5), the rest as usual.
   std::optional<StickSlipResult<N>> stick_slip;
   SimulationResult<N> smooth;
@@ -295,6 +288,7 @@ Action add_simulate_command(CLI::App& app) {
                                    : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
     // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
     // An unround race and an anisotropic support run in the any-ball storage too (model.md §15.6, §20).
+    if (scene.shaft) return run_shaft_simulation(scene, *o, speed);  // model.md §18.16
     if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round() && !scene.support)
       return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);

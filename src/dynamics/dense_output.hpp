@@ -57,13 +57,15 @@ struct QPeak {
   double q_abs = 0, t = 0;
 };
 
-/// One accepted step [t0, t1] with the state, the field and its time derivative at both ends.
-struct Step {
+/// One accepted step [t0, t1] with the state, the field and its time derivative at both ends;
+/// at most Cap components (the rigid routes' capacity, or a flexible shaft's state).
+template <int Cap>
+struct StepN {
   int dim = 0;
   double t0 = 0, t1 = 0;
-  double y0[capacity] = {}, y1[capacity] = {};
-  double f0[capacity] = {}, f1[capacity] = {};  // y'
-  double g0[capacity] = {}, g1[capacity] = {};  // y'' (zero: the cubic Hermite interpolant)
+  double y0[Cap] = {}, y1[Cap] = {};
+  double f0[Cap] = {}, f1[Cap] = {};  // y'
+  double g0[Cap] = {}, g1[Cap] = {};  // y'' (zero: the cubic Hermite interpolant)
 
   double h() const { return t1 - t0; }
   double value(int i, const Basis& b, double h) const {
@@ -184,6 +186,7 @@ struct Step {
     return best;
   }
 };
+using Step = StepN<capacity>;
 
 /// The running maxima of |q| over a run (model.md §15.4): over the whole run and over the
 /// parts where omega' != 0.
@@ -210,10 +213,10 @@ struct PeakTracker {
 /// eps^(1/3) T, two evaluations, ~ eps^(2/3) = 4e-11. The error enters the interpolant (15.1.3)
 /// times h^2 |H2| <= 0.0173 h^2: below 5e-10 (h nu)^2 |y| forward, so the central difference is
 /// taken for rtol < 1e-9. rhs(t, y, f) returns a GSL code.
-template <class Rhs>
+template <int Cap = capacity, class Rhs>
 int second_by_difference(const Rhs& rhs, int dim, double time_scale, bool central, double t, const double* y,
                          const double* f, double* g) {
-  double ahead[capacity], behind[capacity];
+  double ahead[Cap], behind[Cap];
   const double delta = (central ? 6.055454452393343e-06 : 1.4901161193847656e-08) * time_scale;
   for (int i = 0; i < dim; ++i) ahead[i] = y[i] + delta * f[i];
   if (const int st = rhs(t + delta, ahead, g); st != 0) return st;
@@ -221,7 +224,7 @@ int second_by_difference(const Rhs& rhs, int dim, double time_scale, bool centra
     for (int i = 0; i < dim; ++i) g[i] = (g[i] - f[i]) / delta;
     return 0;
   }
-  double fb[capacity];
+  double fb[Cap];
   for (int i = 0; i < dim; ++i) behind[i] = y[i] - delta * f[i];
   if (const int st = rhs(t - delta, behind, fb); st != 0) return st;
   for (int i = 0; i < dim; ++i) g[i] = (g[i] - fb[i]) / (2 * delta);
@@ -248,16 +251,17 @@ struct SampleClock {
 /// and y'', the interpolant's error estimate, the step limit it implies, the steps taken again
 /// because the interpolant missed the tolerance where it was used, and the maxima of |q|.
 /// Field: int rhs(t, y, f) and int second(t, y, f, g) (y'' at (t, y) given f = y'), GSL codes.
-template <class Field>
+/// Cap: the largest state (a flexible shaft's Stepper is allocated on the heap).
+template <class Field, int Cap = capacity>
 struct Stepper {
   Field field;
   int dim;
   double rtol;
   const double* scale;   // the tolerance of component i: rtol (scale_i + |y_i| if relative_i) (15.2)
   const bool* relative;
-  Step step;             // slot 0 is the current point
+  StepN<Cap> step;       // slot 0 is the current point
   PeakTracker peaks;
-  double y_prev[capacity] = {};  // the start of the step before (its end is step.y0)
+  double y_prev[Cap] = {};  // the start of the step before (its end is step.y0)
   double t_prev = 0;
   bool have_prev = false;
   double ratio = 0;      // the last step's interpolant error estimate / tolerance

@@ -17,6 +17,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/model/lugre.hpp"
 #include "dense_output.hpp"
+#include "scaled_control.hpp"
 #include "simulation_field.hpp"
 
 namespace abu {
@@ -61,83 +62,11 @@ std::string_view to_string(SimulationOutcome o) {
   return "?";
 }
 
+using namespace sim_detail;  // the ODE system (simulation_field.hpp), the GSL parts (scaled_control.hpp)
+
 namespace {
 
-// GSL's default handler aborts; this module reports every return code instead.
-void gsl_handler_off_once() {
-  static std::once_flag flag;
-  std::call_once(flag, [] { gsl_set_error_handler_off(); });
-}
-
 double natural_frequency(double k, double M) { return std::sqrt(k / M); }
-
-// ---- error control in the model's scaling (model.md §15.1) -------------------------------
-// D_i = rtol (scale_i + relative_i |y_i|); a step is accepted when max_i |err_i| / D_i <= 1.1,
-// the step adjusted as GSL's standard control does (safety 0.9, factors in [0.2, 5]).
-struct ScaledControlState {
-  double rtol = 1e-8;
-  std::size_t dim = 0;
-  double scale[lugre_state_capacity] = {};  // LuGre's bristle states too (model.md §12.7)
-  bool relative[lugre_state_capacity] = {};
-};
-
-void* scaled_alloc() { return new (std::nothrow) ScaledControlState; }
-int scaled_init(void* vs, double eps_abs, double, double, double) {
-  static_cast<ScaledControlState*>(vs)->rtol = eps_abs;
-  return GSL_SUCCESS;
-}
-double tolerance_of(const ScaledControlState& s, std::size_t i, double y) {
-  return s.rtol * (s.scale[i] + (s.relative[i] ? std::abs(y) : 0.0));
-}
-int scaled_hadjust(void* vs, std::size_t dim, unsigned int ord, const double y[], const double yerr[], const double*,
-                   double* h) {
-  const auto& s = *static_cast<ScaledControlState*>(vs);
-  double rmax = std::numeric_limits<double>::min();
-  for (std::size_t i = 0; i < dim; ++i) rmax = std::max(rmax, std::abs(yerr[i]) / tolerance_of(s, i, y[i]));
-  if (!std::isfinite(rmax)) rmax = 1e300;  // a non-finite error estimate: shrink as far as allowed
-  const double h_old = *h;
-  if (rmax > 1.1) {
-    *h = h_old * std::max(0.9 * std::pow(rmax, -1.0 / ord), 0.2);
-    return GSL_ODEIV_HADJ_DEC;
-  }
-  if (rmax < 0.5) {
-    *h = h_old * std::clamp(0.9 * std::pow(rmax, -1.0 / (ord + 1.0)), 1.0, 5.0);
-    return GSL_ODEIV_HADJ_INC;
-  }
-  return GSL_ODEIV_HADJ_NIL;
-}
-int scaled_errlevel(void* vs, const double y, const double, const double, const std::size_t ind, double* errlev) {
-  const auto& s = *static_cast<ScaledControlState*>(vs);
-  *errlev = tolerance_of(s, ind, y);
-  return *errlev > 0 ? GSL_SUCCESS : GSL_EINVAL;
-}
-int scaled_set_driver(void*, const gsl_odeiv2_driver*) { return GSL_SUCCESS; }
-void scaled_free(void* vs) { delete static_cast<ScaledControlState*>(vs); }
-const gsl_odeiv2_control_type kScaledControl = {"model-scaled", &scaled_alloc, &scaled_init, &scaled_hadjust,
-                                                &scaled_errlevel, &scaled_set_driver, &scaled_free};
-
-using namespace sim_detail;  // the ODE system (simulation_field.hpp)
-
-const gsl_odeiv2_step_type* step_type(IntegrationMethod m) {
-  switch (m) {
-    case IntegrationMethod::rk8pd: return gsl_odeiv2_step_rk8pd;
-    case IntegrationMethod::rk4imp: return gsl_odeiv2_step_rk4imp;
-    case IntegrationMethod::bsimp: return gsl_odeiv2_step_bsimp;
-    case IntegrationMethod::rkf45: return gsl_odeiv2_step_rkf45;
-    default: return gsl_odeiv2_step_msbdf;
-  }
-}
-
-// The error control's tolerance is rtol / factor, so that the global error the method achieves
-// lies within a small factor of the requested rtol (model.md §15.1, measured by
-// tests/benchmarks/bench_simulate): bsimp's local-error control accumulates to 35-420 times the
-// tolerance over the benchmark problems, and handed rtol / 30 it ends at 0.4 to 8 times rtol;
-// rk8pd's ends at 0.6 to 1.6 times rtol as it is (on the problem it is chosen for).
-double tolerance_factor(IntegrationMethod m) { return m == IntegrationMethod::bsimp ? 30.0 : 1.0; }
-
-struct DriverDeleter {
-  void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
-};
 
 }  // namespace
 
@@ -278,7 +207,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   drv->c = gsl_odeiv2_control_alloc(&kScaledControl);
   if (!drv->c) throw NumericalError("simulate: GSL could not allocate the error control");
   auto* cs = static_cast<ScaledControlState*>(drv->c->state);
-  cs->dim = std::size_t(dim);
+  cs->resize(std::size_t(dim));
   for (int i = 0; i < dim; ++i) {
     const bool angle = i >= 2 && i < n + 2;
     const bool velocity = i >= n + 2;
@@ -348,7 +277,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   // maxima of |q| inside it are located (§15.4). Slot 0 of `step` is the current point.
   const bool jacobian_each_step = r.method == IntegrationMethod::bsimp || r.method == IntegrationMethod::rk4imp;
   const OdeField<N> field{&ctx, jacobian_each_step, o.rtol < 1e-9, 1.0 / (w_max + w_n)};
-  dense::Stepper<OdeField<N>> dense(field, dim, o.rtol, cs->scale, cs->relative);
+  dense::Stepper<OdeField<N>> dense(field, dim, o.rtol, cs->scale.data(), cs->relative.get());
   const bool dense_on = o.record;
   const bool retake_allowed = r.method != IntegrationMethod::bdf;  // msbdf keeps a history
   const bool exact_dydt_out = drv->s->type->gives_exact_dydt_out != 0;

@@ -1,0 +1,209 @@
+// The flexible rotor's field and Jacobian for simulate_shaft (shaft_field.hpp, model.md §18.16).
+#include "shaft_field.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "abu/model/friction.hpp"
+
+namespace abu::shaft_detail {
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+using BallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_balls, max_balls>;
+using BallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_balls, 1>;
+
+// y += S x, S column-major sparse: no temporaries.
+void add_product(const Sparse& s, const double* x, double* y) {
+  for (int k = 0; k < s.outerSize(); ++k) {
+    const double xk = x[k];
+    if (xk == 0.0) continue;
+    for (Sparse::InnerIterator it(s, k); it; ++it) y[it.row()] += it.value() * xk;
+  }
+}
+
+}  // namespace
+
+ShaftOde::ShaftOde(const ShaftSystem& sys)
+    : sys_(sys),
+      ns_(sys.shaft_dofs()),
+      n_(sys.n_balls()),
+      d_(sys.configuration_size()),
+      b_(sys.balancer_dof()),
+      k_(sys.fixed.stiffness),
+      c_(sys.fixed.damping),
+      g_(sys.fixed.gyroscopic) {
+  // M_tot: the shaft's and discs' mass with the balls' translating mass at the balancer node.
+  Eigen::MatrixXd mtot = Eigen::MatrixXd(sys.fixed.mass);
+  double balls = 0;
+  for (const auto& ball : sys.balancer.balls) balls += ball.mass;
+  mtot(b_, b_) += balls;
+  mtot(b_ + 1, b_ + 1) += balls;
+  const Eigen::LLT<Eigen::MatrixXd> llt(mtot);  // positive definite: every dof has inertia (§18.9)
+  minv_ = llt.solve(Eigen::MatrixXd::Identity(ns_, ns_));
+  h_ = minv_.block<2, 2>(b_, b_);
+  for (const auto& ball : sys.balancer.balls) {
+    const double l = ball.race_radius, a = ball.mass * l;
+    a_.push_back(a);
+    inertia_.push_back(ball.inertia_factor * a * l);
+    l_.push_back(l);
+    euler_.push_back(a * (l - (ball.inertia_factor - 1.0) * ball.radius));
+  }
+  v_.resize(ns_);
+  w_.resize(ns_);
+  acc_.resize(ns_);
+}
+
+bool ShaftOde::field(const double* y, double* f) {
+  ++rhs_count;
+  const double w = omega_, w2 = w * w, wd = omega_dot_;
+  sys_.balancer.omega = w;  // the friction laws' normal force m l omega^2 (model.md §4)
+  const double *u = y, *beta = y + ns_, *ud = y + d_, *bd = y + d_ + ns_;
+  std::copy(y + d_, y + 2 * d_, f);  // s' (the configuration's rates)
+  // w = K u + C (omega Jr u + u') + G (omega^2 Jr u + omega u' + omega'/2 u)   (18.16.2)
+  for (int k = 0; k < ns_; k += 2) {
+    v_[k] = -w * u[k + 1] + ud[k];
+    v_[k + 1] = w * u[k] + ud[k + 1];
+  }
+  w_.setZero();
+  add_product(k_, u, w_.data());
+  add_product(c_, v_.data(), w_.data());
+  for (int k = 0; k < ns_; ++k) v_[k] = w * v_[k] + 0.5 * wd * u[k];
+  add_product(g_, v_.data(), w_.data());
+  // The force on the balancer node (18.6.2) with the run-up terms of (9.2)-(9.3), the balls'
+  // coupling B(beta) and their rows.
+  const double q1 = u[b_], q2 = u[b_ + 1], qd1 = ud[b_], qd2 = ud[b_ + 1];
+  double f1 = w2 * sys_.balancer.rotor.unbalance, f2 = -wd * sys_.balancer.rotor.unbalance;
+  Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, max_balls> bq(2, n_);
+  BallVector rows(n_);
+  for (int i = 0; i < n_; ++i) {
+    const double a = a_[std::size_t(i)], sb = std::sin(beta[i]), cb = std::cos(beta[i]);
+    const double spin = (bd[i] + w) * (bd[i] + w);
+    f1 += a * (spin * cb + wd * sb);
+    f2 += a * (spin * sb - wd * cb);
+    bq(0, i) = -a * sb;
+    bq(1, i) = a * cb;
+    rows(i) = l_[std::size_t(i)] * friction_force(sys_.balancer, i, bd[i]) +
+              a * ((-2.0 * w * qd2 - w2 * q1) * sb - (2.0 * w * qd1 - w2 * q2) * cb) -
+              wd * (a * (q1 * cb + q2 * sb) + euler_[std::size_t(i)]);
+  }
+  w_[b_] -= f1;
+  w_[b_ + 1] -= f2;
+  // The shaft's accelerations without the balls' inertial coupling (18.16.3):
+  // a0 = -M_tot^-1 w + omega^2 u - 2 omega Jr u' - omega' Jr u (M_tot commutes with Jr).
+  acc_.noalias() = minv_ * w_;
+  for (int k = 0; k < ns_; k += 2) {
+    acc_[k] = -acc_[k] + w2 * u[k] + 2.0 * w * ud[k + 1] + wd * u[k + 1];
+    acc_[k + 1] = -acc_[k + 1] + w2 * u[k + 1] - 2.0 * w * ud[k] - wd * u[k];
+  }
+  // The balls: (D - B^T H B) beta'' = rows - B^T a0_b, H the node block of M_tot^-1.
+  const Eigen::Vector2d a0b(acc_[b_], acc_[b_ + 1]);
+  BallMatrix schur = -(bq.transpose() * h_ * bq);
+  for (int i = 0; i < n_; ++i) schur(i, i) += inertia_[std::size_t(i)];
+  rows -= bq.transpose() * a0b;
+  const Eigen::LLT<BallMatrix> ball_llt(schur);
+  if (ball_llt.info() != Eigen::Success) return false;
+  const BallVector bdd = ball_llt.solve(rows);
+  // u'' = a0 - M_tot^-1 E_b B beta''.
+  const Eigen::Vector2d node = bq * bdd;
+  double* sdd = f + d_;
+  for (int k = 0; k < ns_; ++k) sdd[k] = acc_[k] - minv_(k, b_) * node(0) - minv_(k, b_ + 1) * node(1);
+  for (int i = 0; i < n_; ++i) sdd[ns_ + i] = bdd(i);
+  for (int k = 0; k < 2 * d_; ++k)
+    if (!std::isfinite(f[k])) return false;
+  return true;
+}
+
+bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
+  ++jacobian_count;
+  const int dim = 2 * d_;
+  const double wd = omega_dot_;
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(y, dim);
+  // (18.7.1)-(18.7.2) at omega' = 0: linearize_shaft's C and K, its K holding (dA/ds) s'' with
+  // the accelerations of omega' = 0.
+  sys_.balancer.omega = omega_;
+  const ShaftLinearization lin = linearize_shaft(sys_, x);
+  mass_ = Eigen::MatrixXd(lin.mass);
+  kc_.resize(d_, 2 * d_);
+  kc_.leftCols(d_) = Eigen::MatrixXd(lin.stiffness);
+  kc_.rightCols(d_) = Eigen::MatrixXd(lin.damping);
+  f_plus_.resize(std::size_t(dim));
+  f_minus_.resize(std::size_t(dim));
+  f_still_.resize(std::size_t(dim));
+  if (wd != 0.0) {
+    // The run-up terms' share of K = -db/ds + (dA/ds) s'' (18.16.4): -d/ds of the omega' terms
+    // of b, and (dA/ds) times the change of s'' that omega' makes.
+    if (!field(y, f_plus_.data())) return false;
+    omega_dot_ = 0.0;
+    const bool ok = field(y, f_still_.data());
+    omega_dot_ = wd;
+    if (!ok) return false;
+    auto kk = kc_.leftCols(d_);
+    kk.topLeftCorner(ns_, ns_) += 0.5 * wd * Eigen::MatrixXd(g_);
+    for (int k = 0; k < ns_; ++k) {  // omega' M_tot Jr: column k of Jr is +-e_{k+-1}
+      const int partner = k % 2 == 0 ? k + 1 : k - 1;
+      const double sign = k % 2 == 0 ? 1.0 : -1.0;
+      // (M_tot Jr)(:, k) = sign * M_tot(:, partner), M_tot the shaft block of A.
+      kk.col(k).head(ns_) += wd * sign * mass_.col(partner).head(ns_);
+    }
+    const double q1 = y[b_], q2 = y[b_ + 1];
+    for (int i = 0; i < n_; ++i) {
+      const double a = a_[std::size_t(i)], sb = std::sin(y[ns_ + i]), cb = std::cos(y[ns_ + i]);
+      const int col = ns_ + i;
+      const double dbdd = f_plus_[std::size_t(d_ + ns_ + i)] - f_still_[std::size_t(d_ + ns_ + i)];
+      const double dq1 = f_plus_[std::size_t(d_ + b_)] - f_still_[std::size_t(d_ + b_)];
+      const double dq2 = f_plus_[std::size_t(d_ + b_ + 1)] - f_still_[std::size_t(d_ + b_ + 1)];
+      kk(b_, col) += -wd * a * cb - a * cb * dbdd;
+      kk(b_ + 1, col) += -wd * a * sb - a * sb * dbdd;
+      kk(col, b_) += wd * a * cb;
+      kk(col, b_ + 1) += wd * a * sb;
+      kk(col, col) += wd * a * (q2 * cb - q1 * sb) - a * (cb * dq1 + sb * dq2);
+    }
+  }
+  llt_.compute(mass_);
+  if (llt_.info() != Eigen::Success) return false;
+  sol_ = llt_.solve(kc_);
+  for (int r = 0; r < dim; ++r)
+    for (int c = 0; c < dim; ++c) dfdy[r * dim + c] = r < d_ ? (c == d_ + r ? 1.0 : 0.0) : -sol_(r - d_, c);
+  // df/dt = omega' df/domega, by a central difference in omega (relative error ~1e-10).
+  if (wd != 0.0) {
+    const double w = omega_, dw = 1e-5 * std::max(std::abs(w), 1.0);
+    omega_ = w + dw;
+    const bool ok1 = field(y, f_plus_.data());
+    omega_ = w - dw;
+    const bool ok2 = field(y, f_minus_.data());
+    omega_ = w;
+    if (!ok1 || !ok2) return false;
+    for (int r = 0; r < dim; ++r) dfdt[r] = wd * (f_plus_[std::size_t(r)] - f_minus_[std::size_t(r)]) / (2 * dw);
+  } else {
+    std::fill(dfdt, dfdt + dim, 0.0);
+  }
+  for (int r = 0; r < dim * dim; ++r)
+    if (!std::isfinite(dfdy[r])) return false;
+  return true;
+}
+
+StiffnessProbe ShaftOde::probe(const double* y) {
+  const int dim = 2 * d_;
+  std::vector<double> j(std::size_t(dim * dim)), t(j.size() / std::size_t(dim));
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!jacobian(y, j.data(), t.data())) return {inf, inf};
+  const Eigen::MatrixXd jm = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      j.data(), dim, dim);
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(jm, false);
+  if (es.info() != Eigen::Success || !es.eigenvalues().allFinite()) {
+    const double norm = jm.cwiseAbs().rowwise().sum().maxCoeff();  // bounds every |lambda|
+    return {norm, 0.0};
+  }
+  StiffnessProbe p;
+  for (const auto& l : es.eigenvalues()) {
+    p.decay = std::max(p.decay, std::abs(l.real()));
+    if (std::abs(l.imag()) > std::abs(l.real())) p.oscillation = std::max(p.oscillation, std::abs(l.imag()));
+  }
+  return p;
+}
+
+}  // namespace abu::shaft_detail

@@ -1,0 +1,71 @@
+// Internal to simulate_shaft (shaft_simulation.cpp): the first-order field of the flexible
+// rotor with its balls in the rotating frame, at constant speed (model.md §18.6) and during a
+// run-up (the omega' terms of §18.16), and its Jacobian for the implicit steppers.
+//
+// The field solves A(beta) s'' = b by the structure of A (model.md (18.16.3)): M_tot is
+// constant, so M_tot^-1 is formed once (dense, 4 N_nodes squared); the balls couple to the
+// shaft only at the balancer node, so per evaluation there is one dense product with M_tot^-1,
+// a few sparse products with K, C, G and an n x n Cholesky of the balls' Schur complement.
+// Nothing is allocated per field evaluation; a Jacobian evaluation allocates the sparse
+// matrices of linearize_shaft (O(nnz K + nnz M) entries).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "abu/model/shaft_system.hpp"
+
+namespace abu::shaft_detail {
+
+/// The stiffness probe's figures [1/s]: the fastest decay max |Re lambda| (what an implicit
+/// stepper can step over) and the fastest underdamped oscillation max |Im lambda| over
+/// |Im| > |Re| (what every stepper must follow: the shaft's bending and tilt modes).
+struct StiffnessProbe {
+  double decay = 0, oscillation = 0;
+};
+
+class ShaftOde {
+ public:
+  explicit ShaftOde(const ShaftSystem& sys);
+
+  int dim() const { return 2 * d_; }
+  int configuration_size() const { return d_; }
+  /// omega(t) and omega' of the current segment of the speed profile.
+  void set_speed(double omega, double omega_dot) {
+    omega_ = omega;
+    omega_dot_ = omega_dot;
+  }
+  double omega() const { return omega_; }
+  double omega_dot() const { return omega_dot_; }
+
+  /// f = (s', s'') at the state y (size dim()). Returns false if a value is not finite or the
+  /// balls' Schur complement is not positive definite (it is whenever A is, §18.6).
+  bool field(const double* y, double* f);
+
+  /// J = df/dx (row-major dim x dim) and df/dt = omega' df/domega at y. False if not finite.
+  bool jacobian(const double* y, double* dfdy, double* dfdt);
+
+  /// The eigenvalues of J at y (dense) in two figures (model.md §18.16).
+  StiffnessProbe probe(const double* y);
+
+  unsigned long rhs_count = 0, jacobian_count = 0;
+
+ private:
+  ShaftSystem sys_;  // sys_.balancer.omega follows set_speed for linearize_shaft
+  int ns_, n_, d_, b_;
+  Eigen::SparseMatrix<double> k_, c_, g_;
+  Eigen::MatrixXd minv_;  // M_tot^-1, ns x ns
+  Eigen::Matrix2d h_;     // its balancer-node block
+  double omega_ = 0, omega_dot_ = 0;
+  // Per ball: a_i = m_i l_i, j_i m_i l_i^2, l_i, the run-up moment m_i l_i (l_i - (j_i - 1) r_i) (9.4).
+  std::vector<double> a_, inertia_, l_, euler_;
+  Eigen::VectorXd v_, w_, acc_;  // work vectors, ns
+  // Jacobian work (allocated at the first evaluation, reused).
+  Eigen::MatrixXd mass_, kc_, sol_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  std::vector<double> f_plus_, f_minus_, f_still_;
+};
+
+}  // namespace abu::shaft_detail
