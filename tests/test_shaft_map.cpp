@@ -106,3 +106,29 @@ TEST_CASE("shaft crossing: a bracket without a sign change is reported with its 
   CHECK(copy.find("keeps its sign up to omega = 210") != std::string::npos);
   CHECK(copy.find("another eigenvalue crossed") != std::string::npos);
 }
+
+// The verdict reads a real part only beyond its error bound r |lambda| (model.md §18.12): a slow
+// mode with Re = 2e-12 1/s and relative residual 0.5 at |lambda| = 1e-9 has no known sign (what
+// a three-ball balanced sample gave before: "unstable" from rounding); the same mode with a
+// small residual decides, either way.
+TEST_CASE("shaft verdict: a real part within its error bound decides nothing", "[shaft_map]") {
+  const auto spectrum = [](double re, double im, double residual) {
+    SparseSpectrum s;
+    SparseEigenpair slow;
+    slow.value = {re, im}, slow.residual = residual;
+    SparseEigenpair fast;
+    fast.value = {-3.0, 400.0}, fast.residual = 1e-13;
+    s.eigenpairs = {slow, fast};
+    s.coverage = {-10.0, 1.0, 1000.0, "test"};
+    return s;
+  };
+  const ShaftVerdict noise = shaft_verdict(spectrum(2e-12, 1e-9, 0.5), 0);
+  CHECK(noise.verdict == "undetermined");
+  CHECK(noise.doubt.find("sign is not known") != std::string::npos);
+  CHECK(noise.abscissa == 2e-12);  // the number is still reported
+  CHECK(shaft_verdict(spectrum(-2e-12, 1e-9, 0.5), 0).verdict == "undetermined");
+  CHECK(shaft_verdict(spectrum(2e-12, 1e-9, 1e-5), 0).verdict == "unstable");   // 2e-12 > 1e-14
+  CHECK(shaft_verdict(spectrum(-2e-12, 1e-9, 1e-5), 0).verdict == "stable");
+  // A structural zero set aside is not judged, whatever its residual.
+  CHECK(shaft_verdict(spectrum(2e-12, 1e-9, 0.5), 1).verdict == "stable");
+}

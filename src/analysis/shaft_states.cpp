@@ -66,8 +66,9 @@ ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e
   } else {
     pt.verdict_text = fmt::format(
         "undetermined: {}; {}",
-        pt.spectrum.status.ok() ? std::string_view("the covered region does not reach Re >= 0")
-                                : pt.spectrum.status.reason.view(),
+        !v.doubt.empty()        ? std::string_view(v.doubt)
+        : pt.spectrum.status.ok() ? std::string_view("the covered region does not reach Re >= 0")
+                                  : pt.spectrum.status.reason.view(),
         cover);
   }
   return pt;

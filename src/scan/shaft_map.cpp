@@ -25,17 +25,28 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
     return std::abs(pairs[a].value) < std::abs(pairs[c].value);
   });
   for (int z = 0; z < structural_zeros && std::size_t(z) < order.size(); ++z) v.structural[order[std::size_t(z)]] = 1;
+  // A real part decides only beyond its error bound: the relative residual r makes lambda exact
+  // for a pencil perturbed by r |lambda| ||B v||, which moves a well-conditioned eigenvalue by
+  // about r |lambda| (model.md §18.12). Within it the sign is not known.
+  bool certified_positive = false, uncertain = false;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (v.structural[i]) continue;
     ++v.found;
     const auto& l = pairs[i].value;
     // The first of equal real parts in the sorted list has Im >= 0 (sparse_spectrum.hpp's order).
     if (l.real() > v.abscissa) v.abscissa = l.real(), v.rightmost = {l.real(), std::abs(l.imag())};
+    const double bound = pairs[i].residual * std::abs(l);
+    if (l.real() > bound) certified_positive = true;
+    else if (std::abs(l.real()) <= bound && v.doubt.empty())
+      v.doubt = fmt::format("the eigenvalue {:.6g}{:+.6g}i 1/s has |Re| within its error bound {:.3g} 1/s (relative "
+                            "residual {:.3g} times |lambda|): its sign is not known",
+                            l.real(), l.imag(), bound, pairs[i].residual),
+      uncertain = true;
   }
   const SpectrumCoverage& c = s.coverage;
-  if (v.found > 0 && v.abscissa > 0)
+  if (certified_positive)
     v.verdict = "unstable";
-  else if (s.status.ok() && !c.empty() && c.real_max >= 0)
+  else if (!uncertain && s.status.ok() && !c.empty() && c.real_max >= 0)
     v.verdict = "stable";
   else
     v.verdict = "undetermined";
@@ -90,6 +101,7 @@ ShaftMapCell shaft_map_cell(const ShaftSystem& sys, const ShaftMapSpectrum& o) {
     any_unstable = any_unstable || v.verdict == "unstable";
     all_stable = all_stable && v.verdict == "stable";
     if (!s.status.ok() && worst == Outcome::converged) worst = s.status.outcome, cell.reason = s.status.reason;
+    if (!v.doubt.empty() && cell.reason.empty()) cell.reason = v.doubt;  // why undetermined (the sign of a real part)
     cell.found += v.found;
     if (v.found > 0 && v.abscissa > abscissa) abscissa = v.abscissa, cell.frequency = v.rightmost.imag();
     const SpectrumCoverage& c = s.coverage;

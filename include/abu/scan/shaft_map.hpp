@@ -68,6 +68,9 @@ struct ShaftVerdict {
   double abscissa = -std::numeric_limits<double>::infinity();  ///< max Re of the non-structural eigenpairs [1/s]
   std::complex<double> rightmost{};    ///< that eigenvalue (Im >= 0 of a pair)
   int found = 0;                       ///< non-structural eigenpairs
+  /// Why the verdict is undetermined although the search converged: an eigenvalue whose real
+  /// part is within its error bound residual x |lambda| of 0 (its sign is not known).
+  std::string doubt;
 };
 ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros);
 
