@@ -132,3 +132,24 @@ TEST_CASE("shaft verdict: a real part within its error bound decides nothing", "
   // A structural zero set aside is not judged, whatever its residual.
   CHECK(shaft_verdict(spectrum(2e-12, 1e-9, 0.5), 1).verdict == "stable");
 }
+
+// Beside a structural zero a value with relative residual >= 1 cannot be told from 0: the copy a
+// retried shift returns (model.md §19.7; measured on a three-ball spindle: -7.2e-13 1/s at
+// relative residual 2.3e5 beside the zero at -1.1e-20). It is set aside with the zero and
+// counted; without a structural zero the same value leaves the state undetermined.
+TEST_CASE("shaft verdict: a copy of the structural zero is set aside with it", "[shaft_map]") {
+  SparseSpectrum s;
+  SparseEigenpair zero, copy, creep, fast;
+  zero.value = {-1.1e-20, 0.0}, zero.residual = 2.7e7;
+  copy.value = {-7.2e-13, 0.0}, copy.residual = 2.3e5;
+  creep.value = {-1.3e-3, 0.0}, creep.residual = 3e-8;
+  fast.value = {-0.6, 3427.0}, fast.residual = 8e-15;
+  s.eigenpairs = {zero, copy, creep, fast};
+  s.coverage = {-4000.0, 4000.0, 25000.0, "test"};
+  const ShaftVerdict v = shaft_verdict(s, 1);
+  CHECK(v.verdict == "stable");
+  CHECK(v.zero_copies == 1);
+  CHECK(v.structural[1] == 1);
+  CHECK(v.abscissa == -1.3e-3);
+  CHECK(shaft_verdict(s, 0).verdict == "undetermined");
+}

@@ -61,7 +61,14 @@ ShaftState analyze_shaft_state(const ShaftSystem& sys, const ShaftEquilibrium& e
     pt.verdict_text = fmt::format(
         "stable as far as covered: every listed eigenvalue has Re < 0 (rightmost {:.6g} 1/s){}; {}. Eigenvalues with "
         "|Im| above the band or Re above {:.6g} 1/s are not excluded",
-        pt.rightmost, e.structural_zeros ? fmt::format(", {} structural zero(s) set aside", e.structural_zeros) : "",
+        pt.rightmost,
+        e.structural_zeros
+            ? fmt::format(", {} structural zero(s) set aside{}", e.structural_zeros,
+                          v.zero_copies ? fmt::format(" and {} value(s) indistinguishable from 0 beside them (relative "
+                                                      "residual >= 1: copies of the zero, model.md §19.7)",
+                                                      v.zero_copies)
+                                        : std::string())
+            : "",
         cover, c.real_max);
   } else {
     pt.verdict_text = fmt::format(

@@ -25,6 +25,11 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
     return std::abs(pairs[a].value) < std::abs(pairs[c].value);
   });
   for (int z = 0; z < structural_zeros && std::size_t(z) < order.size(); ++z) v.structural[order[std::size_t(z)]] = 1;
+  // Beside a structural zero, a value whose relative residual is >= 1 cannot be told from 0: the
+  // copy of that zero a retried shift returns (model.md §19.7), set aside with it and counted.
+  if (structural_zeros > 0)
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if (!v.structural[i] && pairs[i].residual >= 1.0) v.structural[i] = 1, ++v.zero_copies;
   // A real part decides only beyond its error bound: the relative residual r makes lambda exact
   // for a pencil perturbed by r |lambda| ||B v||, which moves a well-conditioned eigenvalue by
   // about r |lambda| (model.md §18.12). Within it the sign is not known.

@@ -68,6 +68,9 @@ struct ShaftVerdict {
   double abscissa = -std::numeric_limits<double>::infinity();  ///< max Re of the non-structural eigenpairs [1/s]
   std::complex<double> rightmost{};    ///< that eigenvalue (Im >= 0 of a pair)
   int found = 0;                       ///< non-structural eigenpairs
+  /// Values set aside as copies of a structural zero: relative residual >= 1 (indistinguishable
+  /// from 0) beside one (model.md §19.7); marked in `structural` too.
+  int zero_copies = 0;
   /// Why the verdict is undetermined although the search converged: an eigenvalue whose real
   /// part is within its error bound residual x |lambda| of 0 (its sign is not known).
   std::string doubt;
