@@ -4,6 +4,7 @@
 // of bsimp, the driver's deleter and GSL's error handler turned off.
 #pragma once
 
+#include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
@@ -14,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "abu/dynamics/simulation.hpp"
@@ -24,6 +26,24 @@ namespace abu::sim_detail {
 inline void gsl_handler_off_once() {
   static std::once_flag flag;
   std::call_once(flag, [] { gsl_set_error_handler_off(); });
+}
+
+// The run's own stop rules after a step (model.md §15.1): beyond `max_steps` accepted steps it
+// fails, on the interrupt flag (Ctrl-C) it is interrupted; either sets the status and the reason
+// with the time, and says so.
+inline bool stop_rule(unsigned long steps, const SimulationOptions& o, double t, SimulationStatus& status,
+                      std::string& reason) {
+  if (steps > o.max_steps) {
+    status = SimulationStatus::failed;
+    reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t, o.max_steps);
+    return true;
+  }
+  if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
+    status = SimulationStatus::interrupted;
+    reason = fmt::format("interrupted at t = {:.9g} s", t);
+    return true;
+  }
+  return false;
 }
 
 // ---- error control in the model's scaling (model.md §15.1) -------------------------------

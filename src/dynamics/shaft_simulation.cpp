@@ -315,16 +315,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
                   ctx.omega_dot != 0, x_sample.data());
       dense->advance();
     }
-    if (run.stats.steps + drv->e->count - dense->retaken > o.max_steps) {
-      run.status = SimulationStatus::failed;
-      run.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
-                               o.max_steps);
-      stop = true;
-      break;
-    }
-    if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
-      run.status = SimulationStatus::interrupted;
-      run.reason = fmt::format("interrupted at t = {:.9g} s", t);
+    if (stop_rule(run.stats.steps + drv->e->count - dense->retaken, o, t, run.status, run.reason)) {
       stop = true;
       break;
     }

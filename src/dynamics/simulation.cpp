@@ -326,16 +326,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
       }
       dense.advance();
     }
-    if (r.stats.steps + drv->e->count - dense.retaken > o.max_steps) {
-      r.status = SimulationStatus::failed;
-      r.reason = fmt::format("at t = {:.9g} s: more than {} steps (raise the tolerance or shorten the run)", t,
-                             o.max_steps);
-      stop = true;
-      break;
-    }
-    if (o.interrupt && o.interrupt->load(std::memory_order_relaxed)) {
-      r.status = SimulationStatus::interrupted;
-      r.reason = fmt::format("interrupted at t = {:.9g} s", t);
+    if (stop_rule(r.stats.steps + drv->e->count - dense.retaken, o, t, r.status, r.reason)) {
       stop = true;
       break;
     }
