@@ -19,6 +19,7 @@ MACHINES = [
     ("composed/oval_anisotropic.toml", "unround_anisotropic"),
     ("composed/oval_coulomb_set.toml", "set_valued"),
     ("composed/shaft_coulomb_set.toml", "set_valued"),
+    ("composed/shaft_runout.toml", "shaft"),
 ]
 
 
