@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "abu/core/errors.hpp"
-#include "abu/equilibria/shaft_equilibria.hpp"
 #include "abu/input/race_scene.hpp"
 #include "abu/input/shaft_scene.hpp"
 #include "abu/linear/unround_stick_set.hpp"
@@ -24,8 +23,7 @@ ShaftSystem scene_shaft_for_stuck_balls(const Scene& scene, const ParamsN& p) {
 void check_scene_stick_set_defined(const Scene& scene) {
   const ParamsN p = params_of<any_balls>(scene);
   if (scene.shaft) {
-    const ShaftSystem sys = scene_shaft_for_stuck_balls(scene, p);
-    check_stick_set_defined(equivalent_rigid_params(sys, stuck_balls_dynamic_stiffness(sys)));
+    check_shaft_stick_set_defined(scene_shaft_for_stuck_balls(scene, p));
   } else {
     check_stick_set_defined(p);
   }

@@ -25,37 +25,19 @@ std::string shaft_simulation_csv(const ShaftSimulationResult& r, const ShaftSyst
                              format_number(r.view.rotor.mass, "M_r"), format_number(r.view.rotor.stiffness, "k"),
                              format_number(r.run.summary.omega_n, "omega_n"),
                              format_number(r.run.displacement_scale, "L")));
-  std::string out;
-  out.reserve(base.size() + r.deflection.size() * 32 + 400);
-  std::size_t row = 0, pos = 0;
-  bool columns_seen = false;
-  while (pos < base.size()) {
-    std::size_t end = base.find('\n', pos);
-    if (end == std::string::npos) end = base.size();
-    const std::string_view line(base.data() + pos, end - pos);
-    const bool data = !line.empty() && line[0] != '#';
-    if (data && !columns_seen)
-      out += fmt::format(
+  return with_columns(
+      base,
+      fmt::format(
           "# flexible shaft (model.md §18.16): {} nodes, {} states; q1 q2 dq1 dq2 are the balancer node's ({}) u1 u2 "
           "and their rates; max_deflection [m] = max over the nodes of |(u1_k, u2_k)| at the sample, at node "
           "max_deflection_node (0-based)\n",
-          sys.nodes(), sys.state_size(), sys.spec.balancer_node);
-    out += line;
-    if (data) {
-      if (!columns_seen) {
-        out += ",max_deflection,max_deflection_node";
-        columns_seen = true;
-      } else {
+          sys.nodes(), sys.state_size(), sys.spec.balancer_node),
+      ",max_deflection,max_deflection_node",
+      [&](std::size_t row, std::string& out) {
         out += ',';
         out += format_number(r.deflection.at(row), "max_deflection");
         out += fmt::format(",{}", r.deflection_node.at(row));
-        ++row;
-      }
-    }
-    out += '\n';
-    pos = end + 1;
-  }
-  return out;
+      });
 }
 
 std::string shaft_simulation_json(const ShaftSimulationResult& r, const ShaftSystem& sys, const SpeedProfile& speed,

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <functional>
+
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +33,33 @@ std::vector<double> end_angles(const SimulationResult<N>& r, int n) {
 }
 
 }  // namespace
+
+std::string with_columns(std::string_view csv, std::string_view comment, std::string_view names,
+                         const std::function<void(std::size_t row, std::string& out)>& row_values) {
+  std::string out;
+  out.reserve(csv.size() + csv.size() / 4 + comment.size());
+  std::size_t row = 0, pos = 0;
+  bool columns_seen = false;
+  while (pos < csv.size()) {
+    std::size_t end = csv.find('\n', pos);
+    if (end == std::string_view::npos) end = csv.size();
+    const std::string_view line = csv.substr(pos, end - pos);
+    const bool data = !line.empty() && line[0] != '#';
+    if (data && !columns_seen) out += comment;
+    out += line;
+    if (data) {
+      if (!columns_seen) {
+        out += names;
+        columns_seen = true;
+      } else {
+        row_values(row++, out);
+      }
+    }
+    out += '\n';
+    pos = end + 1;
+  }
+  return out;
+}
 
 template <int N>
 std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N>& p, const SpeedProfile& speed,
@@ -174,33 +203,19 @@ std::string stick_slip_csv(const StickSlipResult<N>& r, const ParamsT<double, N>
                  fmt::format("# method: {} between switches, event-driven stick-slip (model.md §14.6); switches: {} "
                              "slip->stick, {} stick->slip, {} reversals",
                              to_string(r.run.method), r.sticks, r.slips, r.reversals));
-  std::string out;
-  out.reserve(base.size() + r.stuck_mask.size() * std::size_t(2 * n + 1) + 200);
-  std::size_t row = 0, pos = 0;
-  bool columns_seen = false;
-  while (pos < base.size()) {
-    std::size_t end = base.find('\n', pos);
-    if (end == std::string::npos) end = base.size();
-    const std::string_view line(base.data() + pos, end - pos);
-    const bool data = !line.empty() && line[0] != '#';
-    if (data && !columns_seen)
-      out += "# stick_i: 1 while ball i sticks to the race (beta_i' = 0, |F_i| <= mu_i N_i), 0 while it slips "
-             "(set-valued Coulomb friction, model.md §14.5)\n";
-    out += line;
-    if (data) {
-      if (!columns_seen) {
-        for (int i = 1; i <= n; ++i) out += fmt::format(",stick{}", i);
-        columns_seen = true;
-      } else {
+  return with_columns(
+      base,
+      "# stick_i: 1 while ball i sticks to the race (beta_i' = 0, |F_i| <= mu_i N_i), 0 while it slips "
+      "(set-valued Coulomb friction, model.md §14.5)\n",
+      [&] {
+        std::string names;
+        for (int i = 1; i <= n; ++i) names += fmt::format(",stick{}", i);
+        return names;
+      }(),
+      [&](std::size_t row, std::string& out) {
         const std::uint32_t m = row < r.stuck_mask.size() ? r.stuck_mask[row] : 0u;
         for (int i = 0; i < n; ++i) out += (m >> i) & 1u ? ",1" : ",0";
-        ++row;
-      }
-    }
-    out += '\n';
-    pos = end + 1;
-  }
-  return out;
+      });
 }
 
 template <int N>

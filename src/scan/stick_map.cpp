@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "abu/core/errors.hpp"
-#include "abu/equilibria/shaft_equilibria.hpp"
 #include "abu/equilibria/shaft_stick_set.hpp"
 #include "abu/equilibria/stick_set.hpp"
 #include "abu/linear/unround_stick_set.hpp"
@@ -120,8 +119,7 @@ void check_stick_cell_defined(const MapJob& job, int ix, int iy) {
   const ParamsN p = stick_cell_params(job, ix, iy);
   try {
     if (job.shaft) {
-      const ShaftSystem sys = stuck_balls_shaft(*job.shaft, p);
-      check_stick_set_defined(equivalent_rigid_params(sys, stuck_balls_dynamic_stiffness(sys)));
+      check_shaft_stick_set_defined(stuck_balls_shaft(*job.shaft, p));
     } else {
       check_stick_set_defined(p);
     }

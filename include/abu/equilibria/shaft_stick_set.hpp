@@ -44,9 +44,9 @@ struct ShaftStickSet {
 /// under `none` and `balls.law` put back. Use it for static questions only (no shaft_field).
 ShaftSystem stuck_balls_shaft(const ShaftSpec& spec, const ParamsN& balls);
 
-/// K_eff + i C_eff = 1/h(omega); throws NotSupportedError at an undamped critical speed (the
-/// rotating-frame stiffness singular: the node's deflection under stuck balls undefined).
-std::complex<double> stuck_balls_dynamic_stiffness(const ShaftSystem& sys);
+/// Throws what shaft_stick_set would throw before it computes anything (NotSupportedError: an
+/// undamped critical speed, where the node's deflection under stuck balls is undefined; mu_i <= 0).
+void check_shaft_stick_set_defined(const ShaftSystem& sys);
 
 /// Throws NotSupportedError where the set is not defined: an undamped critical speed or
 /// mu_i <= 0 (stick_set's rule).

@@ -5,6 +5,8 @@
 //   std::string json = abu::simulation_json(result, p, speed, command_line, scene_file);
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -12,6 +14,12 @@
 #include "abu/dynamics/stick_slip.hpp"
 
 namespace abu {
+
+/// `csv` (comment lines, the column names, data rows) with columns appended: the `comment` lines
+/// just before the column names, `names` after them, and `row_values(k, out)` appending the
+/// k-th data row's values (k = 0, 1, ...). The stick-slip and the shaft's CSVs extend the run's.
+std::string with_columns(std::string_view csv, std::string_view comment, std::string_view names,
+                         const std::function<void(std::size_t row, std::string& out)>& row_values);
 
 /// One row per sample: t,omega,q1,q2,beta1..beta<n>,dq1,dq2,dbeta1..dbeta<n>,q_abs,x_fixed,y_fixed,
 /// beta_rel1..beta_rel<n> (model.md §15.4). Angles beta are continuous (not wrapped);
