@@ -135,35 +135,34 @@ bool set_valued_on_shaft(const Scene& scene) {
   return scene.law == FrictionLaw::coulomb_set && scene.shaft && scene.race.round() && !scene.support;
 }
 
+namespace {
+// The combinations of two parts some command answers as one, each with what names it in a refusal.
+struct Combination {
+  bool (*present)(const Scene&);
+  bool Handles::*handled;
+  std::string_view parts, section, answer;
+};
+constexpr Combination kCombinations[] = {
+    {unround_on_anisotropic_support, &Handles::unround_anisotropic, "an unround race on an anisotropic support",
+     "§20", ""},
+    {set_valued_on_unround_race, &Handles::unround_set_valued, "coulomb-set balls on an unround race", "§20.5",
+     " (the stick set on the race's paths)"},
+    {set_valued_on_shaft, &Handles::shaft_set_valued, "coulomb-set balls on a flexible shaft", "§18.17",
+     " (the stick set of the rigid balancer the balls see through the shaft)"},
+    {unround_on_shaft, &Handles::shaft_unround, "an unround race on a flexible shaft", "§18.18",
+     " (the race's equilibria on the shaft with their rightmost eigenvalues)"},
+};
+}  // namespace
+
 void refuse_combined_extensions(const Scene& scene, Handles handles) {
   // The extensions are modelled one at a time (model.md §10-§12, §14) except an unround race
   // on an anisotropic support (§20): a scene that combines them otherwise is refused rather
   // than analysed with one of them silently dropped.
-  if (unround_on_anisotropic_support(scene)) {
-    if (handles.unround_anisotropic) return;
-    throw NotSupportedError(fmt::format("{} has an unround race on an anisotropic support (model.md §20): only {} "
-                                        "that combination so far",
-                                        scene.file, only_commands(&Handles::unround_anisotropic, "analyse")));
-  }
-  if (set_valued_on_unround_race(scene)) {
-    if (handles.unround_set_valued) return;
-    throw NotSupportedError(fmt::format("{} has coulomb-set balls on an unround race (model.md §20.5): only {} "
-                                        "that combination so far (the stick set on the race's paths)",
-                                        scene.file, only_commands(&Handles::unround_set_valued, "analyse")));
-  }
-  if (set_valued_on_shaft(scene)) {
-    if (handles.shaft_set_valued) return;
-    throw NotSupportedError(fmt::format("{} has coulomb-set balls on a flexible shaft (model.md §18.17): only {} "
-                                        "that combination so far (the stick set of the rigid balancer the balls see "
-                                        "through the shaft)",
-                                        scene.file, only_commands(&Handles::shaft_set_valued, "analyse")));
-  }
-  if (unround_on_shaft(scene)) {
-    if (handles.shaft_unround) return;
-    throw NotSupportedError(fmt::format("{} has an unround race on a flexible shaft (model.md §18.18): only {} "
-                                        "that combination so far (the race's equilibria on the shaft with their "
-                                        "rightmost eigenvalues)",
-                                        scene.file, only_commands(&Handles::shaft_unround, "analyse")));
+  for (const Combination& c : kCombinations) {
+    if (!c.present(scene)) continue;
+    if (handles.*c.handled) return;
+    throw NotSupportedError(fmt::format("{} has {} (model.md {}): only {} that combination so far{}", scene.file,
+                                        c.parts, c.section, only_commands(c.handled, "analyse"), c.answer));
   }
   const int extensions = int(scene.support.has_value()) + int(!scene.race.round()) +
                          int(scene.law == FrictionLaw::lugre) + int(scene.law == FrictionLaw::coulomb_set) +
