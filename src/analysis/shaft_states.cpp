@@ -109,6 +109,7 @@ ShaftStates analyze_shaft_states(const ShaftSystem& sys, const BalancedSampling&
 ShaftStates analyze_shaft_race_states(const ShaftSystem& sys, const RaceShape& race, const ShaftSpectrumOptions& o) {
   ShaftStates out{sys, o, {}, {}, {}, race};
   const ShaftRaceEquilibria set = find_shaft_race_equilibria(sys, race);
+  out.race_complete = set.doubt.empty();
   if (!set.doubt.empty()) out.warnings += fmt::format("warning: omega={}: {}\n", sys.balancer.omega, set.doubt);
   for (const auto& e : set.list) {
     throw_if_stopped("equilibria (shaft, unround race)");

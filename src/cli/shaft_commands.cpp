@@ -21,9 +21,12 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/analysis/shaft_race_sweep.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
+#include "abu/output/chart_labels.hpp"
 #include "abu/output/report_shaft.hpp"
+#include "abu/output/report_shaft_race_sweep.hpp"
 #include "abu/output/format.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
@@ -34,6 +37,7 @@
 #include "abu/scan/scan.hpp"
 #include "abu/scan/shaft_crossings.hpp"
 #include "abu/scan/shaft_map.hpp"
+#include "unround_commands.hpp"
 
 namespace abu::cli {
 
@@ -194,6 +198,47 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
   out.commit();
   fmt::print(stderr, "wrote {} ({} rows){}, {} ({} stability change(s))\n", csv_path.string(), count,
              chart ? fmt::format(" and {}", png_path.string()) : std::string(), crossings_path.string(), n_crossings);
+  return exit_ok;
+}
+
+int sweep_shaft_race(const Scene& scene, const SceneOptions& options, const UnroundGrid& g,
+                     const ShaftSpectrumOptions& spectrum) {
+  if (const auto ref = parse_param(g.param, int(scene.balls.size()));
+      ref && (ref->quantity == Quantity::stiffness || ref->quantity == Quantity::damping ||
+              ref->quantity == Quantity::rotor_mass))
+    throw InputError("--param", 0, g.param,
+                     fmt::format("a flexible shaft has no rotor '{}' (model.md §18.10: its [[bearing]] and [[disc]] "
+                                 "tables replace the rigid rotor's k, c and M_r)",
+                                 g.param));
+  const UnroundValues grid = unround_values(scene, g);
+  const ShaftRaceSweep sweep = sweep_shaft_race(grid.scenes, grid.races, grid.values, spectrum);
+  for (const auto& pt : sweep.points)
+    if (!pt.warnings.empty()) fmt::print(stderr, "at {}={}:\n{}", grid.name, pt.value, pt.warnings);
+  const ShaftSystem first = shaft_system_of(grid.scenes.front());
+  const std::string header = shaft_header_lines(command_line(), scene.file, first) + describe_race(grid.races.front(), "# ");
+  const auto [csv_path, summary_path, png_path] = sweep_paths(g.output_dir, grid.name);
+  OutputTransaction out;
+  const auto staged_all = out.stage(csv_path, shaft_race_sweep_csv(sweep, grid.name, grid.unit, header));
+  const auto staged_summary =
+      out.stage(summary_path, shaft_race_sweep_summary_csv(sweep, grid.name, grid.unit, header));
+  if (g.chart)
+    run_gnuplot(plots_dir() / "unround_sweep.gp",
+                {{"csv", staged_all.string()},
+                 {"summary", staged_summary.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", grid.name},
+                 {"unit", grid.unit},
+                 {"logx", g.logarithmic ? "1" : "0"},
+                 {"first_order", "0"},
+                 {"bare", "balls held at the balancer node"},
+                 {"open", "unstable or undetermined equilibrium"},
+                 {"title", fmt::format("{}: unround race on a flexible shaft, sweep of {}", scene.file, grid.name)},
+                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+  out.commit();
+  std::size_t rows = 0;
+  for (const auto& pt : sweep.points) rows += pt.states.size();
+  fmt::print(stderr, "wrote {} ({} rows) and {}{}\n", csv_path.string(), rows, summary_path.string(),
+             g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
   return exit_ok;
 }
 

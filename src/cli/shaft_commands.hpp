@@ -24,6 +24,12 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
                          bool logarithmic, const ShaftSpectrumOptions& spectrum, bool chart,
                          const std::string& output_dir);
 
+struct UnroundGrid;
+/// `sweep` of balls on an unround race on a shaft (model.md §18.18): sweep_NAME.csv (every
+/// equilibrium per value), summary_NAME.csv and summary_NAME.png. Returns the exit code.
+int sweep_shaft_race(const Scene& scene, const SceneOptions& options, const UnroundGrid& grid,
+                     const ShaftSpectrumOptions& spectrum);
+
 /// `map` on a shaft scene (shaft_map.cpp, model.md §18.13): the axes, as the rigid map's
 /// NAME:FROM:TO:N[:log] (omega already in rad/s), and the run's options.
 struct ShaftMapRequest {

@@ -198,6 +198,13 @@ Action add_sweep_command(CLI::App& app) {
   add_shaft_spectrum_options(*sub, o->shaft);
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (unround_on_shaft(scene)) {  // the race's equilibria on the shaft per value (model.md §18.18)
+      refuse_unmodelled(scene, "sweep", {.shaft_unround = true});
+      check_output_directory(o->output_dir);
+      if (o->param == "omega") o->from = omega_input(o->scene, o->from), o->to = omega_input(o->scene, o->to);
+      return sweep_shaft_race(scene, o->scene,
+                              {o->param, o->from, o->to, o->steps, o->logarithmic, o->chart, o->output_dir}, o->shaft);
+    }
     if (scene.shaft && !set_valued_on_shaft(scene)) {  // the Campbell diagram over omega (model.md §16.1, §18)
       refuse_unmodelled(scene, "sweep", {.shaft = true});
       if (o->param != "omega")

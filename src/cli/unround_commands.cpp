@@ -51,44 +51,53 @@ SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name
           dir / fmt::format("summary_{}.png", name)};
 }
 
-int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
+UnroundValues unround_values(const Scene& scene, const UnroundGrid& g) {
   if (g.steps < 1 || g.steps > kMaxUnroundSteps)
     throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxUnroundSteps, g.steps));
   if (g.logarithmic && !(g.from > 0 && g.to > 0))
     throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
-  UnroundSweep sweep;
-  std::vector<Scene> scenes;
-  std::vector<RaceShape> races;
-  const auto values = grid_values(g.from, g.to, g.steps, g.logarithmic);
+  UnroundValues out;
+  out.values = grid_values(g.from, g.to, g.steps, g.logarithmic);
   if (g.param == kUnroundnessParam) {
     require_unround(scene, "--param");
     if (!(g.from >= 0 && g.to >= 0))
       throw InputError("--from/--to", 0, kUnroundnessParam,
                        fmt::format("the unroundness factor is >= 0 (got {} .. {})", g.from, g.to));
-    sweep.name = kUnroundnessParam;
-    sweep.unit = std::string(1, '-');  // a factor (move-assigned: GCC 12's -Wrestrict misfires on "-")
+    out.name = kUnroundnessParam;
+    out.unit = std::string(1, '-');  // a factor (move-assigned: GCC 12's -Wrestrict misfires on "-")
     const RaceShape race = race_shape(scene);
-    for (double v : values) {
-      scenes.push_back(scene);
-      races.push_back(checked_scaled_race(scene, race, v, "--from/--to"));
+    for (double v : out.values) {
+      out.scenes.push_back(scene);
+      out.races.push_back(checked_scaled_race(scene, race, v, "--from/--to"));
     }
-  } else {
-    const auto ref = parse_param(g.param, int(scene.balls.size()));
-    if (!ref)
-      throw InputError("--param", 0, g.param,
-                       unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
-                                         fmt::format("{}, or {} (the race's amplitudes times a factor)",
-                                                     param_symbols_help(), kUnroundnessParam)));
-    sweep.name = to_string(*ref);
-    sweep.unit = std::string(unit(ref->quantity));
-    for (double v : values) {
-      Scene s = scene;
-      set_checked(s, *ref, v, "--from/--to");
-      check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
-      races.push_back(race_shape(s));  // surface harmonics follow l and r; the rules are re-checked
-      scenes.push_back(std::move(s));
-    }
+    return out;
   }
+  const auto ref = parse_param(g.param, int(scene.balls.size()));
+  if (!ref)
+    throw InputError("--param", 0, g.param,
+                     unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
+                                       fmt::format("{}, or {} (the race's amplitudes times a factor)",
+                                                   param_symbols_help(), kUnroundnessParam)));
+  out.name = to_string(*ref);
+  out.unit = std::string(unit(ref->quantity));
+  for (double v : out.values) {
+    Scene s = scene;
+    set_checked(s, *ref, v, "--from/--to");
+    check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
+    out.races.push_back(race_shape(s));  // surface harmonics follow l and r; the rules are re-checked
+    out.scenes.push_back(std::move(s));
+  }
+  return out;
+}
+
+int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
+  UnroundValues grid = unround_values(scene, g);
+  const std::vector<double>& values = grid.values;
+  const std::vector<Scene>& scenes = grid.scenes;
+  const std::vector<RaceShape>& races = grid.races;
+  UnroundSweep sweep;
+  sweep.name = grid.name;
+  sweep.unit = grid.unit;
   for (std::size_t i = 0; i < values.size(); ++i) {
     throw_if_stopped("sweep: unround race");
     const ParamsN p = params_of<any_balls>(scenes[i]);

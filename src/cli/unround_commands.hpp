@@ -35,6 +35,16 @@ struct UnroundGrid {
   std::string output_dir;
 };
 
+/// The values of a sweep on an unround race (the unroundness factor, or a parameter of the
+/// scene) with each value's scene and race, checked before any work.
+struct UnroundValues {
+  std::string name, unit;
+  std::vector<double> values;
+  std::vector<Scene> scenes;
+  std::vector<RaceShape> races;
+};
+UnroundValues unround_values(const Scene& scene, const UnroundGrid& grid);
+
 /// sweep_NAME.csv (every equilibrium per value), summary_NAME.csv and summary_NAME.png.
 int sweep_unround(const Scene& scene, const SceneOptions& options, const UnroundGrid& grid);
 /// branch_unroundness.csv, special_unroundness.csv and branch_unroundness.png.

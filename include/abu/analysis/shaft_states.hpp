@@ -58,6 +58,7 @@ struct ShaftStates {
   std::string warnings;
   DryFrictionVerdict dry;  ///< coulomb / stribeck: the stick set of the same mu through the shaft (§18.17)
   std::optional<RaceShape> race;  ///< an unround race (model.md §18.18): the states are its equilibria
+  bool race_complete = true;      ///< the race's box search (§11.4) proved its list complete
 };
 
 /// The shaft system of a [shaft] scene. Throws InputError (file, key "shaft") for a rule the
