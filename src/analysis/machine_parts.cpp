@@ -56,7 +56,7 @@ constexpr CommandParts kCommandParts[] = {
       .shaft_set_valued = true}},
     {"simulate",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true}},
-    {"basin", {.lugre = true, .set_valued = true, .unround = true}},
+    {"basin", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true}},
 };
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "abu/analysis/basin_targets.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
@@ -175,7 +176,9 @@ Action add_basin_command(CLI::App& app) {
     job.settle_samples = b.settle_samples;
     const RaceShape race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
     // LuGre: bounded 3n + 4 storage; an unround race: the bounded storage of its field.
-    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round();
+    // An anisotropic support: the composed field's storage too (model.md §20).
+    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round() || scene.support;
+    job.support = scene.support;
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
     for (const auto& s : o->scene.overrides) line += " --set " + s;
     line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),
@@ -192,6 +195,10 @@ Action add_basin_command(CLI::App& app) {
     set_basin_race(job, race);  // after params_n and the speed: the equilibria at the final speed
     set_sobol_starts(job);      // n >= 3 without fixed angles: every ball's start angle sampled
     if (!job.race.round()) job.provenance += describe_race(job.race, "# ");
+    if (const auto& k = job.support)  // the mean is the scene's k and c (provenance); the whole matrices here
+      job.provenance += fmt::format("# anisotropic support (model.md §10, §20): fixed frame K_f = [[{:.17g}, {:.17g}], "
+                                    "[{:.17g}, {:.17g}]] N/m, C_f = [[{:.17g}, {:.17g}], [{:.17g}, {:.17g}]] N s/m\n",
+                                    k->k_x, k->k_xy, k->k_xy, k->k_y, k->c_x, k->c_xy, k->c_xy, k->c_y);
     job.provenance += fmt::format("# grid: beta1 x beta2 over [0, 2 pi)^2, {} x {} cells; rotor at rest, balls at rest "
                                   "in the rotor frame\n",
                                   c1, c2);
@@ -205,7 +212,7 @@ Action add_basin_command(CLI::App& app) {
                                     n, c2, n - 2, n);
     }
 
-    const std::vector<BasinTarget> targets = basin_targets(job);
+    const std::vector<BasinTarget> targets = machine_basin_targets(job);
     {
       std::string t;
       for (const auto& x : targets) t += fmt::format("{}{}{}", t.empty() ? "" : ", ", x.label,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <memory>
+#include <stdexcept>
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
@@ -74,6 +75,7 @@ const ParamsT<double, N>& params_for(const BasinJob& job) {
 SimulationOptions cell_options(const BasinJob& job) {
   SimulationOptions o = job.sim;
   if (!job.race.round()) o.race = &job.race;  // the balls on the race's paths (model.md §15.6)
+  if (job.support) o.support = &*job.support;  // the support turning with the spin angle (model.md §20)
   o.record = true;
   o.interrupt = &stop_flag();
   o.progress = nullptr;
@@ -298,7 +300,22 @@ void set_basin_race(BasinJob& job, RaceShape race) {
   job.race_equilibria = std::make_shared<const UnroundResult>(find_unround_equilibria(p, job.race));
 }
 
+std::vector<BasinTarget> balanced_targets(const std::vector<EquilibriumN>& states, const std::vector<bool>& stable,
+                                          const std::string& why) {
+  struct Judged {
+    Stability stability;
+  };
+  std::vector<Judged> judged;
+  for (bool s : stable) judged.push_back({s ? Stability::stable : Stability::unstable});
+  std::vector<BasinTarget> out = targets_of(states, judged, states.empty() ? 0 : states.front().n_balls());
+  for (auto& t : out) t.region.reason = why;
+  return out;
+}
+
 std::vector<BasinTarget> basin_targets(const BasinJob& job) {
+  if (job.support)
+    throw std::invalid_argument("basin_targets: on an anisotropic support the balanced states are judged by their "
+                                "Floquet multipliers (analysis/basin_targets.hpp: machine_basin_targets)");
   if (set_valued(job)) return {};  // the stick set, not points: each end point is checked against it (§14.8)
   if (!job.race.round()) return unround_targets(job);
   if (!job.any_balls) {

@@ -108,6 +108,18 @@ assert labels and all(a.split(':')[0] in ('balanced', 'aligned', 'periodic', 'st
 check "three balls, --others symmetric: ball 3 at 4 pi / 3 in every cell" \
   "grep -q '^# fixed: balls 3..3 start at 4.18879' '$work/n3s/basin.csv' && [ \$(grep -v '^#' '$work/n3s/basin.csv' | tail -n +2 | awk -F, '{print \$NF}' | sort -u) = 4.188790205 ]"
 
+# --- an anisotropic support (model.md §20): the composed field; the balanced states judged by
+# their Floquet multipliers are the settle test's attractors (the fixed-frame reference of every
+# cell: reference/aniso_basin, label slow)
+aniso=$src/tests/scenes/anisotropic/ref_viscous.toml
+"$bin" basin "$aniso" --grid 3 --t-end 8 --threads 2 --no-chart -o "$work/an" 2>"$work/an.err"
+check "anisotropic support: basin exits 0" "[ $? -eq 0 ]"
+check "anisotropic support: its matrices in the header (and so in the resume manifest)" \
+  "grep -q '^# anisotropic support (model.md §10, §20): fixed frame K_f = \\[\\[12000, -800\\]' '$work/an/basin.csv'"
+check "anisotropic support: the attractors are the balanced states equilibria calls stable" \
+  "grep -q '^# attractors of the settle test at omega = 1100 rad/s: balanced 1, balanced 2$' '$work/an/basin.csv' && [ \$('$bin' equilibria '$aniso' | grep -c '^balanced [12]: .*; stable') -eq 2 ]"
+check "anisotropic support: no nan or inf" "! grep -v '^#' '$work/an/basin.csv' | grep -qiE 'nan|inf'"
+
 # --- bad input: exit 2, nothing written -------------------------------------------------------
 bad() {  # name, then the arguments; -o inside an empty directory
   local name=$1
@@ -129,4 +141,5 @@ bad "fixed wrong count"     "$work/ring3.toml" --fixed 1,2
 bad "others unknown"        "$work/ring3.toml" --others random
 bad "settle radius 0"       "$scene" --settle-radius 0
 bad "scene t_end <= 0"      "$src/tests/scenes/invalid/64-simulate-zero-t-end.toml"
+bad "unround race on an anisotropic support" "$src/tests/scenes/composed/oval_anisotropic.toml"
 finish

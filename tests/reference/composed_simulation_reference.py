@@ -66,7 +66,9 @@ def path_radius(h, l, beta):
     return e * f
 
 
-def equations(scene):
+def equations(scene, module="math"):
+    """(n, M, rhs): M(q, q', theta, Omega, Omega') q'' = rhs, lambdified for `module` ("math" for
+    one state, "numpy" for arrays of states at once)."""
     balls = scene_balls(scene)
     n = len(balls)
     rot, fr = scene["rotor"], scene["friction"]
@@ -114,7 +116,7 @@ def equations(scene):
     rhs = sp.Matrix([sp.diff(L, qi) - sp.diff(D, dqi) - sum(sp.diff(pl, qj) * dqj for qj, dqj in zip(q, dq))
                      - sp.diff(pl, th) * Om - sp.diff(pl, Om) * dOm for qi, dqi, pl in zip(q, dq, pL)])
     args = [*q, *dq, th, Om, dOm]
-    return n, sp.lambdify(args, M.tolist(), "math", cse=True), sp.lambdify(args, list(rhs), "math", cse=True)
+    return n, sp.lambdify(args, M.tolist(), module, cse=True), sp.lambdify(args, list(rhs), module, cse=True)
 
 
 def main(argv=None):

@@ -15,11 +15,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "abu/core/params.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/equilibria/equilibria_n.hpp"
+#include "abu/model/anisotropic_support.hpp"
 #include "abu/model/speed_profile.hpp"
 #include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/unround_race.hpp"
@@ -46,6 +49,11 @@ struct BasinJob {
   /// The race's equilibria at the final speed (model.md §11.4), found once for every cell's end
   /// (set_basin_race fills it); empty on a round race.
   std::shared_ptr<const UnroundResult> race_equilibria;
+  /// An anisotropic support (model.md §10, §20; any_balls true, params_n carrying its mean): the
+  /// cells integrate the composed field, the support turning with the spin angle. Its targets
+  /// are the balanced states the Floquet multipliers call stable (analysis/basin_targets.hpp);
+  /// the other states are pi/omega-periodic orbits, judged at t_end by §15.2 (`periodic`).
+  std::optional<AnisotropicSupport> support;
   /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
   /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
   double settle_radius = 1e-2;
@@ -79,8 +87,17 @@ struct BasinTarget {
 
 /// The attractors the settle test knows: the equilibria at the final speed whose spectrum
 /// is stable (model.md §6), and for n >= 3 the balanced set if every sample of it is
-/// normally stable (§13.5). Deterministic order (as the analysis lists them).
+/// normally stable (§13.5). Deterministic order (as the analysis lists them). Throws
+/// std::invalid_argument for a job with an anisotropic support (its targets need Floquet
+/// multipliers: analysis/basin_targets.hpp).
 std::vector<BasinTarget> basin_targets(const BasinJob& job);
+
+/// The balanced states as targets (label "balanced", member by order; for n >= 3 the set):
+/// what basin_targets builds from any stability judgement, here from one flag per state.
+/// `states` the balanced states at the final speed, `stable` one flag each; not certified,
+/// `why` says what decides instead.
+std::vector<BasinTarget> balanced_targets(const std::vector<EquilibriumN>& states, const std::vector<bool>& stable,
+                                          const std::string& why);
 
 /// Puts the balls on `race` (unround: job.race_equilibria found at the final speed; job.params_n
 /// and job.speed must be set).
