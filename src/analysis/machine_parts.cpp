@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "abu/core/errors.hpp"
+#include "abu/model/shaft.hpp"
 
 namespace abu {
 
@@ -22,7 +23,20 @@ std::string_view to_string(Route route) {
   return "?";
 }
 
+namespace {
+// Anisotropic bearings (model.md §18.19) are modelled with a round race and a smooth law only:
+// with another part they are refused by every command rather than replaced by their mean.
+void refuse_anisotropic_bearings_combined(const Scene& scene) {
+  if (!scene.shaft || !has_anisotropic_bearings(*scene.shaft) || anisotropic_bearings_on_shaft(scene)) return;
+  throw NotSupportedError(fmt::format("{} has anisotropic bearings on a flexible shaft (model.md §18.19) together with "
+                                      "{}: that combination is not modelled; anisotropic bearings run with a round "
+                                      "race and a smooth friction law (none, viscous, coulomb, stribeck)",
+                                      scene.file, !scene.race.round() ? "an unround race" : "a LuGre or coulomb-set law"));
+}
+}  // namespace
+
 Route route_of(const Scene& scene) {
+  refuse_anisotropic_bearings_combined(scene);
   if (unround_on_anisotropic_support(scene)) return Route::unround_anisotropic;  // model.md §20
   if (set_valued_on_unround_race(scene)) return Route::set_valued;               // on the race's paths, §20.5
   if (set_valued_on_shaft(scene)) return Route::set_valued;                      // the equivalent rigid balancer's, §18.17
@@ -55,7 +69,8 @@ constexpr CommandParts kCommandParts[] = {
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true,
       .shaft_set_valued = true}},
     {"simulate",
-     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true}},
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
+      .shaft_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true}},
 };
 }  // namespace
@@ -131,6 +146,11 @@ bool unround_on_shaft(const Scene& scene) {
          scene.law != FrictionLaw::coulomb_set;
 }
 
+bool anisotropic_bearings_on_shaft(const Scene& scene) {
+  return scene.shaft && has_anisotropic_bearings(*scene.shaft) && scene.race.round() && !scene.support &&
+         scene.law != FrictionLaw::lugre && scene.law != FrictionLaw::coulomb_set;
+}
+
 bool set_valued_on_shaft(const Scene& scene) {
   return scene.law == FrictionLaw::coulomb_set && scene.shaft && scene.race.round() && !scene.support;
 }
@@ -143,6 +163,8 @@ struct Combination {
   std::string_view parts, section, answer;
 };
 constexpr Combination kCombinations[] = {
+    {anisotropic_bearings_on_shaft, &Handles::shaft_anisotropic, "anisotropic bearings on a flexible shaft", "§18.19",
+     " (the whole shaft with its pi/omega-periodic bearing forces)"},
     {unround_on_anisotropic_support, &Handles::unround_anisotropic, "an unround race on an anisotropic support",
      "§20", ""},
     {set_valued_on_unround_race, &Handles::unround_set_valued, "coulomb-set balls on an unround race", "§20.5",
@@ -155,6 +177,7 @@ constexpr Combination kCombinations[] = {
 }  // namespace
 
 void refuse_combined_extensions(const Scene& scene, Handles handles) {
+  refuse_anisotropic_bearings_combined(scene);
   // The extensions are modelled one at a time (model.md §10-§12, §14) except an unround race
   // on an anisotropic support (§20): a scene that combines them otherwise is refused rather
   // than analysed with one of them silently dropped.
@@ -182,6 +205,7 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
   if (handles.unround_anisotropic && unround_on_anisotropic_support(scene)) handles.unround = handles.anisotropic = true;
   if (handles.shaft_set_valued && set_valued_on_shaft(scene)) handles.shaft = handles.set_valued = true;
   if (handles.shaft_unround && unround_on_shaft(scene)) handles.shaft = handles.unround = true;
+  if (handles.shaft_anisotropic && anisotropic_bearings_on_shaft(scene)) handles.shaft = true;
   if (!handles.lugre) refuse_lugre(scene, command);
   if (!handles.unround) refuse_unround(scene, command);
   if (!handles.anisotropic) refuse_anisotropic(scene, command);

@@ -52,9 +52,24 @@ ShaftOde::ShaftOde(const ShaftSystem& sys)
     l_.push_back(l);
     euler_.push_back(a * (l - (ball.inertia_factor - 1.0) * ball.radius));
   }
+  for (const ShaftBearing& b : sys.spec.bearings)
+    if (b.anisotropic) bearings_.push_back({4 * b.node, *b.anisotropic});
   v_.resize(ns_);
   w_.resize(ns_);
   acc_.resize(ns_);
+}
+
+void ShaftOde::add_deviator(const double* u, const double* ud) {
+  // (18.19.2): the deviatoric bearing force on the rotating axes is -(K_dev u + C_dev (u' + omega J u));
+  // w holds the restoring forces, so it gains K_dev u + C_dev (u' + omega J u).
+  for (const Bearing& b : bearings_) {
+    const BearingDeviator dev = bearing_deviator(b.support, theta_);
+    const int k = b.dof;
+    const Eigen::Vector2d uk(u[k], u[k + 1]), vk(ud[k] - omega_ * u[k + 1], ud[k + 1] + omega_ * u[k]);
+    const Eigen::Vector2d g = dev.stiffness * uk + dev.damping * vk;
+    w_[k] += g(0);
+    w_[k + 1] += g(1);
+  }
 }
 
 bool ShaftOde::field(const double* y, double* f) {
@@ -73,6 +88,7 @@ bool ShaftOde::field(const double* y, double* f) {
   add_product(c_, v_.data(), w_.data());
   for (int k = 0; k < ns_; ++k) v_[k] = w * v_[k] + 0.5 * wd * u[k];
   add_product(g_, v_.data(), w_.data());
+  if (deviator_on_) add_deviator(u, ud);
   // The force on the balancer node (18.6.2) with the run-up terms of (9.2)-(9.3), the balls'
   // coupling B(beta) and their rows.
   const double q1 = u[b_], q2 = u[b_ + 1], qd1 = ud[b_], qd2 = ud[b_ + 1];
@@ -133,21 +149,26 @@ bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
   f_plus_.resize(std::size_t(dim));
   f_minus_.resize(std::size_t(dim));
   f_still_.resize(std::size_t(dim));
-  if (wd != 0.0) {
+  if (wd != 0.0 || anisotropic()) {
     // The run-up terms' share of K = -db/ds + (dA/ds) s'' (18.16.4): -d/ds of the omega' terms
-    // of b, and (dA/ds) times the change of s'' that omega' makes.
+    // of b, and (dA/ds) times the change of s'' that omega' and the bearings' deviatoric force
+    // make (linearize_shaft's s'' is that of the mean shaft at omega' = 0, (18.19.6)).
     if (!field(y, f_plus_.data())) return false;
     omega_dot_ = 0.0;
+    deviator_on_ = false;
     const bool ok = field(y, f_still_.data());
     omega_dot_ = wd;
+    deviator_on_ = true;
     if (!ok) return false;
     auto kk = kc_.leftCols(d_);
-    kk.topLeftCorner(ns_, ns_) += 0.5 * wd * Eigen::MatrixXd(g_);
-    for (int k = 0; k < ns_; ++k) {  // omega' M_tot Jr: column k of Jr is +-e_{k+-1}
-      const int partner = k % 2 == 0 ? k + 1 : k - 1;
-      const double sign = k % 2 == 0 ? 1.0 : -1.0;
-      // (M_tot Jr)(:, k) = sign * M_tot(:, partner), M_tot the shaft block of A.
-      kk.col(k).head(ns_) += wd * sign * mass_.col(partner).head(ns_);
+    if (wd != 0.0) {
+      kk.topLeftCorner(ns_, ns_) += 0.5 * wd * Eigen::MatrixXd(g_);
+      for (int k = 0; k < ns_; ++k) {  // omega' M_tot Jr: column k of Jr is +-e_{k+-1}
+        const int partner = k % 2 == 0 ? k + 1 : k - 1;
+        const double sign = k % 2 == 0 ? 1.0 : -1.0;
+        // (M_tot Jr)(:, k) = sign * M_tot(:, partner), M_tot the shaft block of A.
+        kk.col(k).head(ns_) += wd * sign * mass_.col(partner).head(ns_);
+      }
     }
     const double q1 = y[b_], q2 = y[b_ + 1];
     for (int i = 0; i < n_; ++i) {
@@ -162,6 +183,12 @@ bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
       kk(col, b_ + 1) += wd * a * sb;
       kk(col, col) += wd * a * (q2 * cb - q1 * sb) - a * (cb * dq1 + sb * dq2);
     }
+  }
+  // The bearings' deviatoric blocks (18.19.4): K += K_dev + omega C_dev J, C += C_dev at their nodes.
+  for (const Bearing& b : bearings_) {
+    const BearingDeviator dev = bearing_deviator(b.support, theta_);
+    kc_.block<2, 2>(b.dof, b.dof) += deviator_position_stiffness(dev, omega_);
+    kc_.block<2, 2>(b.dof, d_ + b.dof) += dev.damping;
   }
   llt_.compute(mass_);
   if (llt_.info() != Eigen::Success) return false;
@@ -180,6 +207,19 @@ bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
     for (int r = 0; r < dim; ++r) dfdt[r] = wd * (f_plus_[std::size_t(r)] - f_minus_[std::size_t(r)]) / (2 * dw);
   } else {
     std::fill(dfdt, dfdt + dim, 0.0);
+  }
+  if (anisotropic()) {
+    // + omega df/dtheta: A does not depend on theta, so d s''/dtheta = -A^-1 dw/dtheta, with
+    // dw/dtheta the deviator's derivative (bearing_deviator_rate) on the node's u, u' + omega J u.
+    theta_rhs_.setZero(d_);
+    for (const Bearing& b : bearings_) {
+      const BearingDeviator rate = bearing_deviator_rate(b.support, theta_);
+      const int k = b.dof;
+      const Eigen::Vector2d uk(y[k], y[k + 1]), vk(y[d_ + k] - omega_ * y[k + 1], y[d_ + k + 1] + omega_ * y[k]);
+      theta_rhs_.segment<2>(k) -= rate.stiffness * uk + rate.damping * vk;
+    }
+    theta_rhs_ = llt_.solve(theta_rhs_);
+    for (int r = 0; r < d_; ++r) dfdt[d_ + r] += omega_ * theta_rhs_[r];
   }
   for (int r = 0; r < dim * dim; ++r)
     if (!std::isfinite(dfdy[r])) return false;

@@ -15,6 +15,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "abu/model/shaft_bearings.hpp"
 #include "abu/model/shaft_system.hpp"
 
 namespace abu::shaft_detail {
@@ -39,12 +40,17 @@ class ShaftOde {
   }
   double omega() const { return omega_; }
   double omega_dot() const { return omega_dot_; }
+  /// The spin angle theta(t) [rad] that turns the anisotropic bearings' deviatoric part (model.md
+  /// §18.19): their fixed axes n1, n2 are a1, a2 at theta = 0. Unused without them.
+  void set_angle(double theta) { theta_ = theta; }
+  bool anisotropic() const { return !bearings_.empty(); }
 
   /// f = (s', s'') at the state y (size dim()). Returns false if a value is not finite or the
   /// balls' Schur complement is not positive definite (it is whenever A is, §18.6).
   bool field(const double* y, double* f);
 
-  /// J = df/dx (row-major dim x dim) and df/dt = omega' df/domega at y. False if not finite.
+  /// J = df/dx (row-major dim x dim) and df/dt = omega' df/domega + omega df/dtheta at y. False
+  /// if not finite.
   bool jacobian(const double* y, double* dfdy, double* dfdt);
 
   /// The eigenvalues of J at y (dense) in two figures (model.md §18.16).
@@ -53,12 +59,22 @@ class ShaftOde {
   unsigned long rhs_count = 0, jacobian_count = 0;
 
  private:
+  void add_deviator(const double* u, const double* ud);  // the anisotropic bearings' share of w (18.19.5)
   ShaftSystem sys_;  // sys_.balancer.omega follows set_speed for linearize_shaft
   int ns_, n_, d_, b_;
   Eigen::SparseMatrix<double> k_, c_, g_;
   Eigen::MatrixXd minv_;  // M_tot^-1, ns x ns
   Eigen::Matrix2d h_;     // its balancer-node block
-  double omega_ = 0, omega_dot_ = 0;
+  double omega_ = 0, omega_dot_ = 0, theta_ = 0;
+  // The anisotropic bearings (model.md §18.19): the node's u1 index and K_f, C_f; the field adds
+  // their deviatoric force unless `deviator_on_` is off (the Jacobian's reference field).
+  struct Bearing {
+    int dof;
+    AnisotropicSupport support;
+  };
+  std::vector<Bearing> bearings_;
+  bool deviator_on_ = true;
+  Eigen::VectorXd theta_rhs_;  // Jacobian work: -dw/dtheta, then df/dtheta's lower half (size d)
   // Per ball: a_i = m_i l_i, j_i m_i l_i^2, l_i, the run-up moment m_i l_i (l_i - (j_i - 1) r_i) (9.4).
   std::vector<double> a_, inertia_, l_, euler_;
   Eigen::VectorXd v_, w_, acc_;  // work vectors, ns

@@ -23,11 +23,16 @@ using namespace sim_detail;  // the GSL parts shared with simulate() (scaled_con
 
 namespace {
 
-// omega(t) = omega0 + omega' (t - t0) within a segment of the speed profile.
+// omega(t) = omega0 + omega' (t - t0) within a segment of the speed profile, and the spin angle
+// theta(t) = theta0 + omega0 (t - t0) + omega' (t - t0)^2 / 2 that turns anisotropic bearings (§18.19).
 struct Context {
   shaft_detail::ShaftOde* ode;
-  double t0 = 0, omega0 = 0, omega_dot = 0;
-  void at(double t) const { ode->set_speed(omega0 + omega_dot * (t - t0), omega_dot); }
+  double t0 = 0, omega0 = 0, omega_dot = 0, theta0 = 0;
+  void at(double t) const {
+    const double s = t - t0;
+    ode->set_speed(omega0 + omega_dot * s, omega_dot);
+    ode->set_angle(theta0 + s * (omega0 + 0.5 * omega_dot * s));
+  }
 };
 
 int field_rhs(double t, const double y[], double f[], void* params) {
@@ -123,6 +128,7 @@ double probe_stiffness(shaft_detail::ShaftOde& ode, const ShaftSystem& sys, cons
   std::vector<double> xs(x0.data(), x0.data() + x0.size());
   for (int i = 0; i < sys.n_balls(); ++i) xs[std::size_t(sys.configuration_size() + sys.ball_dof(i))] = 0.0;
   ode.set_speed(w_max, 0.0);
+  ode.set_angle(0.0);
   const shaft_detail::StiffnessProbe probe = ode.probe(xs.data());
   if (!std::isfinite(probe.decay) || probe.decay > 1e150)
     throw NumericalError(fmt::format("simulate: the stiffness probe's Jacobian at omega_max = {:g} rad/s is not finite "
@@ -261,6 +267,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     ctx.t0 = at;
     ctx.omega0 = speed.omega(at);
     ctx.omega_dot = speed.omega_dot(at);
+    ctx.theta0 = speed.angle(at);
   };
   begin_segment(0.0);
   const auto accumulate = [&] {

@@ -12,6 +12,7 @@
 
 #include "abu/input/ranges.hpp"
 #include "abu/input/scene.hpp"
+#include "bearing_reading.hpp"
 #include "shaft_reading.hpp"
 
 namespace abu {
@@ -190,11 +191,19 @@ const std::vector<KeyRule> kDiscRules{{"node", Kind::integer, true, node_index},
                                       {"mass", Kind::real, true, positive},
                                       {"polar_inertia", Kind::real, true, non_negative},
                                       {"transverse_inertia", Kind::real, true, non_negative}};
+std::optional<std::string> matrix_entry(double) { return std::nullopt; }  // the matrix's rules: bearing_reading.cpp
+// stiffness, damping or the anisotropic bearing's matrix keys: one form required (read_bearing_support).
 const std::vector<KeyRule> kBearingRules{{"node", Kind::integer, true, node_index},
-                                         {"stiffness", Kind::real, true, non_negative},
-                                         {"damping", Kind::real, true, non_negative},
+                                         {"stiffness", Kind::real, false, non_negative},
+                                         {"damping", Kind::real, false, non_negative},
                                          {"tilt_stiffness", Kind::real, false, non_negative},
-                                         {"tilt_damping", Kind::real, false, non_negative}};
+                                         {"tilt_damping", Kind::real, false, non_negative},
+                                         {"stiffness_x", Kind::real, false, matrix_entry},
+                                         {"stiffness_y", Kind::real, false, matrix_entry},
+                                         {"stiffness_xy", Kind::real, false, matrix_entry},
+                                         {"damping_x", Kind::real, false, matrix_entry},
+                                         {"damping_y", Kind::real, false, matrix_entry},
+                                         {"damping_xy", Kind::real, false, matrix_entry}};
 
 // An array of tables under `name` ([[shaft.element]], [[disc]], [[bearing]]), or a problem.
 const toml::array* tables_of(Problems& p, const toml::node& node, toml::source_position pos, const std::string& name) {
@@ -250,7 +259,8 @@ void read_shaft_rotor(Problems& p, const toml::table& table, std::vector<Slot>& 
     if (name == "stiffness" || name == "damping" || name.starts_with("stiffness_") || name.starts_with("damping_")) {
       p.add(pos, key,
             "a shaft scene's support is its bearings' ([[bearing]] stiffness, damping, tilt_stiffness, tilt_damping, "
-            "isotropic): [rotor] gives only the unbalance (model.md §18.10)");
+            "or an anisotropic bearing's stiffness_x, stiffness_y, stiffness_xy, damping_x, damping_y, damping_xy): "
+            "[rotor] gives only the unbalance (model.md §18.10, §18.19)");
       return true;
     }
     return false;
@@ -449,14 +459,19 @@ std::optional<ShaftSpec> read_shaft(Problems& p, const ShaftInput& in) {
           const KeyValue& x = at(v, kBearingRules, r.name);
           return x.seen ? x.value.has_value() : !r.required;
         });
-        if (!check_node(node) || !complete) {
+        std::vector<BearingKey> support_keys;  // isotropic or anisotropic (model.md §18.19)
+        for (std::string_view name : kBearingSupportKeys) {
+          const KeyValue& x = at(v, kBearingRules, name);
+          support_keys.push_back({name, x.seen, x.value, x.pos, x.key});
+        }
+        const auto support = read_bearing_support(p, support_keys, t.source().begin, path);
+        if (!check_node(node) || !complete || !support) {
           ok = false;
           continue;
         }
-        bearings.emplace_back(ShaftBearing{node.node, value_or(v, kBearingRules, "stiffness", 0),
-                                           value_or(v, kBearingRules, "damping", 0),
+        bearings.emplace_back(ShaftBearing{node.node, support->stiffness, support->damping,
                                            value_or(v, kBearingRules, "tilt_stiffness", 0),
-                                           value_or(v, kBearingRules, "tilt_damping", 0)},
+                                           value_or(v, kBearingRules, "tilt_damping", 0), support->anisotropic},
                               node);
       }
     } else {

@@ -167,6 +167,12 @@ std::optional<std::string> shaft_spec_violation(const ShaftSpec& spec) {
     for (double v : {b.stiffness, b.damping, b.tilt_stiffness, b.tilt_damping})
       if (!(v >= 0.0) || !std::isfinite(v))
         return fmt::format("bearing {}: stiffness and damping must be finite and >= 0", i + 1);
+    if (const auto& a = b.anisotropic) {  // model.md §18.19: the rules of §10.1, the means in K and C
+      if (auto why = stiffness_matrix_violation(a->k_x, a->k_y, a->k_xy)) return fmt::format("bearing {}: {}", i + 1, *why);
+      if (auto why = damping_matrix_violation(a->c_x, a->c_y, a->c_xy)) return fmt::format("bearing {}: {}", i + 1, *why);
+      if (b.stiffness != a->mean_stiffness() || b.damping != a->mean_damping())
+        return fmt::format("bearing {}: stiffness and damping must be the means of K_f and C_f (model.md §18.19)", i + 1);
+    }
   }
   if (!node_ok(spec.balancer_node))
     return fmt::format("balancer node {} is not in [0, {}]", spec.balancer_node, nodes - 1);
@@ -184,6 +190,12 @@ std::optional<std::string> shaft_spec_violation(const ShaftSpec& spec) {
                          "a massless node is not condensed (model.md §18.9)",
                          k / 4, names[k % 4]);
   return std::nullopt;
+}
+
+bool has_anisotropic_bearings(const ShaftSpec& spec) {
+  for (const ShaftBearing& b : spec.bearings)
+    if (b.anisotropic) return true;
+  return false;
 }
 
 ShaftMatrices assemble_shaft(const ShaftSpec& spec) {
@@ -230,9 +242,16 @@ std::string describe_shaft(const ShaftSpec& spec, std::string_view prefix) {
   for (const ShaftDisc& d : spec.discs)
     out += fmt::format("{}disc at node {}: mass {} kg, I_p {} kg m^2, I_d {} kg m^2\n", prefix, d.node, d.mass,
                        d.polar_inertia, d.transverse_inertia);
-  for (const ShaftBearing& b : spec.bearings)
-    out += fmt::format("{}bearing at node {}: k {} N/m, c {} N s/m, k_psi {} N m/rad, c_psi {} N m s/rad\n", prefix,
-                       b.node, b.stiffness, b.damping, b.tilt_stiffness, b.tilt_damping);
+  for (const ShaftBearing& b : spec.bearings) {
+    if (const auto& a = b.anisotropic)  // the fixed-frame matrices on (n1, n2), model.md §18.19
+      out += fmt::format("{}bearing at node {}: K_f [[{}, {}], [{}, {}]] N/m, C_f [[{}, {}], [{}, {}]] N s/m, k_psi {} "
+                         "N m/rad, c_psi {} N m s/rad\n",
+                         prefix, b.node, a->k_x, a->k_xy, a->k_xy, a->k_y, a->c_x, a->c_xy, a->c_xy, a->c_y,
+                         b.tilt_stiffness, b.tilt_damping);
+    else
+      out += fmt::format("{}bearing at node {}: k {} N/m, c {} N s/m, k_psi {} N m/rad, c_psi {} N m s/rad\n", prefix,
+                         b.node, b.stiffness, b.damping, b.tilt_stiffness, b.tilt_damping);
+  }
   return out;
 }
 

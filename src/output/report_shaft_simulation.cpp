@@ -25,13 +25,20 @@ std::string shaft_simulation_csv(const ShaftSimulationResult& r, const ShaftSyst
                              format_number(r.view.rotor.mass, "M_r"), format_number(r.view.rotor.stiffness, "k"),
                              format_number(r.run.summary.omega_n, "omega_n"),
                              format_number(r.run.displacement_scale, "L")));
+  std::string shaft = fmt::format(
+      "# flexible shaft (model.md §18.16): {} nodes, {} states; q1 q2 dq1 dq2 are the balancer node's ({}) u1 u2 "
+      "and their rates; max_deflection [m] = max over the nodes of |(u1_k, u2_k)| at the sample, at node "
+      "max_deflection_node (0-based)\n",
+      sys.nodes(), sys.state_size(), sys.spec.balancer_node);
+  for (const ShaftBearing& b : sys.spec.bearings)  // the pi/omega-periodic field's bearings (model.md §18.19)
+    if (const auto& a = b.anisotropic)
+      shaft += fmt::format("# anisotropic bearing at node {} (model.md §18.19): K_f [[{}, {}], [{}, {}]] N/m, C_f [[{}, {}], "
+                           "[{}, {}]] N s/m on the fixed axes n1, n2 (a1, a2 at t = 0)\n",
+                           b.node, format_number(a->k_x, "k_x"), format_number(a->k_xy, "k_xy"),
+                           format_number(a->k_xy, "k_xy"), format_number(a->k_y, "k_y"), format_number(a->c_x, "c_x"),
+                           format_number(a->c_xy, "c_xy"), format_number(a->c_xy, "c_xy"), format_number(a->c_y, "c_y"));
   return with_columns(
-      base,
-      fmt::format(
-          "# flexible shaft (model.md §18.16): {} nodes, {} states; q1 q2 dq1 dq2 are the balancer node's ({}) u1 u2 "
-          "and their rates; max_deflection [m] = max over the nodes of |(u1_k, u2_k)| at the sample, at node "
-          "max_deflection_node (0-based)\n",
-          sys.nodes(), sys.state_size(), sys.spec.balancer_node),
+      base, shaft,
       ",max_deflection,max_deflection_node",
       [&](std::size_t row, std::string& out) {
         out += ',';

@@ -7,7 +7,8 @@ The program integrates the shaft in the frame ROTATING with it (model.md (18.16.
 script integrates the same machine in the FIXED frame, from its own Lagrangian:
   * the element matrices M, K, G of tests/reference/shaft_elements.py (exact sympy
     integration of the beam energies, independent of the C++ closed forms), assembled here,
-    with the disc (m, I_d, I_p) and the bearings (k, c) of the scene;
+    with the disc (m, I_d, I_p) and the bearings (k, c, or an anisotropic bearing's fixed-frame
+    K_f, C_f: model.md §18.19, tests/reference/shaft_aniso_reference.py) of the scene;
   * the spin energy of a slice or disc in the isotropic form 1/2 I_p (Omega + (psi1' psi2 -
     psi1 psi2')/2)^2, so that at a varying speed the shaft gains (Omega'/2) G u;
   * the balls as point masses at z_b + l_i e^{i alpha_i} (z_b = u1 + i u2 of the balancer
@@ -68,9 +69,16 @@ def assemble(scene):
         G[k + 3, k + 2] -= disc['polar_inertia']
     for b in scene['bearing']:
         k = 4 * b['node']
+        if 'stiffness_x' in b:  # an anisotropic bearing: K_f, C_f on the fixed axes (model.md §18.19)
+            K[k:k + 2, k:k + 2] += [[b['stiffness_x'], b.get('stiffness_xy', 0.0)],
+                                    [b.get('stiffness_xy', 0.0), b['stiffness_y']]]
+            C[k:k + 2, k:k + 2] += [[b['damping_x'], b.get('damping_xy', 0.0)],
+                                    [b.get('damping_xy', 0.0), b['damping_y']]]
+        else:
+            for i in range(2):
+                K[k + i, k + i] += b['stiffness']
+                C[k + i, k + i] += b['damping']
         for i in range(2):
-            K[k + i, k + i] += b['stiffness']
-            C[k + i, k + i] += b['damping']
             K[k + 2 + i, k + 2 + i] += b.get('tilt_stiffness', 0.0)
             C[k + 2 + i, k + 2 + i] += b.get('tilt_damping', 0.0)
     return M, K, C, G, nodes
@@ -96,7 +104,7 @@ class Speed:
         return self.w0 * self.t1 + 0.5 * self.alpha * self.t1**2 + self.w1 * (t - self.t1)
 
 
-def reference(scene, speed, beta0, times):
+def reference(scene, speed, beta0, times, method='Radau'):
     M, K, C, G, nodes = assemble(scene)
     ns = 4 * nodes
     b = 4 * scene['shaft']['balancer_node']
@@ -145,7 +153,7 @@ def reference(scene, speed, beta0, times):
     out = []
     for a, z in zip(breaks[:-1], breaks[1:]):
         ts = sorted(set([t for t in times if a <= t <= z] + [z]))  # z: the next segment's start
-        sol = solve_ivp(rhs, (a, z), y0, method='Radau', rtol=1e-11, atol=atol,
+        sol = solve_ivp(rhs, (a, z), y0, method=method, rtol=1e-11, atol=atol,
                         t_eval=ts, dense_output=False)
         assert sol.success, sol.message
         for k, t in enumerate(sol.t):
@@ -174,7 +182,7 @@ def main():
         return compare(sys.argv[1], sys.argv[2], work)
 
 
-def compare(prog, scene_path, work):
+def compare(prog, scene_path, work, method='Radau'):
     with open(scene_path, 'rb') as fh:
         scene = tomllib.load(fh)
     w = scene['speed']['omega']
@@ -188,7 +196,7 @@ def compare(prog, scene_path, work):
                '5e-4', '--rtol', '1e-10', '--method', 'rk8pd', '--no-chart', '--quiet', '-o', out] + extra
         subprocess.run(cmd, check=True)
         head, data = read_csv(os.path.join(out, 'simulation.csv'))
-        ref, m, l, U = reference(scene, speed, np.array(beta0), list(data[:, 0]))
+        ref, m, l, U = reference(scene, speed, np.array(beta0), list(data[:, 0]), method)
         assert len(ref) == len(data), (len(ref), len(data))
         n = len(beta0)
         disc = [x for x in scene['disc'] if x['node'] == scene['shaft']['balancer_node']][0]

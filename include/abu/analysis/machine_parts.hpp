@@ -27,6 +27,8 @@ bool unround_on_anisotropic_support(const Scene& scene);
 bool set_valued_on_unround_race(const Scene& scene);
 /// coulomb-set balls on a flexible shaft with a round race (model.md §18.17).
 bool set_valued_on_shaft(const Scene& scene);
+/// A smooth law's balls on a flexible shaft with anisotropic bearings, a round race (model.md §18.19).
+bool anisotropic_bearings_on_shaft(const Scene& scene);
 /// A smooth law's balls on an unround race on a flexible shaft (model.md §18.18).
 bool unround_on_shaft(const Scene& scene);
 
@@ -51,6 +53,8 @@ struct Handles {
   bool shaft_set_valued = false;
   /// an unround race on a flexible shaft (the race's equilibria on it, model.md §18.18)
   bool shaft_unround = false;
+  /// anisotropic bearings on a flexible shaft (its pi/omega-periodic field, model.md §18.19)
+  bool shaft_anisotropic = false;
 };
 /// A scene that combines two of the extensions (anisotropic support, unround race, LuGre,
 /// coulomb-set, a shaft) is refused (NotSupportedError, naming the commands that answer it

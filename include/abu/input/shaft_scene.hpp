@@ -21,6 +21,9 @@
 //   node = 0  stiffness = 5e7  damping = 500.0
 //   tilt_stiffness = 0.0         # [N m/rad], optional, >= 0
 //   tilt_damping = 0.0           # [N m s/rad], optional, >= 0
+//                                # or anisotropic (model.md §18.19): instead of stiffness, damping
+//   stiffness_x = 5.2e7  stiffness_y = 4.8e7  stiffness_xy = 1e6     # K_f [N/m] on n1, n2 (xy optional)
+//   damping_x = 500.0  damping_y = 400.0  damping_xy = 0.0           # C_f [N s/m] (xy optional)
 //
 // Nodes are numbered 0..E along the shaft, E the number of elements after `segments`:
 // element e (0-based, in file order, each section's segments in turn) joins nodes e and
@@ -36,7 +39,8 @@
 //
 // Rules (each one InputError: file, line, key, rule; the first in the file wins, like
 // every scene rule, scene.cpp): every key known, every number finite and in its range
-// above; node indices integers in 0..E (disc, bearing, balancer_node); every disc and
+// above; a bearing gives stiffness and damping or the matrix keys, never both, K_f positive
+// definite, C_f positive semidefinite; node indices integers in 0..E (disc, bearing, balancer_node); every disc and
 // bearing has a node; at most one disc per node (two on one node: give one with the summed
 // mass and inertias); a disc's polar_inertia <= 2 transverse_inertia (the principal moments
 // of a rigid body obey I_3 <= I_1 + I_2: swapped values are caught); the balancer node has a

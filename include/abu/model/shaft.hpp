@@ -23,6 +23,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "abu/model/anisotropic_support.hpp"
+
 namespace abu {
 
 /// One beam element between nodes k and k + 1 (model.md §18.1).
@@ -43,14 +45,19 @@ struct ShaftDisc {
   double transverse_inertia{};  ///< I_d [kg m^2]
 };
 
-/// An isotropic bearing at a node: translational spring and damper to ground, and an
-/// optional tilt spring (model.md §18.3).
+/// A bearing at a node: translational spring and damper to ground, and an optional tilt
+/// spring (model.md §18.3). Isotropic (k, c), or anisotropic: the fixed-frame matrices K_f,
+/// C_f on the fixed axes (n1, n2) of model.md §10.1 (§18.19); the tilt spring is isotropic.
 struct ShaftBearing {
   int node{};
-  double stiffness{};        ///< k [N/m]
-  double damping{};          ///< c [N s/m]
+  double stiffness{};        ///< k [N/m]; an anisotropic bearing: its mean (k_x + k_y)/2
+  double damping{};          ///< c [N s/m]; an anisotropic bearing: its mean (c_x + c_y)/2
   double tilt_stiffness{};   ///< k_psi [N m/rad]
   double tilt_damping{};     ///< c_psi [N m s/rad]
+  /// K_f and C_f of an anisotropic bearing (stiffness, damping are then their means, which
+  /// assemble_shaft puts in K and C); none: the isotropic k I, c I. Given in the matrix form it
+  /// counts as anisotropic even if K_f = k I, as the rigid [rotor]'s support does.
+  std::optional<AnisotropicSupport> anisotropic{};
 };
 
 /// The whole shaft. Invariant (checked by the scene reader, input/scene.cpp): every node
@@ -65,6 +72,10 @@ struct ShaftSpec {
   int dofs() const { return 4 * nodes(); }
 };
 
+/// Whether a bearing of `spec` is given by fixed-frame matrices (ShaftBearing::anisotropic):
+/// the rotating-frame equations are then pi/omega-periodic (model.md §18.19).
+bool has_anisotropic_bearings(const ShaftSpec& spec);
+
 /// Fixed-frame structural matrices of the non-rotating-frame equation
 ///     M u'' + (C + Omega G) u' + K u = f        (model.md §18.4)
 /// with u in the fixed frame, the same dof order as above. M, K symmetric; G skew.
@@ -72,6 +83,8 @@ struct ShaftMatrices {
   Eigen::SparseMatrix<double> mass, stiffness, damping, gyroscopic;
 };
 
+/// An anisotropic bearing enters with its mean stiffness and damping (ShaftBearing::stiffness,
+/// damping); its deviatoric part is bearing_deviator's (shaft_bearings.hpp, model.md §18.19).
 ShaftMatrices assemble_shaft(const ShaftSpec& spec);
 
 /// The matrices of one element in ONE bending plane (model.md §18.1), dofs
@@ -93,7 +106,8 @@ double shear_coefficient(const ShaftElement& e);
 /// The first rule `spec` breaks, as a sentence naming the element, disc, bearing or node
 /// (node index out of range, non-positive length or diameter, inner >= outer diameter,
 /// negative modulus, density, mass, inertia, stiffness or damping, E = 0, a dof without
-/// mass: model.md §18.9), or nullopt. The scene reader checks these with file and line;
+/// mass: model.md §18.9; an anisotropic bearing's K_f not positive definite, C_f not positive
+/// semidefinite, or stiffness, damping not their means: §18.19), or nullopt. The scene reader checks these with file and line;
 /// this is the model's own guard (make_shaft_system throws on it).
 std::optional<std::string> shaft_spec_violation(const ShaftSpec& spec);
 
