@@ -13,6 +13,8 @@ if (!exists("logx")) logx = '0'
 if (!exists("logy")) logy = '0'
 if (!exists("title")) title = 'unround race map'
 if (!exists("subtitle")) subtitle = ''
+# A flexible shaft's map (model.md §18.18) has no first-order regime column.
+if (!exists("first_order")) first_order = '1'
 
 set terminal pngcairo size 1300,600 enhanced font 'DejaVu Sans,10'
 set output png
@@ -41,8 +43,8 @@ set cbrange [top - 4 : top]
 set autoscale xfix
 set autoscale yfix
 set key below
-plot csv using (X(column(xname))):(Y(column(yname))):(positive(column("best_q_abs"))) with image notitle, \
-     csv using (X(column(xname))):(column("first_order") > 0 ? Y(column(yname)) : NaN) with points pt 7 ps 0.3 lc rgb 'white' title 'first order (Lambda <= 0.1)'
+dots = first_order eq '1' ? ", csv using (X(column(xname))):(column('first_order') > 0 ? Y(column(yname)) : NaN) with points pt 7 ps 0.3 lc rgb 'white' title 'first order (Lambda <= 0.1)'" : ""
+plot csv using (X(column(xname))):(Y(column(yname))):(positive(column("best_q_abs"))) with image notitle @dots
 set autoscale cb
 set cblabel 'stable equilibria'
 set palette defined (0 '#f7f7f7', 1 '#92c5de', 2 '#2166ac', 4 '#053061')

@@ -67,7 +67,7 @@ constexpr CommandParts kCommandParts[] = {
     {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
     {"map",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_set_valued = true,
-      .shaft_set_valued = true}},
+      .shaft_set_valued = true, .shaft_unround = true}},
     {"simulate",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .shaft_anisotropic = true}},

@@ -3,18 +3,15 @@
 
 #include <cmath>
 #include <complex>
-#include <limits>
 
 #include "abu/core/cancel.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
 
 namespace abu {
 
-namespace {
-
 // The stable state of least |q| at the balancer node: the design figure (as the rigid race's
 // best_stable, model.md §11.10). "undetermined" is not stable.
-std::optional<std::size_t> least_stable(const std::vector<ShaftState>& states) {
+std::optional<std::size_t> least_stable_state(const std::vector<ShaftState>& states) {
   std::optional<std::size_t> best;
   for (std::size_t k = 0; k < states.size(); ++k)
     if (states[k].verdict == "stable" && (!best || states[k].q_abs < states[*best].q_abs)) best = k;
@@ -30,8 +27,6 @@ std::optional<double> balls_held_whirl(const ShaftSystem& sys) {
   return omega * omega * sys.balancer.rotor.unbalance / std::abs(*stiffness);
 }
 
-}  // namespace
-
 ShaftRaceSweep sweep_shaft_race(const std::vector<Scene>& scenes, const std::vector<RaceShape>& races,
                                 const std::vector<double>& values, const ShaftSpectrumOptions& spectrum) {
   ShaftRaceSweep out;
@@ -45,7 +40,7 @@ ShaftRaceSweep sweep_shaft_race(const std::vector<Scene>& scenes, const std::vec
     ShaftRaceSweepPoint pt;
     pt.value = values[i];
     pt.states = std::move(st.states);
-    pt.best = least_stable(pt.states);
+    pt.best = least_stable_state(pt.states);
     pt.q_bare = balls_held_whirl(sys);
     pt.complete = st.race_complete;
     pt.warnings = std::move(st.warnings);

@@ -97,9 +97,10 @@ Action add_map_command(CLI::App& app) {
     // Everything is checked before any work (exit 2, nothing written).
     const Scene scene = load(o->scene);
     if (scene.shaft && !set_valued_on_shaft(scene)) {  // the balanced state's stability (model.md §18.13)
-      refuse_unmodelled(scene, "map", {.shaft = true});
+      const bool race = unround_on_shaft(scene);           // or the race's equilibria on the shaft (§18.18)
+      refuse_unmodelled(scene, "map", race ? Handles{.shaft_unround = true} : Handles{.shaft = true});
       check_output_directory(o->output_dir);
-      return map_shaft(scene, {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y),
+      return (race ? map_shaft_race : map_shaft)(scene, {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y),
                                canonical_command_line(*o), o->scene.overrides, o->shaft, o->sampling, o->threads,
                                o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }

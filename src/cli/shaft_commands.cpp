@@ -203,13 +203,7 @@ int shaft_campbell_sweep(const Scene& scene, const SceneOptions& options, double
 
 int sweep_shaft_race(const Scene& scene, const SceneOptions& options, const UnroundGrid& g,
                      const ShaftSpectrumOptions& spectrum) {
-  if (const auto ref = parse_param(g.param, int(scene.balls.size()));
-      ref && (ref->quantity == Quantity::stiffness || ref->quantity == Quantity::damping ||
-              ref->quantity == Quantity::rotor_mass))
-    throw InputError("--param", 0, g.param,
-                     fmt::format("a flexible shaft has no rotor '{}' (model.md §18.10: its [[bearing]] and [[disc]] "
-                                 "tables replace the rigid rotor's k, c and M_r)",
-                                 g.param));
+  // k, c and M_r are refused by set_checked: a shaft scene has none (model.md §18.10).
   const UnroundValues grid = unround_values(scene, g);
   const ShaftRaceSweep sweep = sweep_shaft_race(grid.scenes, grid.races, grid.values, spectrum);
   for (const auto& pt : sweep.points)

@@ -44,5 +44,8 @@ struct ShaftMapRequest {
 };
 /// DIR/shaft_map_X_Y.csv and its chart. Returns the exit code.
 int map_shaft(const Scene& scene, const ShaftMapRequest& request);
+/// Balls on an unround race on the shaft (shaft_race_map.cpp, model.md §18.18): DIR/summary_X_Y.csv
+/// and its chart; axes a scene parameter or `unroundness` (k, c, M_r refused; --set-samples unused).
+int map_shaft_race(const Scene& scene, const ShaftMapRequest& request);
 
 }  // namespace abu::cli

@@ -168,14 +168,6 @@ int continue_unroundness(const Scene& scene, const SceneOptions& options, double
   return exit_ok;
 }
 
-namespace {
-// One axis of an unround map: the unroundness factor, or a parameter of the scene.
-struct UnroundAxis {
-  Axis axis;
-  bool factor = false;  // the unroundness factor
-  std::string name, unit;
-};
-
 UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const RaceShape& race, const std::string& origin) {
   UnroundAxis a;
   if (spec.rfind(kUnroundnessParam + ":", 0) != 0) {
@@ -213,7 +205,6 @@ UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const Race
   a.unit = std::string(1, '-');
   return a;
 }
-}  // namespace
 
 int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {
   require_unround(scene, request.x.rfind(kUnroundnessParam, 0) == 0 ? "--x" : "--y");

@@ -8,6 +8,7 @@
 
 #include "abu/continuation/arclength.hpp"
 #include "abu/model/unround_race.hpp"
+#include "abu/scan/map.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {
@@ -50,6 +51,15 @@ int sweep_unround(const Scene& scene, const SceneOptions& options, const Unround
 /// branch_unroundness.csv, special_unroundness.csv and branch_unroundness.png.
 int continue_unroundness(const Scene& scene, const SceneOptions& options, double to, const ContinuationOptions& numerics,
                          bool chart, const std::string& output_dir);
+
+/// One axis of an unround map: the unroundness factor (unroundness:FROM:TO:N[:log], each end's
+/// race checked against §11.1), or a parameter of the scene (parse_axis).
+struct UnroundAxis {
+  Axis axis;
+  bool factor = false;  ///< the unroundness factor
+  std::string name, unit;
+};
+UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const RaceShape& race, const std::string& origin);
 
 struct UnroundMapRequest {
   std::string x, y;  ///< NAME:FROM:TO:N[:log] (omega already in rad/s), NAME a parameter or "unroundness"

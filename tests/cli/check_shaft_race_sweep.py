@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""`sweep` of balls on an unround race on a flexible shaft (model.md §18.18), from the command line,
-against the physics computed independently.
+"""`sweep` and `map` of balls on an unround race on a flexible shaft (model.md §18.18), from the
+command line, against the physics computed independently.
 
 Reference (tests/reference/shaft_receptance.py): the shaft's forward synchronous receptance h of the
 balancer node, assembled in numpy from textbook elements, and the ball path of model.md (11.1.1),
@@ -15,8 +15,9 @@ sweep, with its reported beta:
   4. the unroundness factor 0 gives the round race's equilibria of the same shaft (the program's
      other search, find_shaft_equilibria, through `equilibria`): the same |q| to 1e-9 (+ 1e-15 m for
      the balanced states' zero) and the same verdicts.
-Then the contract: no NaN/inf in any file, the chart written, and --param k refused (exit 2, the rule
-named, nothing written).
+Then the map: 1 and 2 threads give the same bytes, every cell is the sweep's summary at that point and
+its q_bare the reference's; and the contract: no NaN/inf in any file, the chart written, and k as a
+sweep parameter or map axis refused (exit 2, the rule named, nothing written).
 
 usage: check_shaft_race_sweep.py STABILITY_SCAN
 """
@@ -147,14 +148,44 @@ with tempfile.TemporaryDirectory() as tmp:
             # 1e-15 m: the balanced state's |q| is zero to the rounding of micrometre deflections
             if abs(qa - qb) > 1e-9 * max(qa, qb) + 1e-15 or va != vb:
                 failures.append(f"factor 0: |q| {qa:.12g} ({va}), round race {qb:.12g} ({vb})")
+    # the map (omega x unroundness): 1 and 2 threads give the same bytes; every cell's summary is the
+    # sweep's at that point (the same analysis), its q_bare the reference's
+    grid = ("--x", "omega:300:1500:4", "--y", "unroundness:0:2:3", "--no-chart")
+    run("map", scene, *grid, "--threads", "1", "-o", f"{tmp}/m1")
+    run("map", scene, *grid, "--threads", "2", "-o", f"{tmp}/m2")
+    name = "summary_omega_unroundness.csv"
+    if os.path.exists(f"{tmp}/m1/{name}") and os.path.exists(f"{tmp}/m2/{name}"):
+        with open(f"{tmp}/m1/{name}") as a, open(f"{tmp}/m2/{name}") as b:
+            if a.read() != b.read():
+                failures.append("map: 1 and 2 threads give different bytes")
+        no_nan(f"{tmp}/m1/{name}")
+        cells = rows(f"{tmp}/m1/{name}")
+        if len(cells) != 12:
+            failures.append(f"map: {len(cells)} cells, expected 12")
+        for omega in ("300", "700", "1100", "1500"):
+            run("sweep", scene, "--set", f"omega={omega}", "--param", "unroundness", "--from", "0", "--to", "2",
+                "--steps", "2", "--no-chart", "-o", f"{tmp}/s{omega}")
+            if not os.path.exists(f"{tmp}/s{omega}/summary_unroundness.csv"):
+                continue
+            for s in rows(f"{tmp}/s{omega}/summary_unroundness.csv"):
+                cell = next((c for c in cells if c["omega"] == omega and float(c["unroundness"]) == float(s["unroundness"])), None)
+                keys = ("equilibria", "stable", "unstable", "undetermined", "best_q_abs", "q_bare", "complete")
+                if cell is None or any(cell[k] != s[k] for k in keys):
+                    failures.append(f"map cell omega={omega} factor {s['unroundness']}: {cell}, sweep {s}")
+            q_bare = abs(receptances(float(omega))[BALANCER]) * float(omega) ** 2 * U
+            for c in (c for c in cells if c["omega"] == omega):
+                if abs(float(c["q_bare"]) - q_bare) > 1e-9 * q_bare:
+                    failures.append(f"map cell omega={omega}: q_bare {c['q_bare']}, reference {q_bare:.12g}")
     # the contract: a rigid rotor's parameter is refused before any work
-    r = run("sweep", scene, "--param", "k", "--from", "1e5", "--to", "2e5", "--steps", "2", "-o", f"{tmp}/k", code=2)
-    if "no rotor 'k'" not in r.stderr:
-        failures.append(f"--param k: {r.stderr.strip()}")
-    if os.path.exists(f"{tmp}/k"):
-        failures.append("--param k: the output directory was written")
+    for args in (("sweep", scene, "--param", "k", "--from", "1e5", "--to", "2e5", "--steps", "2"),
+                 ("map", scene, "--x", "k:1e5:2e5:2", "--y", "omega:300:400:2")):
+        r = run(*args, "-o", f"{tmp}/k", code=2)
+        if "flexible shaft" not in r.stderr or "'k'" not in r.stderr:
+            failures.append(f"{args[0]} over k: {r.stderr.strip()}")
+        if os.path.exists(f"{tmp}/k"):
+            failures.append(f"{args[0]} over k: the output directory was written")
 
 if failures:
     print("\n".join(failures))
     sys.exit(1)
-print("sweep of an unround race on a flexible shaft: rows, summary and the round-race limit agree with the reference")
+print("sweep and map of an unround race on a flexible shaft: rows, summaries and the round-race limit agree with the reference")

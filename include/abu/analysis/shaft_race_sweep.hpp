@@ -35,6 +35,14 @@ struct ShaftRaceSweep {
   ShaftSpectrumOptions spectrum;
 };
 
+/// The stable state of least |q| at the balancer node (the design figure, as the rigid race's
+/// best stable state, model.md §11.10); "undetermined" is not stable. None stable: empty.
+std::optional<std::size_t> least_stable_state(const std::vector<ShaftState>& states);
+
+/// The balancer node's whirl with the balls held at the node, omega^2 U / |K_eff + i C_eff|
+/// (18.8.1) [m]; empty where the rotating-frame stiffness is singular.
+std::optional<double> balls_held_whirl(const ShaftSystem& sys);
+
 /// Every value analysed in turn: `scenes[i]` (the shaft scene at `values[i]`) with the balls on
 /// `races[i]`. Throws NumericalError where ARPACK finds no eigenvalue of a state, and
 /// StopRequested on an interrupt (throw_if_stopped between values).
