@@ -70,7 +70,7 @@ constexpr CommandParts kCommandParts[] = {
       .shaft_set_valued = true, .shaft_unround = true}},
     {"simulate",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
-      .shaft_anisotropic = true}},
+      .shaft_unround = true, .shaft_anisotropic = true}},
     {"basin", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true}},
 };
 }  // namespace

@@ -1,14 +1,18 @@
 // `stability-scan simulate` on a flexible shaft (model.md §18.16): the options of the rigid
-// command, the run by simulate_shaft, the rigid route's files with the shaft's columns.
+// command, the run by simulate_shaft, the rigid route's files with the shaft's columns. On an
+// unround race (model.md §18.20) the balls run on its paths and a settled run is matched against
+// the race's equilibria on the shaft (§15.7).
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <filesystem>
 
+#include "abu/analysis/shaft_race_end.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/shaft_simulation.hpp"
+#include "abu/input/race_scene.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
@@ -46,15 +50,21 @@ int run_shaft_simulation(const Scene& scene, const SimulateOptions& o, const Spe
   so.method = *integration_method_from_string(o.method);
   so.interrupt = &stop_flag();  // set by the CLI's signal thread (cli.cpp)
   so.progress = simulate_progress(o, so.t_end);
-  const ShaftSimulationResult r = simulate_shaft(sys, speed, x0, so);
+  const RaceShape race = race_shape(scene);
+  if (!race.round()) so.race = &race;  // the balls on the race's paths (model.md §18.20)
+  ShaftSimulationResult r = simulate_shaft(sys, speed, x0, so);
   if (so.progress) fmt::print(stderr, "\r{:80}\r", "");
+  if (so.race && r.run.status == SimulationStatus::completed && so.record)  // §15.7: the race's equilibria on the shaft
+    judge_shaft_race_end(r.run.summary, sys, race, speed.omega(r.run.t_reached), r.run.displacement_scale,
+                         so.settle_tolerance);
 
   namespace fs = std::filesystem;
   const fs::path csv_path = fs::path(o.output) / "simulation.csv", png_path = fs::path(o.output) / "simulation.png";
   {
     OutputTransaction out;
-    out.stage(csv_path,
-              shaft_simulation_csv(r, sys, speed, provenance_header(command_line(), scene.file, sys.balancer)));
+    std::string header = provenance_header(command_line(), scene.file, sys.balancer);
+    if (so.race) header += describe_race(race, "# ");
+    out.stage(csv_path, shaft_simulation_csv(r, sys, speed, header));
     if (!o.summary.empty()) out.stage(o.summary, shaft_simulation_json(r, sys, speed, command_line(), scene.file));
     out.commit();
   }
@@ -71,7 +81,8 @@ int run_shaft_simulation(const Scene& scene, const SimulateOptions& o, const Spe
                   {{"csv", csv_path.string()},
                    {"png", chart.reserve(png_path).string()},
                    {"n", std::to_string(sys.n_balls())},
-                   {"rel", nearest_balanced_angles(sys.balancer, beta) ? "1" : "0"},
+                   // No balanced set to measure from on an unround race (§15.7).
+                   {"rel", !so.race && nearest_balanced_angles(sys.balancer, beta) ? "1" : "0"},
                    {"omega_n", "0"},  // the shaft has no single omega_n (model.md §18.16)
                    {"stick", "0"},
                    {"title", fmt::format("{}: flexible shaft, balancer node {}, {} ({}), outcome {}", scene.file,

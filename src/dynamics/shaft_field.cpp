@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "abu/model/friction.hpp"
+#include "abu/model/machine_field.hpp"
 
 namespace abu::shaft_detail {
 
@@ -27,7 +28,14 @@ void add_product(const Sparse& s, const double* x, double* y) {
 
 }  // namespace
 
-ShaftOde::ShaftOde(const ShaftSystem& sys)
+// The balls' terms at the balancer node (model.md (18.16.3), (18.20.1)).
+struct ShaftOde::BallTerms {
+  Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, max_balls> bq;  // A's coupling rows u1_b, u2_b
+  BallVector inertia, rows;                                       // A's ball diagonal, b_beta
+  double f1 = 0, f2 = 0;                                          // the node's force
+};
+
+ShaftOde::ShaftOde(const ShaftSystem& sys, const RaceShape* race)
     : sys_(sys),
       ns_(sys.shaft_dofs()),
       n_(sys.n_balls()),
@@ -57,6 +65,54 @@ ShaftOde::ShaftOde(const ShaftSystem& sys)
   v_.resize(ns_);
   w_.resize(ns_);
   acc_.resize(ns_);
+  if (race != nullptr && !race->round()) {
+    race_ = *race;
+    unround_ = true;
+  }
+  rigid_x_.setZero(2 * n_ + 4);
+  share_mass_.setZero(n_ + 2, n_ + 2);
+  share_force_.setZero(n_ + 2);
+}
+
+void ShaftOde::rigid_view(const double* y, State<double, any_balls>& x) const {
+  x(0) = y[b_], x(1) = y[b_ + 1], x(n_ + 2) = y[d_ + b_], x(n_ + 3) = y[d_ + b_ + 1];
+  for (int i = 0; i < n_; ++i) x(2 + i) = y[ns_ + i], x(n_ + 4 + i) = y[d_ + ns_ + i];
+}
+
+void ShaftOde::round_ball_terms(const double* y, BallTerms& t) const {
+  // (18.6.2) with the run-up terms of (9.2)-(9.4) at the node.
+  const double w = omega_, w2 = w * w, wd = omega_dot_;
+  const double *u = y, *beta = y + ns_, *ud = y + d_, *bd = y + d_ + ns_;
+  const double q1 = u[b_], q2 = u[b_ + 1], qd1 = ud[b_], qd2 = ud[b_ + 1];
+  t.f1 = w2 * sys_.balancer.rotor.unbalance;
+  t.f2 = -wd * sys_.balancer.rotor.unbalance;
+  for (int i = 0; i < n_; ++i) {
+    const double a = a_[std::size_t(i)], sb = std::sin(beta[i]), cb = std::cos(beta[i]);
+    const double spin = (bd[i] + w) * (bd[i] + w);
+    t.f1 += a * (spin * cb + wd * sb);
+    t.f2 += a * (spin * sb - wd * cb);
+    t.bq(0, i) = -a * sb;
+    t.bq(1, i) = a * cb;
+    t.inertia(i) = inertia_[std::size_t(i)];
+    t.rows(i) = l_[std::size_t(i)] * friction_force(sys_.balancer, i, bd[i]) +
+                a * ((-2.0 * w * qd2 - w2 * q1) * sb - (2.0 * w * qd1 - w2 * q2) * cb) -
+                wd * (a * (q1 * cb + q2 * sb) + euler_[std::size_t(i)]);
+  }
+}
+
+void ShaftOde::race_ball_terms(const double* y, BallTerms& t) {
+  // (18.20.1): the balls' share of the composed rigid machine (ball_share_terms: (11.3.3),
+  // (11.3.4) and (15.6.1) without the rotor's M, k, c, U) on the node's (u1, u2) as q.
+  rigid_view(y, rigid_x_);
+  ball_share_terms(sys_.balancer, race_, rigid_x_, omega_dot_, share_mass_, share_force_);
+  t.f1 = omega_ * omega_ * sys_.balancer.rotor.unbalance + share_force_(0);
+  t.f2 = -omega_dot_ * sys_.balancer.rotor.unbalance + share_force_(1);
+  for (int i = 0; i < n_; ++i) {
+    t.bq(0, i) = share_mass_(0, 2 + i);
+    t.bq(1, i) = share_mass_(1, 2 + i);
+    t.inertia(i) = share_mass_(2 + i, 2 + i);
+    t.rows(i) = share_force_(2 + i);
+  }
 }
 
 void ShaftOde::add_deviator(const double* u, const double* ud) {
@@ -76,7 +132,7 @@ bool ShaftOde::field(const double* y, double* f) {
   ++rhs_count;
   const double w = omega_, w2 = w * w, wd = omega_dot_;
   sys_.balancer.omega = w;  // the friction laws' normal force m l omega^2 (model.md §4)
-  const double *u = y, *beta = y + ns_, *ud = y + d_, *bd = y + d_ + ns_;
+  const double *u = y, *ud = y + d_;
   std::copy(y + d_, y + 2 * d_, f);  // s' (the configuration's rates)
   // w = K u + C (omega Jr u + u') + G (omega^2 Jr u + omega u' + omega'/2 u)   (18.16.2)
   for (int k = 0; k < ns_; k += 2) {
@@ -89,25 +145,20 @@ bool ShaftOde::field(const double* y, double* f) {
   for (int k = 0; k < ns_; ++k) v_[k] = w * v_[k] + 0.5 * wd * u[k];
   add_product(g_, v_.data(), w_.data());
   if (deviator_on_) add_deviator(u, ud);
-  // The force on the balancer node (18.6.2) with the run-up terms of (9.2)-(9.3), the balls'
-  // coupling B(beta) and their rows.
-  const double q1 = u[b_], q2 = u[b_ + 1], qd1 = ud[b_], qd2 = ud[b_ + 1];
-  double f1 = w2 * sys_.balancer.rotor.unbalance, f2 = -wd * sys_.balancer.rotor.unbalance;
-  Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, max_balls> bq(2, n_);
-  BallVector rows(n_);
-  for (int i = 0; i < n_; ++i) {
-    const double a = a_[std::size_t(i)], sb = std::sin(beta[i]), cb = std::cos(beta[i]);
-    const double spin = (bd[i] + w) * (bd[i] + w);
-    f1 += a * (spin * cb + wd * sb);
-    f2 += a * (spin * sb - wd * cb);
-    bq(0, i) = -a * sb;
-    bq(1, i) = a * cb;
-    rows(i) = l_[std::size_t(i)] * friction_force(sys_.balancer, i, bd[i]) +
-              a * ((-2.0 * w * qd2 - w2 * q1) * sb - (2.0 * w * qd1 - w2 * q2) * cb) -
-              wd * (a * (q1 * cb + q2 * sb) + euler_[std::size_t(i)]);
-  }
-  w_[b_] -= f1;
-  w_[b_ + 1] -= f2;
+  // The force on the balancer node, the balls' coupling B(beta) and their rows: on circles
+  // (18.6.2) with the run-up terms of (9.2)-(9.4), or on the race's paths (18.20.1).
+  BallTerms t;
+  t.bq.resize(2, n_);
+  t.inertia.resize(n_);
+  t.rows.resize(n_);
+  if (unround_)
+    race_ball_terms(y, t);
+  else
+    round_ball_terms(y, t);
+  const auto& bq = t.bq;
+  BallVector& rows = t.rows;
+  w_[b_] -= t.f1;
+  w_[b_ + 1] -= t.f2;
   // The shaft's accelerations without the balls' inertial coupling (18.16.3):
   // a0 = -M_tot^-1 w + omega^2 u - 2 omega Jr u' - omega' Jr u (M_tot commutes with Jr).
   acc_.noalias() = minv_ * w_;
@@ -118,7 +169,7 @@ bool ShaftOde::field(const double* y, double* f) {
   // The balls: (D - B^T H B) beta'' = rows - B^T a0_b, H the node block of M_tot^-1.
   const Eigen::Vector2d a0b(acc_[b_], acc_[b_ + 1]);
   BallMatrix schur = -(bq.transpose() * h_ * bq);
-  for (int i = 0; i < n_; ++i) schur(i, i) += inertia_[std::size_t(i)];
+  for (int i = 0; i < n_; ++i) schur(i, i) += t.inertia(i);
   rows -= bq.transpose() * a0b;
   const Eigen::LLT<BallMatrix> ball_llt(schur);
   if (ball_llt.info() != Eigen::Success) return false;
@@ -133,57 +184,93 @@ bool ShaftOde::field(const double* y, double* f) {
   return true;
 }
 
-bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
-  ++jacobian_count;
-  const int dim = 2 * d_;
+void ShaftOde::add_runup_shaft_stiffness() {
+  // omega' (M_tot Jr + G / 2) of (18.16.2), M_tot the shaft block of mass_.
+  auto kk = kc_.leftCols(d_);
+  kk.topLeftCorner(ns_, ns_) += 0.5 * omega_dot_ * Eigen::MatrixXd(g_);
+  for (int k = 0; k < ns_; ++k) {  // omega' M_tot Jr: column k of Jr is +-e_{k+-1}
+    const int partner = k % 2 == 0 ? k + 1 : k - 1;
+    const double sign = k % 2 == 0 ? 1.0 : -1.0;
+    // (M_tot Jr)(:, k) = sign * M_tot(:, partner), M_tot the shaft block of A.
+    kk.col(k).head(ns_) += omega_dot_ * sign * mass_.col(partner).head(ns_);
+  }
+}
+
+bool ShaftOde::round_matrices(const double* y) {
   const double wd = omega_dot_;
-  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(y, dim);
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(y, 2 * d_);
   // (18.7.1)-(18.7.2) at omega' = 0: linearize_shaft's C and K, its K holding (dA/ds) s'' with
   // the accelerations of omega' = 0.
-  sys_.balancer.omega = omega_;
   const ShaftLinearization lin = linearize_shaft(sys_, x);
   mass_ = Eigen::MatrixXd(lin.mass);
   kc_.resize(d_, 2 * d_);
   kc_.leftCols(d_) = Eigen::MatrixXd(lin.stiffness);
   kc_.rightCols(d_) = Eigen::MatrixXd(lin.damping);
+  if (wd == 0.0 && !anisotropic()) return true;
+  // The run-up terms' share of K = -db/ds + (dA/ds) s'' (18.16.4): -d/ds of the omega' terms
+  // of b, and (dA/ds) times the change of s'' that omega' and the bearings' deviatoric force
+  // make (linearize_shaft's s'' is that of the mean shaft at omega' = 0, (18.19.6)).
+  if (!field(y, f_plus_.data())) return false;
+  omega_dot_ = 0.0;
+  deviator_on_ = false;
+  const bool ok = field(y, f_still_.data());
+  omega_dot_ = wd;
+  deviator_on_ = true;
+  if (!ok) return false;
+  auto kk = kc_.leftCols(d_);
+  if (wd != 0.0) add_runup_shaft_stiffness();
+  const double q1 = y[b_], q2 = y[b_ + 1];
+  for (int i = 0; i < n_; ++i) {
+    const double a = a_[std::size_t(i)], sb = std::sin(y[ns_ + i]), cb = std::cos(y[ns_ + i]);
+    const int col = ns_ + i;
+    const double dbdd = f_plus_[std::size_t(d_ + ns_ + i)] - f_still_[std::size_t(d_ + ns_ + i)];
+    const double dq1 = f_plus_[std::size_t(d_ + b_)] - f_still_[std::size_t(d_ + b_)];
+    const double dq2 = f_plus_[std::size_t(d_ + b_ + 1)] - f_still_[std::size_t(d_ + b_ + 1)];
+    kk(b_, col) += -wd * a * cb - a * cb * dbdd;
+    kk(b_ + 1, col) += -wd * a * sb - a * sb * dbdd;
+    kk(col, b_) += wd * a * cb;
+    kk(col, b_ + 1) += wd * a * sb;
+    kk(col, col) += wd * a * (q2 * cb - q1 * sb) - a * (cb * dq1 + sb * dq2);
+  }
+  return true;
+}
+
+bool ShaftOde::race_matrices(const double* y) {
+  // (18.20.3): A = M_tot + S_A, C = D_r - S_v, K = K_r + omega' (M_tot Jr + G/2) - S_s, the
+  // share's Bs = db/ds - (dA/ds) s'' taken at the field's own accelerations s'' (and omega').
+  if (!field(y, f_plus_.data())) return false;
+  rigid_view(y, rigid_x_);
+  Coordinates<double, any_balls> acc(n_ + 2);
+  acc(0) = f_plus_[std::size_t(d_ + b_)];
+  acc(1) = f_plus_[std::size_t(d_ + b_ + 1)];
+  for (int i = 0; i < n_; ++i) acc(2 + i) = f_plus_[std::size_t(d_ + ns_ + i)];
+  const BallShare share = ball_share(sys_.balancer, race_, rigid_x_, acc, omega_dot_);
+  const ShaftRotatingMatrices r = rotating_matrices(sys_);  // at sys_.balancer.omega = omega
+  mass_.setZero(d_, d_);
+  mass_.topLeftCorner(ns_, ns_) = Eigen::MatrixXd(r.mass);
+  kc_.setZero(d_, 2 * d_);
+  kc_.topLeftCorner(ns_, ns_) = Eigen::MatrixXd(r.stiffness);
+  kc_.block(0, d_, ns_, ns_) = Eigen::MatrixXd(r.damping);
+  if (omega_dot_ != 0.0) add_runup_shaft_stiffness();
+  const auto at = [&](int k) { return k < 2 ? b_ + k : ns_ + k - 2; };  // rigid index -> configuration
+  for (int rr = 0; rr < n_ + 2; ++rr)
+    for (int c = 0; c < n_ + 2; ++c) {
+      mass_(at(rr), at(c)) += share.mass(rr, c);
+      kc_(at(rr), at(c)) -= share.force_position(rr, c);
+      kc_(at(rr), d_ + at(c)) -= share.force_velocity(rr, c);
+    }
+  return true;
+}
+
+bool ShaftOde::jacobian(const double* y, double* dfdy, double* dfdt) {
+  ++jacobian_count;
+  const int dim = 2 * d_;
+  const double wd = omega_dot_;
+  sys_.balancer.omega = omega_;
   f_plus_.resize(std::size_t(dim));
   f_minus_.resize(std::size_t(dim));
   f_still_.resize(std::size_t(dim));
-  if (wd != 0.0 || anisotropic()) {
-    // The run-up terms' share of K = -db/ds + (dA/ds) s'' (18.16.4): -d/ds of the omega' terms
-    // of b, and (dA/ds) times the change of s'' that omega' and the bearings' deviatoric force
-    // make (linearize_shaft's s'' is that of the mean shaft at omega' = 0, (18.19.6)).
-    if (!field(y, f_plus_.data())) return false;
-    omega_dot_ = 0.0;
-    deviator_on_ = false;
-    const bool ok = field(y, f_still_.data());
-    omega_dot_ = wd;
-    deviator_on_ = true;
-    if (!ok) return false;
-    auto kk = kc_.leftCols(d_);
-    if (wd != 0.0) {
-      kk.topLeftCorner(ns_, ns_) += 0.5 * wd * Eigen::MatrixXd(g_);
-      for (int k = 0; k < ns_; ++k) {  // omega' M_tot Jr: column k of Jr is +-e_{k+-1}
-        const int partner = k % 2 == 0 ? k + 1 : k - 1;
-        const double sign = k % 2 == 0 ? 1.0 : -1.0;
-        // (M_tot Jr)(:, k) = sign * M_tot(:, partner), M_tot the shaft block of A.
-        kk.col(k).head(ns_) += wd * sign * mass_.col(partner).head(ns_);
-      }
-    }
-    const double q1 = y[b_], q2 = y[b_ + 1];
-    for (int i = 0; i < n_; ++i) {
-      const double a = a_[std::size_t(i)], sb = std::sin(y[ns_ + i]), cb = std::cos(y[ns_ + i]);
-      const int col = ns_ + i;
-      const double dbdd = f_plus_[std::size_t(d_ + ns_ + i)] - f_still_[std::size_t(d_ + ns_ + i)];
-      const double dq1 = f_plus_[std::size_t(d_ + b_)] - f_still_[std::size_t(d_ + b_)];
-      const double dq2 = f_plus_[std::size_t(d_ + b_ + 1)] - f_still_[std::size_t(d_ + b_ + 1)];
-      kk(b_, col) += -wd * a * cb - a * cb * dbdd;
-      kk(b_ + 1, col) += -wd * a * sb - a * sb * dbdd;
-      kk(col, b_) += wd * a * cb;
-      kk(col, b_ + 1) += wd * a * sb;
-      kk(col, col) += wd * a * (q2 * cb - q1 * sb) - a * (cb * dq1 + sb * dq2);
-    }
-  }
+  if (!(unround_ ? race_matrices(y) : round_matrices(y))) return false;
   // The bearings' deviatoric blocks (18.19.4): K += K_dev + omega C_dev J, C += C_dev at their nodes.
   for (const Bearing& b : bearings_) {
     const BearingDeviator dev = bearing_deviator(b.support, theta_);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "abu/core/errors.hpp"
+#include "abu/model/unround_race.hpp"
 #include "dense_output.hpp"
 #include "scaled_control.hpp"
 #include "shaft_field.hpp"
@@ -103,8 +104,11 @@ State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x) 
 
 // The checks of simulate_shaft before any work (InputError naming the option and the rule).
 void check_shaft_input(const ShaftSystem& sys, const Eigen::VectorXd& x0, const SimulationOptions& o) {
-  if (o.race || o.support || !o.bristle_start.empty() || o.stop_at_sample)
-    throw std::invalid_argument("simulate_shaft: an unround race, a support, bristles or stop_at_sample are other routes");
+  if (o.support || !o.bristle_start.empty() || o.stop_at_sample)
+    throw std::invalid_argument("simulate_shaft: a rigid support, bristles or stop_at_sample are other routes");
+  if (o.race && !o.race->round() && has_anisotropic_bearings(sys.spec))
+    throw std::invalid_argument("simulate_shaft: anisotropic bearings with an unround race are not modelled (model.md "
+                                "§18.19, §18.20)");
   const int n = sys.n_balls(), dim = sys.state_size();
   if (dim > shaft_simulation_max_states)
     throw InputError("[shaft]", 0, "",
@@ -206,7 +210,8 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   const double w_max = speed.max_omega(), w_n = std::sqrt(r.view.rotor.stiffness / r.view.total_mass());
   run.displacement_scale = L;
 
-  shaft_detail::ShaftOde ode(sys);
+  shaft_detail::ShaftOde ode(sys, o.race);  // an unround race: the balls on its paths (model.md §18.20)
+  run.unround_race = ode.unround();
   const double follow = probe_stiffness(ode, sys, x0, w_max, w_n, run);
   run.method = o.method;
   if (o.method == IntegrationMethod::automatic)

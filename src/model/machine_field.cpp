@@ -281,4 +281,11 @@ BallShare ball_share(const ParamsN& p, const RaceShape& race, const State<double
   return out;
 }
 
+void ball_share_terms(const ParamsN& p, const RaceShape& race, const State<double, any_balls>& x, double omega_dot,
+                      DofMatrix<double, any_balls>& mass, Coordinates<double, any_balls>& force) {
+  const Paths paths = paths_at(p, race, x, false);
+  mass = mass_of(p, paths, false);
+  force = forces_of(p, paths, x, omega_dot, false);
+}
+
 }  // namespace abu

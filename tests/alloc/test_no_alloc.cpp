@@ -15,6 +15,7 @@
 #include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/input/race_scene.hpp"
 #include "abu/input/scene.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
@@ -145,7 +146,9 @@ void check_simulation(const std::string& scene_file, int n) {
 // Jacobian is evaluated only by the stiffness probe (it allocates: linearize_shaft's sparse
 // matrices). So a run-up four times as long with the same samples makes as many allocations.
 void check_shaft_simulation(const std::string& scene_file) {
-  const abu::ShaftSystem sys = abu::shaft_system_of(abu::load_scene(scene_file));
+  const abu::Scene scene = abu::load_scene(scene_file);
+  const abu::ShaftSystem sys = abu::shaft_system_of(scene);
+  const abu::RaceShape race = abu::race_shape(scene);  // an unround race: the balls on its paths (§18.20)
   const std::vector<double> angles{0.5, 2.0, 4.0, 5.0};
   const Eigen::VectorXd x0 =
       abu::shaft_start_at_rest(sys, std::vector<double>(angles.begin(), angles.begin() + sys.n_balls()));
@@ -158,10 +161,13 @@ void check_shaft_simulation(const std::string& scene_file) {
     o.t_end = 0.02 * (1 + 3 * k);
     o.every = o.t_end / 50;
     o.method = abu::IntegrationMethod::rk8pd;
+    if (!race.round()) o.race = &race;
     mallocs[k] = mallocs_of([&] { steps[k] = abu::simulate_shaft(sys, speed, x0, o).run.stats.steps; });
   }
   check(mallocs[0] == mallocs[1] && steps[1] > steps[0] + 10,
-        std::string(abu::has_anisotropic_bearings(sys.spec) ? "flexible shaft on anisotropic bearings" : "flexible shaft") +
+        std::string(abu::has_anisotropic_bearings(sys.spec) ? "flexible shaft on anisotropic bearings"
+                    : !race.round()                          ? "flexible shaft with an unround race"
+                                                             : "flexible shaft") +
             ", 50 samples: simulate over " + std::to_string(steps[0]) + " and " + std::to_string(steps[1]) +
             " steps: " + std::to_string(mallocs[0]) + " and " + std::to_string(mallocs[1]) + " mallocs");
 }
@@ -180,7 +186,7 @@ int main(int argc, char** argv) {
   for (int n : {3, 4, 12}) check_ball_count(argv[1], n);
   for (int n : {3, 5}) check_map_cell(argv[1], n);
   for (int n : {2, 5}) check_simulation(argv[1], n);
-  for (int k = 2; k < argc; ++k) check_shaft_simulation(argv[k]);  // isotropic, anisotropic bearings (§18.19)
+  for (int k = 2; k < argc; ++k) check_shaft_simulation(argv[k]);  // isotropic, anisotropic bearings, a race (§18.20)
   std::printf("%d passed, %d failed\n", passes, failures);
   return failures == 0 ? 0 : 1;
 }

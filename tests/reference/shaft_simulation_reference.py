@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Independent reference for `simulate` on a flexible shaft (docs/model.md §18.16).
+"""Independent reference for `simulate` on a flexible shaft (docs/model.md §18.16, §18.20).
 
-usage: shaft_simulation_reference.py STABILITY_SCAN SCENE
+usage: shaft_simulation_reference.py STABILITY_SCAN SCENE [METHOD]
 
 The program integrates the shaft in the frame ROTATING with it (model.md (18.16.2)); this
 script integrates the same machine in the FIXED frame, from its own Lagrangian:
@@ -15,6 +15,14 @@ script integrates the same machine in the FIXED frame, from its own Lagrangian:
     node) with the rolling spin energy 1/2 I_i (Omega - (l_i/r_i)(alpha_i' - Omega))^2,
     I_i = (j_i - 1) m_i r_i^2, viscous friction F_i = -d l_i (alpha_i' - Omega) on alpha_i;
   * the unbalance force U (Omega^2 - i Omega') e^{i theta} at the balancer node.
+A scene with [race] (an unround race, model.md §18.20) puts ball i's centre at
+z_b + e^{i theta} p_i(beta_i) instead, p_i = l_i(beta) e^{i beta} the path of (11.1.1)-(11.1.2)
+(path_radius of composed_simulation_reference.py, written from the formula), with the spin
+energy 1/2 (j_i - 1) m_i (r_i Omega - s_i' beta_i')^2 and the viscous Rayleigh function
+1/2 d s_i'^2 beta_i'^2; each ball's Lagrangian in (X, Y, beta_i) is differentiated by sympy and
+its mass rows and forces added at the balancer node's (u1, u2) and beta_i. Such a scene is
+integrated with METHOD (default DOP853: the shaft is not stiff, and Radau's difference
+Jacobians of the sympy field cost minutes).
 It runs the program (rk8pd, rtol 1e-10) at constant speed and on a ramp, integrates the fixed
 frame with scipy's Radau (rtol 1e-11), rotates the balancer node's translation into the
 rotating frame, q = R(-theta) z_b, beta_i = alpha_i - theta, and compares at every sample:
@@ -31,10 +39,12 @@ import tempfile
 import tomllib
 
 import numpy as np
+import sympy as sp
 from scipy.integrate import solve_ivp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from shaft_elements import element  # noqa: E402  (exact element matrices, sympy)
+from composed_simulation_reference import harmonics, path_radius  # noqa: E402  (the race's paths, (11.1.1))
 
 
 def assemble(scene):
@@ -104,6 +114,30 @@ class Speed:
         return self.w0 * self.t1 + 0.5 * self.alpha * self.t1**2 + self.w1 * (t - self.t1)
 
 
+def race_ball(h, m, l, r, j, d):
+    """Ball on its unround path in the fixed frame: (Mi, fi), the 3 x 3 mass rows and the forces
+    of Lagrange's equations in (X, Y, beta) (X, Y the balancer node's fixed-frame translation),
+    lambdified in (X, Y, beta, X', Y', beta', theta, Omega, Omega')."""
+    X, Y, b, dX, dY, db, th, Om, dOm = sp.symbols('X Y b dX dY db theta Omega dOmega', real=True)
+    ell = path_radius(h, l, b)
+    px, py = ell * sp.cos(b), ell * sp.sin(b)
+    dpx, dpy = sp.diff(px, b), sp.diff(py, b)
+    c, s = sp.cos(th), sp.sin(th)
+    # d/dt (Z + R(theta) p(beta)) = Z' + Omega R' p + R p' beta'
+    vx = dX + Om * (-s * px - c * py) + (c * dpx - s * dpy) * db
+    vy = dY + Om * (c * px - s * py) + (s * dpx + c * dpy) * db
+    speed_sq = dpx**2 + dpy**2
+    T = m * (vx**2 + vy**2) / 2 + (j - 1) * m * (r * Om - sp.sqrt(speed_sq) * db) ** 2 / 2
+    D = d * speed_sq * db**2 / 2
+    q, dq = [X, Y, b], [dX, dY, db]
+    pL = [sp.diff(T, v) for v in dq]
+    Mi = sp.Matrix([[sp.diff(p, v) for v in dq] for p in pL])
+    fi = sp.Matrix([sp.diff(T, qi) - sp.diff(D, dqi) - sum(sp.diff(p, qj) * dqj for qj, dqj in zip(q, dq))
+                    - sp.diff(p, th) * Om - sp.diff(p, Om) * dOm for qi, dqi, p in zip(q, dq, pL)])
+    args = [X, Y, b, dX, dY, db, th, Om, dOm]
+    return sp.lambdify(args, Mi.tolist(), 'math', cse=True), sp.lambdify(args, list(fi), 'math', cse=True)
+
+
 def reference(scene, speed, beta0, times, method='Radau'):
     M, K, C, G, nodes = assemble(scene)
     ns = 4 * nodes
@@ -126,7 +160,32 @@ def reference(scene, speed, beta0, times, method='Radau'):
     ml = m * l
     balls = np.arange(ns, dim)
 
+    race = 'race' in scene
+    if race:  # the balls on their paths: their whole share from race_ball, beta relative to the rotor
+        A0[b, b] -= m.sum()
+        A0[b + 1, b + 1] -= m.sum()
+        A0[ns:, ns:] = 0.0
+        ball_models = [race_ball(h, m[i], l[i], r[i], j, d_visc) for i, h in enumerate(harmonics(scene, scene['ball']))]
+
+    def rhs_race(t, y):
+        u, be, ud, bed = y[:ns], y[ns:dim], y[dim:dim + ns], y[dim + ns:]
+        W, Wd, th = speed.omega(t), speed.omega_dot(t), speed.theta(t)
+        A = A0.copy()
+        f = np.empty(dim)
+        f[:ns] = -(C @ ud) - W * (G @ ud) - 0.5 * Wd * (G @ u) - K @ u
+        f[b] += U * (W * W * np.cos(th) + Wd * np.sin(th))
+        f[b + 1] += U * (W * W * np.sin(th) - Wd * np.cos(th))
+        f[ns:] = 0.0
+        for i, (Mi, fi) in enumerate(ball_models):
+            args = (u[b], u[b + 1], be[i], ud[b], ud[b + 1], bed[i], th, W, Wd)
+            idx = [b, b + 1, ns + i]
+            A[np.ix_(idx, idx)] += np.array(Mi(*args), float)
+            f[idx] += np.array(fi(*args), float)
+        return np.concatenate([y[dim:], np.linalg.solve(A, f)])
+
     def rhs(t, y):
+        if race:
+            return rhs_race(t, y)
         u, al, ud, ald = y[:ns], y[ns:dim], y[dim:dim + ns], y[dim + ns:]
         W, Wd, th = speed.omega(t), speed.omega_dot(t), speed.theta(t)
         sa, ca = np.sin(al), np.cos(al)
@@ -142,7 +201,7 @@ def reference(scene, speed, beta0, times, method='Radau'):
 
     y0 = np.zeros(2 * dim)
     y0[ns:dim] = beta0  # theta(0) = 0
-    y0[dim + ns:] = speed.omega(0.0)
+    y0[dim + ns:] = 0.0 if race else speed.omega(0.0)  # the balls at rest relative to the rotor
     # Absolute tolerances in each component's natural size (L for translations, L per shaft
     # length for tilts, rad for angles; rates times omega), as the program's error control.
     L = (U + np.sum(m * l)) / (sum(x['mass'] for x in scene['disc'] if x['node'] == b // 4) + m.sum())
@@ -166,7 +225,7 @@ def reference(scene, speed, beta0, times, method='Radau'):
         c, s = np.cos(th), np.sin(th)
         q1 = c * y[b] + s * y[b + 1]
         q2 = -s * y[b] + c * y[b + 1]
-        rows.append([t, q1, q2] + list(y[ns:dim] - th))
+        rows.append([t, q1, q2] + list(y[ns:dim] - (0.0 if race else th)))
     return np.array(rows), m, l, U
 
 
@@ -179,7 +238,10 @@ def read_csv(path):
 
 def main():
     with tempfile.TemporaryDirectory() as work:
-        return compare(sys.argv[1], sys.argv[2], work)
+        with open(sys.argv[2], 'rb') as fh:
+            race = 'race' in tomllib.load(fh)
+        method = sys.argv[3] if len(sys.argv) > 3 else ('DOP853' if race else 'Radau')
+        return compare(sys.argv[1], sys.argv[2], work, method)
 
 
 def compare(prog, scene_path, work, method='Radau'):

@@ -72,4 +72,10 @@ struct BallShare {
 BallShare ball_share(const ParamsN& p, const RaceShape& race, const State<double, any_balls>& x,
                      const Coordinates<double, any_balls>& acc, double omega_dot = 0.0);
 
+/// The share's A and b terms alone (BallShare::mass, ::force; no derivatives, so no third path
+/// derivative): what a field evaluation on a flexible shaft needs per step (model.md §18.20).
+/// Writes into `mass` and `force` (bounded storage: no allocation).
+void ball_share_terms(const ParamsN& p, const RaceShape& race, const State<double, any_balls>& x, double omega_dot,
+                      DofMatrix<double, any_balls>& mass, Coordinates<double, any_balls>& force);
+
 }  // namespace abu
