@@ -401,16 +401,7 @@ TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>&
 
 MapRunStats compute_basin_tiles(const BasinJob& job, const std::vector<BasinTarget>& targets,
                                 const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink) {
-  const auto make_work = [&]() -> TileWork {
-    return [&](int tile) {
-      TileText text = compute_basin_tile(job, targets, tile);
-      MapRunStats done;
-      done.cells = text.cells;
-      sink(tile, std::move(text));
-      return done;
-    };
-  };
-  return run_tile_pool(tiles, options, make_work);
+  return run_text_tiles(tiles, options, sink, [&](int tile) { return compute_basin_tile(job, targets, tile); });
 }
 
 }  // namespace abu

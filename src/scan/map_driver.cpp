@@ -544,6 +544,21 @@ MapRunStats run_tile_pool(const std::vector<int>& tiles, const MapRunOptions& op
   return stats;
 }
 
+MapRunStats run_text_tiles(const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink,
+                           const std::function<TileText(int tile)>& compute) {
+  const auto make_work = [&]() -> TileWork {
+    return [&](int tile) {
+      TileText text = compute(tile);
+      MapRunStats done;
+      done.cells = text.cells;
+      done.equilibria = text.equilibria;
+      sink(tile, std::move(text));
+      return done;
+    };
+  };
+  return run_tile_pool(tiles, options, make_work);
+}
+
 MapRunStats compute_tiles(const MapJob& job, const std::vector<int>& tiles, const MapRunOptions& options,
                           const TileSink& sink, const std::function<void(const std::function<bool()>& done)>& wait) {
   const auto make_work = [&]() -> TileWork {

@@ -201,17 +201,7 @@ TileText compute_shaft_map_tile(const ShaftMapJob& job, int tile) {
 
 MapRunStats compute_shaft_map_tiles(const ShaftMapJob& job, const std::vector<int>& tiles,
                                     const MapRunOptions& options, const TileSink& sink) {
-  const auto make_work = [&]() -> TileWork {
-    return [&](int tile) {
-      TileText text = compute_shaft_map_tile(job, tile);
-      MapRunStats done;
-      done.cells = text.cells;
-      done.equilibria = text.equilibria;
-      sink(tile, std::move(text));
-      return done;
-    };
-  };
-  return run_tile_pool(tiles, options, make_work);
+  return run_text_tiles(tiles, options, sink, [&](int tile) { return compute_shaft_map_tile(job, tile); });
 }
 
 }  // namespace abu

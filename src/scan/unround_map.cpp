@@ -62,17 +62,7 @@ TileText compute_unround_map_tile(const UnroundMapJob& job, int tile) {
 
 MapRunStats compute_unround_map_tiles(const UnroundMapJob& job, const std::vector<int>& tiles,
                                       const MapRunOptions& options, const TileSink& sink) {
-  const auto make_work = [&]() -> TileWork {
-    return [&](int tile) {
-      TileText text = compute_unround_map_tile(job, tile);
-      MapRunStats done;
-      done.cells = text.cells;
-      done.equilibria = text.equilibria;
-      sink(tile, std::move(text));
-      return done;
-    };
-  };
-  return run_tile_pool(tiles, options, make_work);
+  return run_text_tiles(tiles, options, sink, [&](int tile) { return compute_unround_map_tile(job, tile); });
 }
 
 }  // namespace abu

@@ -237,6 +237,12 @@ MapRunStats run_tile_pool(const std::vector<int>& tiles, const MapRunOptions& op
                           const std::function<TileWork()>& make_work,
                           const std::function<void(const std::function<bool()>& done)>& wait = {});
 
+/// run_tile_pool for tiles computed as text by `compute` (thread-safe; the unround race's,
+/// the shaft's and the basin's tiles): each finished tile goes to `sink`, its cells and
+/// equilibria counted.
+MapRunStats run_text_tiles(const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink,
+                           const std::function<TileText(int tile)>& compute);
+
 /// Computes `tiles` on options.threads threads (an atomic counter hands out tiles, one
 /// CellAnalyzer per thread) and passes each to `sink`. `wait` (if set) runs on the
 /// calling thread while the workers run, and must return once `done()` is true (MPI uses
