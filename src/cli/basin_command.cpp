@@ -238,16 +238,14 @@ Action add_basin_command(CLI::App& app) {
     const fs::path tiles_dir = dir / ".basin.tiles";
     const TiledRunFlags flags{b.resume, b.fresh, b.progress, b.quiet, b.threads};
     const TileStore store(tiles_dir, basin_manifest(job), job.cells1, tile_store_mode(flags));
-    const std::optional<MapRunStats> counts = run_missing_tiles(store, tiles_dir, job.cells1, flags,
+    const std::optional<FinishedTiles> counts = run_missing_tiles(store, tiles_dir, job.cells1, flags,
                            [&job, &targets](const auto& missing, const auto& run_options, const auto& sink) {
                              return compute_basin_tiles(job, targets, missing, run_options, sink);
                            });
     if (!counts) return interrupted_exit_code();
-    const MapRunStats& stats = *counts;
+    const MapRunStats& stats = counts->stats;
 
-    // Assemble in tile order; count the attractors.
-    std::ostringstream rows, none;
-    for (int t = 0; t < job.cells1; ++t) store.append(t, rows, none);
+    // Count the attractors.
     std::map<std::pair<int, std::string>, long> count;
     std::set<std::pair<int, std::string>> classes;  // of the chart: attractor/member
     long cells = 0, early = 0, certified = 0;
@@ -258,7 +256,7 @@ Action add_basin_command(CLI::App& app) {
     long stuck_cells = 0, outside = 0;
     double worst_s = 0, worst_q = 0;
     {
-      std::istringstream in(rows.str());
+      std::istringstream in(counts->rows);
       for (std::string row; std::getline(in, row);) {
         std::vector<std::string> f;
         std::stringstream ss(row);
@@ -303,7 +301,7 @@ Action add_basin_command(CLI::App& app) {
     for (const auto& c : classes) labels += (labels.empty() ? "" : " ") + c.second;
     {
       OutputTransaction out;
-      out.stage(csv_path, basin_csv_header(job) + rows.str());
+      out.stage(csv_path, basin_csv_header(job) + counts->rows);
       out.stage(fractions_path, fractions);
       out.stage(json_path, json);
       out.commit();

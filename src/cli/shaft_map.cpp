@@ -11,7 +11,6 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 
@@ -196,14 +195,12 @@ int map_shaft(const Scene& scene, const ShaftMapRequest& request) {
   const int tiles = int(job.xs.size());
   const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
   const TileStore store(tiles_dir, shaft_map_manifest(job), tiles, tile_store_mode(flags));
-  const std::optional<MapRunStats> counts =
+  const std::optional<FinishedTiles> counts =
       run_missing_tiles(store, tiles_dir, tiles, flags, [&job](const auto& missing, const auto& run_options, const auto& sink) {
         return compute_shaft_map_tiles(job, missing, run_options, sink);
       });
   if (!counts) return interrupted_exit_code();
-  const MapRunStats& stats = *counts;
-  std::ostringstream none, rows;
-  for (int t = 0; t < tiles; ++t) store.append(t, none, rows);
+  const MapRunStats& stats = counts->stats;
   // The rigid chart_subtitle would print the unused rotor k, c, M_r: the shaft's own line.
   std::string subtitle = fmt::format("{} nodes, {} bearings, balancer at node {}; {} balls, U = {} kg m",
                                      scene.shaft->nodes(), scene.shaft->bearings.size(), scene.shaft->balancer_node,
@@ -211,7 +208,7 @@ int map_shaft(const Scene& scene, const ShaftMapRequest& request) {
   for (const auto& o : request.overrides) subtitle += " --set " + o;
   {
     OutputTransaction out;
-    const auto staged = out.stage(csv_path, shaft_map_header(job) + rows.str());
+    const auto staged = out.stage(csv_path, shaft_map_header(job) + counts->summary);
     if (request.chart)
       run_gnuplot(plots_dir() / "shaft_map.gp",
                   {{"csv", staged.string()},

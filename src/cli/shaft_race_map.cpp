@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <sstream>
 
 #include "abu/analysis/shaft_race_map.hpp"
 #include "abu/core/errors.hpp"
@@ -67,17 +66,15 @@ int map_shaft_race(const Scene& scene, const ShaftMapRequest& request) {
   const int tiles = int(job.xs.size());
   const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
   const TileStore store(tiles_dir, shaft_race_map_manifest(job), tiles, tile_store_mode(flags));
-  const std::optional<MapRunStats> counts =
+  const std::optional<FinishedTiles> counts =
       run_missing_tiles(store, tiles_dir, tiles, flags, [&job](const auto& missing, const auto& run_options, const auto& sink) {
         return compute_shaft_race_map_tiles(job, missing, run_options, sink);
       });
   if (!counts) return interrupted_exit_code();
-  const MapRunStats& stats = *counts;
-  std::ostringstream none, summary;
-  for (int t = 0; t < tiles; ++t) store.append(t, none, summary);
+  const MapRunStats& stats = counts->stats;
   {
     OutputTransaction out;
-    const auto staged = out.stage(summary_path, shaft_race_map_header(job) + summary.str());
+    const auto staged = out.stage(summary_path, shaft_race_map_header(job) + counts->summary);
     if (request.chart)
       run_gnuplot(plots_dir() / "unround_map.gp",
                   {{"csv", staged.string()},

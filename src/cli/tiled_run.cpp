@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <sstream>
+
 #include "abu/core/cancel.hpp"
 #include "abu/output/format.hpp"
 #include "cli.hpp"
@@ -13,8 +15,8 @@ TileStore::Mode tile_store_mode(const TiledRunFlags& flags) {
   return flags.resume ? TileStore::Mode::resume : flags.fresh ? TileStore::Mode::discard : TileStore::Mode::fresh;
 }
 
-std::optional<MapRunStats> run_missing_tiles(const TileStore& store, const std::filesystem::path& tiles_dir, int tiles,
-                       const TiledRunFlags& flags, const TileComputation& compute) {
+std::optional<FinishedTiles> run_missing_tiles(const TileStore& store, const std::filesystem::path& tiles_dir, int tiles,
+                                               const TiledRunFlags& flags, const TileComputation& compute) {
   const std::vector<int> missing = store.missing();
   ProgressMeter meter(tiles, tiles - int(missing.size()), !flags.quiet && (flags.progress || isatty(STDERR_FILENO)));
   MapRunOptions run;
@@ -26,7 +28,11 @@ std::optional<MapRunStats> run_missing_tiles(const TileStore& store, const std::
   const MapRunStats stats = compute(missing, run, [&store](int tile, TileText&& text) { store.put(tile, text); });
   meter.finish();
   set_interrupt_note({});
-  if (!stats.interrupted && !stop_requested()) return stats;
+  if (!stats.interrupted && !stop_requested()) {
+    std::ostringstream rows, summary;
+    for (int t = 0; t < tiles; ++t) store.append(t, rows, summary);
+    return FinishedTiles{stats, rows.str(), summary.str()};
+  }
   fmt::print(stderr, "stability-scan: interrupted: {} of {} tiles are kept in {}; run the same command with --resume\n",
              tiles - int(store.missing().size()), tiles, tiles_dir.string());
   return std::nullopt;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "abu/scan/map_driver.hpp"
@@ -28,11 +29,17 @@ TileStore::Mode tile_store_mode(const TiledRunFlags& flags);
 using TileComputation =
     std::function<MapRunStats(const std::vector<int>& tiles, const MapRunOptions& options, const TileSink& sink)>;
 
+/// Every tile of a finished run, in tile order (TileStore::append), and the run's counts.
+struct FinishedTiles {
+  MapRunStats stats;
+  std::string rows, summary;
+};
+
 /// Computes the tiles `store` misses (`tiles_dir` is its directory, `tiles` their count),
-/// each put in the store as it is made, and returns the run's counts. nullopt: a signal
-/// stopped the run; the message (how many tiles are kept, rerun with --resume) is printed
-/// and the finished tiles stay.
-std::optional<MapRunStats> run_missing_tiles(const TileStore& store, const std::filesystem::path& tiles_dir, int tiles,
-                       const TiledRunFlags& flags, const TileComputation& compute);
+/// each put in the store as it is made, then reads every tile back in order. nullopt: a
+/// signal stopped the run; the message (how many tiles are kept, rerun with --resume) is
+/// printed and the finished tiles stay.
+std::optional<FinishedTiles> run_missing_tiles(const TileStore& store, const std::filesystem::path& tiles_dir, int tiles,
+                                               const TiledRunFlags& flags, const TileComputation& compute);
 
 }  // namespace abu::cli

@@ -237,17 +237,15 @@ int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMa
   fs::create_directories(dir);
   const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
   const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()), tile_store_mode(flags));
-  const std::optional<MapRunStats> counts = run_missing_tiles(store, tiles_dir, int(job.xs.size()), flags,
+  const std::optional<FinishedTiles> counts = run_missing_tiles(store, tiles_dir, int(job.xs.size()), flags,
                          [&job](const auto& missing, const auto& run_options, const auto& sink) {
                            return compute_unround_map_tiles(job, missing, run_options, sink);
                          });
   if (!counts) return interrupted_exit_code();
-  const MapRunStats& stats = *counts;
-  std::ostringstream none, summary;
-  for (int t = 0; t < int(job.xs.size()); ++t) store.append(t, none, summary);
+  const MapRunStats& stats = counts->stats;
   {
     OutputTransaction out;
-    const auto staged = out.stage(summary_path, unround_map_header(job) + summary.str());
+    const auto staged = out.stage(summary_path, unround_map_header(job) + counts->summary);
     if (request.chart)
       run_gnuplot(plots_dir() / "unround_map.gp",
                   {{"csv", staged.string()},

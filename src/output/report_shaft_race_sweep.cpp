@@ -32,11 +32,11 @@ std::string shaft_race_sweep_csv(const ShaftRaceSweep& s, std::string_view name,
     for (std::size_t k = 0; k < pt.states.size(); ++k) {
       const ShaftState& st = pt.states[k];
       const auto& x = st.eq.position;
-      const int node = int(x.size()) - s.n_balls;  // the balls' angles close the configuration
+      const int first_ball = int(x.size()) - s.n_balls;  // the balls' angles close the configuration
       out += fmt::format("{},{},{},{},{}", format_number(pt.value, name), st.eq.member,
                          format_number(x[s.balancer_dof], "q1"), format_number(x[s.balancer_dof + 1], "q2"),
                          format_number(st.q_abs, "|q|"));
-      for (int b = 0; b < s.n_balls; ++b) out += fmt::format(",{}", format_number(x[node + b], "beta"));
+      for (int b = 0; b < s.n_balls; ++b) out += fmt::format(",{}", format_number(x[first_ball + b], "beta"));
       out += fmt::format(",{},{},{},{},{},{},{},{}\n", format_number(st.max_deflection, "deflection"), st.max_node,
                          finite_or_empty(st.rightmost, "rightmost"), st.verdict, st.verdict == "stable" ? 1 : 0,
                          pt.best == k ? 1 : 0, to_string(st.eq.status.outcome),
