@@ -181,7 +181,13 @@ int main(int argc, char** argv) {
   }
   // The counter itself: one deliberate allocation must be seen, or the interposition is
   // not in effect and every check above would pass vacuously.
-  const long probe = mallocs_of([] { std::free(std::malloc(64)); });
+  // The block escapes through a volatile store: a malloc/free pair whose block is never
+  // used may be removed by the optimizer (clang does), which would hide the counter.
+  static void* volatile escaped = nullptr;
+  const long probe = mallocs_of([] {
+    escaped = std::malloc(64);
+    std::free(escaped);
+  });
   check(probe == 1, "the malloc counter sees a deliberate allocation (" + std::to_string(probe) + ")");
   for (int n : {3, 4, 12}) check_ball_count(argv[1], n);
   for (int n : {3, 5}) check_map_cell(argv[1], n);
