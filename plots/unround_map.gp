@@ -15,6 +15,10 @@ if (!exists("title")) title = 'unround race map'
 if (!exists("subtitle")) subtitle = ''
 # A flexible shaft's map (model.md §18.18) has no first-order regime column.
 if (!exists("first_order")) first_order = '1'
+# What the right panel counts, and what the left one's |q| is (a periodic orbit's largest |q|
+# over its period on an anisotropic support, model.md §20.7).
+if (!exists("states")) states = 'stable equilibria'
+if (!exists("qlabel")) qlabel = 'log_{10} |q| of the best stable state [m]'
 
 set terminal pngcairo size 1300,600 enhanced font 'DejaVu Sans,10'
 set output png
@@ -33,7 +37,7 @@ set xlabel label(xname, xunit, logx) noenhanced
 set ylabel label(yname, yunit, logy) noenhanced
 set multiplot layout 1,2 title heading noenhanced font ',9'
 set palette defined (0 '#0b3d91', 0.5 '#f2c14e', 1 '#b2182b')
-set cblabel 'log_{10} |q| of the best stable state [m]'
+set cblabel qlabel
 positive(q) = (q > 0 ? log10(q) : NaN)
 # 4 decades below the largest |q|: a balanced state at zero unroundness (|q| = 0 up to
 # rounding, ~1e-22 m) is drawn in the lowest colour.
@@ -45,8 +49,9 @@ set autoscale yfix
 set key below
 dots = first_order eq '1' ? ", csv using (X(column(xname))):(column('first_order') > 0 ? Y(column(yname)) : NaN) with points pt 7 ps 0.3 lc rgb 'white' title 'first order (Lambda <= 0.1)'" : ""
 plot csv using (X(column(xname))):(Y(column(yname))):(positive(column("best_q_abs"))) with image notitle @dots
-set autoscale cb
-set cblabel 'stable equilibria'
+# From 0, so that white is "none stable" and not the map's least count.
+set cbrange [0:*]
+set cblabel states
 set palette defined (0 '#f7f7f7', 1 '#92c5de', 2 '#2166ac', 4 '#053061')
 plot csv using (X(column(xname))):(Y(column(yname))):(column("stable")) with image notitle
 unset multiplot

@@ -40,25 +40,6 @@ GrowthSample composed_growth(const ForcedOrbit& o) { return {o.log_moduli.front(
 
 bool composed_orbit_usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
 
-// This value's orbits: every equilibrium of the race on the mean support continued in delta
-// (what `equilibria` reports, §20.4).
-ComposedSweepPoint composed_orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
-                             const ForcedOrbitOptions& o) {
-  ComposedSweepPoint point;
-  point.value = value;
-  const UnroundResult mean = find_unround_equilibria(m.params, m.race);
-  for (const auto& e : mean.list)
-    if (!(e.residual <= 1e-8))
-      throw NumericalError(fmt::format("value {}: an equilibrium of the unround race has residual {:.3g}: it is not an "
-                                       "equilibrium",
-                                       value, e.residual));
-  point.equilibria = int(mean.list.size());
-  point.search_doubt = mean.doubt;
-  ForcedOrbitAnalysis a = analyze_unround_orbits(m.params, support, m.race, mean, o);
-  for (std::size_t k = 0; k < a.orbits.size(); ++k) point.rows.push_back({0, int(k) + 1, false, std::move(a.orbits[k])});
-  return point;
-}
-
 // The orbit `from` (at value a) continued to value b by Newton (forced_orbit_near); where
 // Newton fails over the whole step, in 2, 4, ... 16 equal sub-steps (natural-parameter
 // continuation: a long grid step near a resonance, where the orbits move fast).
@@ -168,6 +149,23 @@ void locate_composed_crossings(ComposedSweep& s, const AnisotropicSupport& suppo
 }
 
 }  // namespace
+
+ComposedSweepPoint composed_orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
+                                      const ForcedOrbitOptions& o) {
+  ComposedSweepPoint point;
+  point.value = value;
+  const UnroundResult mean = find_unround_equilibria(m.params, m.race);
+  for (const auto& e : mean.list)
+    if (!(e.residual <= 1e-8))
+      throw NumericalError(fmt::format("value {}: an equilibrium of the unround race has residual {:.3g}: it is not an "
+                                       "equilibrium",
+                                       value, e.residual));
+  point.equilibria = int(mean.list.size());
+  point.search_doubt = mean.doubt;
+  ForcedOrbitAnalysis a = analyze_unround_orbits(m.params, support, m.race, mean, o);
+  for (std::size_t k = 0; k < a.orbits.size(); ++k) point.rows.push_back({0, int(k) + 1, false, std::move(a.orbits[k])});
+  return point;
+}
 
 ComposedSweep composed_sweep(const AnisotropicSupport& support, const ComposedAt& at, const std::vector<double>& values,
                              const ComposedSweepOptions& o) {

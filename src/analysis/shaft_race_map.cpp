@@ -7,25 +7,13 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/scan/summary_map_text.hpp"
 #include "abu/analysis/shaft_race_sweep.hpp"
 
 namespace abu {
 
-namespace {
-// Shortest round-trip form; a non-finite value is a numerical failure naming its cell.
-std::string number(double v, const ShaftRaceMapJob& job, int ix, int iy, const char* what) {
-  if (!std::isfinite(v))
-    throw NumericalError(fmt::format("shaft race map cell ({}={}, {}={}): {} is not finite", job.x_name,
-                                     job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)], what));
-  return fmt::format("{}", v);
-}
-}  // namespace
-
 std::string shaft_race_map_manifest(const ShaftRaceMapJob& job) {
-  std::string m = shaft_race_map_header(job);
-  for (double x : job.xs) m += fmt::format("x {}\n", x);
-  for (double y : job.ys) m += fmt::format("y {}\n", y);
-  return m;
+  return summary_map_manifest(shaft_race_map_header(job), job.xs, job.ys);
 }
 
 std::string shaft_race_map_header(const ShaftRaceMapJob& job) {
@@ -48,6 +36,7 @@ TileText compute_shaft_race_map_tile(const ShaftRaceMapJob& job, int tile) {
   TileText text;
   const int ix = tile;
   for (int iy = 0; iy < int(job.ys.size()); ++iy) {
+    const MapCellPlace cell{"shaft race map", job.x_name, job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)]};
     throw_if_stopped("shaft race map tile");
     const auto [sys, race] = job.cell_input(ix, iy);
     const ShaftStates st = analyze_shaft_race_states(sys, race, job.spectrum);
@@ -55,11 +44,11 @@ TileText compute_shaft_race_map_tile(const ShaftRaceMapJob& job, int tile) {
     for (const auto& s : st.states) stable += s.verdict == "stable", unstable += s.verdict == "unstable";
     const auto best = least_stable_state(st.states);
     const auto bare = balls_held_whirl(sys);
-    text.summary += fmt::format("{},{},{},{},{},{},{},{},{}\n", number(job.xs[std::size_t(ix)], job, ix, iy, "x"),
-                                number(job.ys[std::size_t(iy)], job, ix, iy, "y"), st.states.size(), stable, unstable,
+    text.summary += fmt::format("{},{},{},{},{},{},{},{},{}\n", cell_number(job.xs[std::size_t(ix)], cell, "x"),
+                                cell_number(job.ys[std::size_t(iy)], cell, "y"), st.states.size(), stable, unstable,
                                 int(st.states.size()) - stable - unstable,
-                                best ? number(st.states[*best].q_abs, job, ix, iy, "|q|") : std::string(),
-                                bare ? number(*bare, job, ix, iy, "q_bare") : std::string(), st.race_complete ? 1 : 0);
+                                best ? cell_number(st.states[*best].q_abs, cell, "|q|") : std::string(),
+                                bare ? cell_number(*bare, cell, "q_bare") : std::string(), st.race_complete ? 1 : 0);
     ++text.cells;
     text.equilibria += long(st.states.size());
   }

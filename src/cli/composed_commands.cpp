@@ -1,8 +1,10 @@
-// `sweep` on an unround race with an anisotropic support (composed_commands.hpp, model.md §20.6).
+// `sweep` and `map` on an unround race with an anisotropic support (composed_commands.hpp,
+// model.md §20.6, §20.7).
 #include "composed_commands.hpp"
 
 #include <fmt/format.h>
 
+#include "abu/analysis/composed_map.hpp"
 #include "abu/analysis/composed_sweep.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/suggest.hpp"
@@ -14,6 +16,7 @@
 #include "abu/output/provenance.hpp"
 #include "abu/output/report_composed_sweep.hpp"
 #include "abu/scan/scan.hpp"
+#include "tiled_run.hpp"
 
 namespace abu::cli {
 
@@ -107,6 +110,45 @@ int sweep_composed(const Scene& scene, const SceneOptions& options, const Unroun
   fmt::print(stderr, "{} orbit(s) followed over {} values ({} rows); wrote {} and {}{}\n", s.tracks, values.size(), rows,
              csv_path.string(), crossings_path.string(), g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
   return exit_ok;
+}
+
+int map_composed(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {
+  const RaceShape race = race_shape(scene);
+  // k and c, the support's means, are refused by set_checked (model.md §10.11).
+  const UnroundMapAxes axes = unround_map_axes(request.x, request.y, scene, race);
+  const UnroundAxis &x = axes.x, &y = axes.y;
+  ComposedMapJob job;
+  job.x_name = x.name, job.y_name = y.name, job.x_unit = x.unit, job.y_unit = y.unit;
+  job.xs = axes.xs, job.ys = axes.ys;
+  for (double xv : {job.xs.front(), job.xs.back()})  // the corners decide: every cell between keeps the rules
+    for (double yv : {job.ys.front(), job.ys.back()})
+      check_numerical_range(unround_cell(scene, x, xv, y, yv).scene, "--x/--y",
+                            fmt::format("at {}={}, {}={}", x.name, xv, y.name, yv));
+  job.support = *scene.support;
+  job.cell_input = [&scene, &x, &y, &job](int ix, int iy) {
+    const UnroundCell c = unround_cell(scene, x, job.xs[std::size_t(ix)], y, job.ys[std::size_t(iy)]);
+    return ComposedMachineAt{params_of<any_balls>(c.scene), scaled_race(race_shape(c.scene), c.factor)};
+  };
+  // The support's and the race's numbers: the tiles' manifest is this header, so --resume
+  // refuses a changed support or race.
+  job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene)) +
+                   "# anisotropic support: " + describe_support(*scene.support) + "\n" + describe_race(race, "# ");
+  SummaryMapRun run{request.output_dir, "summary", "composed_map", x.name, y.name, int(job.xs.size()),
+                    composed_map_manifest(job), composed_map_header(job),
+                    {request.resume, request.fresh, request.progress, request.quiet, request.threads}, request.chart,
+                    "unround_map.gp", axes_chart_variables(x.name, x.unit, x.axis.logarithmic, y.name, y.unit,
+                                                           y.axis.logarithmic),
+                    "orbits"};
+  run.chart_variables.insert(
+      run.chart_variables.end(),
+      {{"first_order", "0"},
+       {"states", "stable periodic orbits"},
+       {"qlabel", "log_{10} max |q| over the period of the best stable orbit [m]"},
+       {"title", fmt::format("{}: unround race on an anisotropic support, map (periodic orbits)", scene.file)},
+       {"subtitle", chart_subtitle(scene, options.overrides)}});
+  return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
+    return compute_composed_map_tiles(job, missing, run_options, sink);
+  });
 }
 
 }  // namespace abu::cli

@@ -1,5 +1,6 @@
-// `sweep` on an unround race with an anisotropic support (docs/model.md §20.6): the glue
-// between the sweep command's options and analysis/composed_sweep. Private to the CLI.
+// `sweep` and `map` on an unround race with an anisotropic support (docs/model.md §20.6, §20.7):
+// the glue between the commands' options and analysis/composed_sweep, analysis/composed_map.
+// Private to the CLI.
 #pragma once
 
 #include "abu/input/scene.hpp"
@@ -14,5 +15,10 @@ namespace abu::cli {
 /// instead) before any work. Writes sweep_NAME.csv, floquet_crossings_NAME.csv and (chart)
 /// sweep_NAME.png; the crossings, lost tracks and failures on stderr. Returns the exit code.
 int sweep_composed(const Scene& scene, const SceneOptions& options, const UnroundGrid& grid);
+
+/// summary_X_Y.csv and summary_X_Y.png over two of the sweep's parameters (`unroundness:FROM:TO:N`
+/// an axis too): per cell the orbits `equilibria` finds there counted by verdict, and the design
+/// figure (analysis/composed_map.hpp). Threads, --resume and the same bytes as every map.
+int map_composed(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request);
 
 }  // namespace abu::cli

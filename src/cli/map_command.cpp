@@ -20,6 +20,7 @@
 #include "abu/scan/map_mpi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "composed_commands.hpp"
 #include "shaft_commands.hpp"
 #include "stick_options.hpp"
 #include "unround_commands.hpp"
@@ -111,11 +112,13 @@ Action add_map_command(CLI::App& app) {
     const bool stick_on_race = set_valued_on_unround_race(scene);  // the stick set per cell (§20.5)
     if ((!scene.race.round() || o->x.rfind(kUnroundnessParam + ":", 0) == 0 ||
          o->y.rfind(kUnroundnessParam + ":", 0) == 0) && !stick_on_race) {  // model.md §11.10
-      refuse_unmodelled(scene, "map", {.unround = true});
+      const bool on_support = unround_on_anisotropic_support(scene);  // periodic orbits per cell (§20.7)
+      refuse_unmodelled(scene, "map", on_support ? Handles{.unround_anisotropic = true} : Handles{.unround = true});
       check_output_directory(o->output_dir);
-      return map_unround(scene, o->scene,
-                         {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y), canonical_command_line(*o),
-                          o->threads, o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
+      return (on_support ? map_composed : map_unround)(
+          scene, o->scene,
+          {omega_axis_input(o->scene, o->x), omega_axis_input(o->scene, o->y), canonical_command_line(*o), o->threads,
+           o->resume, o->fresh, o->progress, o->quiet, o->chart, o->output_dir});
     }
     const bool stick = scene.law == FrictionLaw::coulomb_set;  // the stick set per cell (model.md §14)
     refuse_unmodelled(scene, "map",

@@ -186,50 +186,23 @@ int map_shaft(const Scene& scene, const ShaftMapRequest& request) {
   // The shaft's numbers too: the tiles' manifest is this header, so --resume refuses a changed shaft.
   job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene)) +
                    describe_shaft(*scene.shaft, "# ");
-  namespace fs = std::filesystem;
-  const fs::path dir(request.output_dir);
-  const auto csv_path = dir / fmt::format("shaft_map_{}_{}.csv", x.name, y.name);
-  const auto png_path = dir / fmt::format("shaft_map_{}_{}.png", x.name, y.name);
-  const fs::path tiles_dir = dir / fmt::format(".shaft_map_{}_{}.tiles", x.name, y.name);
-  fs::create_directories(dir);
-  const int tiles = int(job.xs.size());
-  const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
-  const TileStore store(tiles_dir, shaft_map_manifest(job), tiles, tile_store_mode(flags));
-  const std::optional<FinishedTiles> counts =
-      run_missing_tiles(store, tiles_dir, tiles, flags, [&job](const auto& missing, const auto& run_options, const auto& sink) {
-        return compute_shaft_map_tiles(job, missing, run_options, sink);
-      });
-  if (!counts) return interrupted_exit_code();
-  const MapRunStats& stats = counts->stats;
   // The rigid chart_subtitle would print the unused rotor k, c, M_r: the shaft's own line.
   std::string subtitle = fmt::format("{} nodes, {} bearings, balancer at node {}; {} balls, U = {} kg m",
                                      scene.shaft->nodes(), scene.shaft->bearings.size(), scene.shaft->balancer_node,
                                      scene.balls.size(), params_of<any_balls>(scene).rotor.unbalance);
   for (const auto& o : request.overrides) subtitle += " --set " + o;
-  {
-    OutputTransaction out;
-    const auto staged = out.stage(csv_path, shaft_map_header(job) + counts->summary);
-    if (request.chart)
-      run_gnuplot(plots_dir() / "shaft_map.gp",
-                  {{"csv", staged.string()},
-                   {"png", out.reserve(png_path).string()},
-                   {"xname", x.name},
-                   {"yname", y.name},
-                   {"xunit", x.unit},
-                   {"yunit", y.unit},
-                   {"logx", x.axis.logarithmic ? "1" : "0"},
-                   {"logy", y.axis.logarithmic ? "1" : "0"},
-                   {"title", fmt::format("{}: flexible shaft, balanced state", scene.file)},
-                   {"subtitle", subtitle}});
-    out.commit();
-  }
-  store.remove();
-  if (!request.quiet)
-    fmt::print(stderr, "{} cells, {} balanced states, {} tiles computed in {:.2f} s ({:.3g} cells/s) -> {}{}\n",
-               stats.cells, stats.equilibria, stats.tiles, stats.seconds,
-               stats.seconds > 0 ? double(stats.cells) / stats.seconds : 0.0, csv_path.string(),
-               request.chart ? fmt::format(" and {}", png_path.string()) : std::string());
-  return exit_ok;
+  SummaryMapRun run{request.output_dir, "shaft_map", "shaft_map", x.name, y.name, int(job.xs.size()),
+                    shaft_map_manifest(job), shaft_map_header(job),
+                    {request.resume, request.fresh, request.progress, request.quiet, request.threads}, request.chart,
+                    "shaft_map.gp", axes_chart_variables(x.name, x.unit, x.axis.logarithmic, y.name, y.unit,
+                                                         y.axis.logarithmic),
+                    "balanced states"};
+  run.chart_variables.insert(run.chart_variables.end(),
+                             {{"title", fmt::format("{}: flexible shaft, balanced state", scene.file)},
+                              {"subtitle", subtitle}});
+  return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
+    return compute_shaft_map_tiles(job, missing, run_options, sink);
+  });
 }
 
 }  // namespace abu::cli

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "abu/scan/map_driver.hpp"
@@ -41,5 +42,31 @@ struct FinishedTiles {
 /// printed and the finished tiles stay.
 std::optional<FinishedTiles> run_missing_tiles(const TileStore& store, const std::filesystem::path& tiles_dir, int tiles,
                                                const TiledRunFlags& flags, const TileComputation& compute);
+
+/// A map whose tiles are its columns and whose output is one summary CSV with a chart: the
+/// unround race's, the flexible shaft's, the race on a shaft's and the composed machine's maps.
+struct SummaryMapRun {
+  std::filesystem::path dir;  ///< the output directory
+  std::string stem;           ///< the files are STEM_X_Y.csv and STEM_X_Y.png
+  std::string tiles_stem;     ///< the tiles live in DIR/.TILES_STEM_X_Y.tiles
+  std::string x_name, y_name;
+  int tiles = 0;              ///< the x values
+  std::string manifest;       ///< what determines the bytes (the TileStore's)
+  std::string header;         ///< the CSV's comment block and column names
+  TiledRunFlags flags;
+  bool chart = true;
+  std::string script;         ///< plots/SCRIPT draws the chart
+  /// The chart's variables besides csv and png (names, units, log flags, title, subtitle).
+  std::vector<std::pair<std::string, std::string>> chart_variables;
+  std::string counted;        ///< what TileText::equilibria counts, for the closing line
+};
+/// The chart variables of a map's two axes: xname, yname, xunit, yunit, logx, logy.
+std::vector<std::pair<std::string, std::string>> axes_chart_variables(const std::string& x_name, const std::string& x_unit,
+                                                                      bool log_x, const std::string& y_name,
+                                                                      const std::string& y_unit, bool log_y);
+/// Runs the missing tiles, writes the summary and its chart in one transaction, removes the
+/// tiles and prints the closing line. Returns the exit code (interrupted_exit_code() when a
+/// signal stopped the run; the finished tiles are kept).
+int run_summary_map(const SummaryMapRun& run, const TileComputation& compute);
 
 }  // namespace abu::cli

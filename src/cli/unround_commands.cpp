@@ -206,66 +206,54 @@ UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const Race
   return a;
 }
 
+UnroundMapAxes unround_map_axes(const std::string& x_spec, const std::string& y_spec, const Scene& scene,
+                                const RaceShape& race) {
+  UnroundMapAxes a{unround_axis(x_spec, scene, race, "--x"), unround_axis(y_spec, scene, race, "--y"), {}, {}};
+  if (a.x.name == a.y.name) throw InputError("--y", 0, y_spec, "the two axes are one parameter");
+  if (long(a.x.axis.count) * long(a.y.axis.count) > kMaxCells)
+    throw InputError("--y", 0, y_spec, fmt::format("the map would have {} x {} cells; at most {} are allowed",
+                                                   a.x.axis.count, a.y.axis.count, kMaxCells));
+  for (int i = 0; i < a.x.axis.count; ++i) a.xs.push_back(a.x.axis.value(i));
+  for (int i = 0; i < a.y.axis.count; ++i) a.ys.push_back(a.y.axis.value(i));
+  return a;
+}
+
+UnroundCell unround_cell(const Scene& scene, const UnroundAxis& x, double xv, const UnroundAxis& y, double yv) {
+  UnroundCell cell{scene, 1.0};
+  for (const auto& [a, v] : {std::pair{&x, xv}, std::pair{&y, yv}}) {
+    if (a->factor)
+      cell.factor = v;
+    else
+      set_checked(cell.scene, a->axis.param, v, "--x/--y");
+  }
+  return cell;
+}
+
 int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {
   require_unround(scene, request.x.rfind(kUnroundnessParam, 0) == 0 ? "--x" : "--y");
   const RaceShape race = race_shape(scene);
-  const UnroundAxis x = unround_axis(request.x, scene, race, "--x"), y = unround_axis(request.y, scene, race, "--y");
-  if (x.name == y.name) throw InputError("--y", 0, request.y, "the two axes are one parameter");
+  const UnroundMapAxes axes = unround_map_axes(request.x, request.y, scene, race);
+  const UnroundAxis &x = axes.x, &y = axes.y;
   UnroundMapJob job;
   job.x_name = x.name, job.y_name = y.name, job.x_unit = x.unit, job.y_unit = y.unit;
-  for (int i = 0; i < x.axis.count; ++i) job.xs.push_back(x.axis.value(i));
-  for (int i = 0; i < y.axis.count; ++i) job.ys.push_back(y.axis.value(i));
-  // Every cell from a copy of the scene: its parameters set, the race re-read (surface
-  // harmonics follow l and r) and scaled by the factor axis.
+  job.xs = axes.xs, job.ys = axes.ys;
   job.cell_input = [&scene, &x, &y, &job](int ix, int iy) {
-    Scene s = scene;
-    double factor = 1;
-    for (const auto& [a, v] : {std::pair{&x, job.xs[std::size_t(ix)]}, std::pair{&y, job.ys[std::size_t(iy)]}}) {
-      if (a->factor)
-        factor = v;
-      else
-        set_checked(s, a->axis.param, v, "--x/--y");
-    }
-    return std::pair{params_of<any_balls>(s), scaled_race(race_shape(s), factor)};
+    const UnroundCell c = unround_cell(scene, x, job.xs[std::size_t(ix)], y, job.ys[std::size_t(iy)]);
+    return std::pair{params_of<any_balls>(c.scene), scaled_race(race_shape(c.scene), c.factor)};
   };
   job.provenance = provenance_header(request.command_line, scene.file, params_of<any_balls>(scene));
-  namespace fs = std::filesystem;
-  const fs::path dir(request.output_dir);
-  const auto summary_path = dir / fmt::format("summary_{}_{}.csv", x.name, y.name);
-  const auto png_path = dir / fmt::format("summary_{}_{}.png", x.name, y.name);
-  const fs::path tiles_dir = dir / fmt::format(".unround_map_{}_{}.tiles", x.name, y.name);
-  fs::create_directories(dir);
-  const TiledRunFlags flags{request.resume, request.fresh, request.progress, request.quiet, request.threads};
-  const TileStore store(tiles_dir, unround_map_manifest(job), int(job.xs.size()), tile_store_mode(flags));
-  const std::optional<FinishedTiles> counts = run_missing_tiles(store, tiles_dir, int(job.xs.size()), flags,
-                         [&job](const auto& missing, const auto& run_options, const auto& sink) {
-                           return compute_unround_map_tiles(job, missing, run_options, sink);
-                         });
-  if (!counts) return interrupted_exit_code();
-  const MapRunStats& stats = counts->stats;
-  {
-    OutputTransaction out;
-    const auto staged = out.stage(summary_path, unround_map_header(job) + counts->summary);
-    if (request.chart)
-      run_gnuplot(plots_dir() / "unround_map.gp",
-                  {{"csv", staged.string()},
-                   {"png", out.reserve(png_path).string()},
-                   {"xname", x.name},
-                   {"yname", y.name},
-                   {"xunit", x.unit},
-                   {"yunit", y.unit},
-                   {"logx", x.axis.logarithmic ? "1" : "0"},
-                   {"logy", y.axis.logarithmic ? "1" : "0"},
-                   {"title", fmt::format("{}: unround race map", scene.file)},
-                   {"subtitle", chart_subtitle(scene, options.overrides)}});
-    out.commit();
-  }
-  store.remove();
-  if (!request.quiet)
-    fmt::print(stderr, "{} cells, {} equilibria, {} tiles computed in {:.2f} s -> {}{}\n", stats.cells,
-               stats.equilibria, stats.tiles, stats.seconds, summary_path.string(),
-               request.chart ? fmt::format(" and {}", png_path.string()) : std::string());
-  return exit_ok;
+  SummaryMapRun run{request.output_dir, "summary", "unround_map", x.name, y.name, int(job.xs.size()),
+                    unround_map_manifest(job), unround_map_header(job),
+                    {request.resume, request.fresh, request.progress, request.quiet, request.threads}, request.chart,
+                    "unround_map.gp", axes_chart_variables(x.name, x.unit, x.axis.logarithmic, y.name, y.unit,
+                                                           y.axis.logarithmic),
+                    "equilibria"};
+  run.chart_variables.insert(run.chart_variables.end(),
+                             {{"title", fmt::format("{}: unround race map", scene.file)},
+                              {"subtitle", chart_subtitle(scene, options.overrides)}});
+  return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
+    return compute_unround_map_tiles(job, missing, run_options, sink);
+  });
 }
 
 }  // namespace abu::cli

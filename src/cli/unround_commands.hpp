@@ -60,6 +60,22 @@ struct UnroundAxis {
   std::string name, unit;
 };
 UnroundAxis unround_axis(const std::string& spec, const Scene& scene, const RaceShape& race, const std::string& origin);
+/// The two axes of an unround-race map (unround_axis each) and their values; the same parameter
+/// twice and more than kMaxCells cells are refused (--y).
+struct UnroundMapAxes {
+  UnroundAxis x, y;
+  std::vector<double> xs, ys;
+};
+UnroundMapAxes unround_map_axes(const std::string& x_spec, const std::string& y_spec, const Scene& scene,
+                                const RaceShape& race);
+/// A map cell's machine: the scene with each parameter axis's value set (checked, at --x/--y)
+/// and the unroundness factor (1 without a factor axis). The race at the cell is
+/// scaled_race(race_shape(scene), factor): re-read, as surface harmonics follow l and r.
+struct UnroundCell {
+  Scene scene;
+  double factor = 1;
+};
+UnroundCell unround_cell(const Scene& scene, const UnroundAxis& x, double xv, const UnroundAxis& y, double yv);
 
 struct UnroundMapRequest {
   std::string x, y;  ///< NAME:FROM:TO:N[:log] (omega already in rad/s), NAME a parameter or "unroundness"

@@ -97,4 +97,11 @@ PeriodicJacobian balanced_periodic_jacobian(const ParamsN& p, const AnisotropicS
   return J;
 }
 
+std::string describe_support(const AnisotropicSupport& s) {
+  return fmt::format("K_f = [[{}, {}], [{}, {}]] N/m, C_f = [[{}, {}], [{}, {}]] N s/m (fixed frame); k_bar = {}, "
+                     "|kappa| = {}, c_bar = {}, |gamma| = {}",
+                     s.k_x, s.k_xy, s.k_xy, s.k_y, s.c_x, s.c_xy, s.c_xy, s.c_y, s.mean_stiffness(),
+                     s.stiffness_anisotropy(), s.mean_damping(), s.damping_anisotropy());
+}
+
 }  // namespace abu

@@ -18,17 +18,10 @@ constexpr std::string_view kOrbitsNote =
     "the mean system's other equilibria become pi/omega-periodic orbits on an anisotropic support "
     "(docs/model.md §10.3); --no-periodic-orbits asked not to compute them (model.md §10.14), so none is reported";
 
-std::string support_text(const AnisotropicSupport& s) {
-  return fmt::format("K_f = [[{}, {}], [{}, {}]] N/m, C_f = [[{}, {}], [{}, {}]] N s/m (fixed frame); k_bar = {}, "
-                     "|kappa| = {}, c_bar = {}, |gamma| = {}",
-                     s.k_x, s.k_xy, s.k_xy, s.k_y, s.c_x, s.c_xy, s.c_xy, s.c_y, s.mean_stiffness(),
-                     s.stiffness_anisotropy(), s.mean_damping(), s.damping_anisotropy());
-}
-
 }  // namespace
 
 std::string floquet_table(const FloquetAnalysis& a, const ParamsN& p, const AnisotropicSupport& support) {
-  std::string out = fmt::format("anisotropic support: {}\n", support_text(support));
+  std::string out = fmt::format("anisotropic support: {}\n", describe_support(support));
   out += fmt::format("omega = {} rad/s; the rotating-frame system is periodic with pi/omega = {:.6g} s: stability "
                      "from Floquet multipliers rho (|rho| < 1 decays), exponents lambda = (omega/pi) ln rho [1/s, "
                      "rotating frame, Im modulo 2 omega]\n\n",

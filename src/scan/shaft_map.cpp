@@ -9,6 +9,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/scan/summary_map_text.hpp"
 #include "abu/equilibria/shaft_equilibria.hpp"
 
 namespace abu {
@@ -137,23 +138,11 @@ ShaftMapCell shaft_map_cell(const ShaftSystem& sys, const ShaftMapSpectrum& o) {
   return cell;
 }
 
-namespace {
-// Shortest round-trip form; a non-finite value is a numerical failure naming its cell.
-std::string number(double v, const ShaftMapJob& job, int ix, int iy, const char* what) {
-  if (!std::isfinite(v))
-    throw NumericalError(fmt::format("shaft map cell ({}={}, {}={}): {} is not finite", job.x_name,
-                                     job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)], what));
-  return fmt::format("{}", v);
-}
-}  // namespace
-
 std::string shaft_map_manifest(const ShaftMapJob& job) {
-  std::string m = shaft_map_header(job);
-  m += fmt::format("eigenvalues {} band {} samples {}\n", job.spectrum.eigenvalues, job.spectrum.band,
-                   job.spectrum.sampling.samples_per_sheet);
-  for (double x : job.xs) m += fmt::format("x {}\n", x);
-  for (double y : job.ys) m += fmt::format("y {}\n", y);
-  return m;
+  return summary_map_manifest(shaft_map_header(job) + fmt::format("eigenvalues {} band {} samples {}\n",
+                                                                  job.spectrum.eigenvalues, job.spectrum.band,
+                                                                  job.spectrum.sampling.samples_per_sheet),
+                              job.xs, job.ys);
 }
 
 std::string shaft_map_header(const ShaftMapJob& job) {
@@ -181,9 +170,10 @@ TileText compute_shaft_map_tile(const ShaftMapJob& job, int tile) {
   TileText text;
   const int ix = tile;
   for (int iy = 0; iy < int(job.ys.size()); ++iy) {
+    const MapCellPlace cell{"shaft map", job.x_name, job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)]};
     throw_if_stopped("shaft map tile");
     const ShaftMapCell c = shaft_map_cell(job.cell_system(ix, iy), job.spectrum);
-    const auto num = [&](double v, const char* what) { return number(v, job, ix, iy, what); };
+    const auto num = [&cell](double v, const char* what) { return cell_number(v, cell, what); };
     const bool found = c.found > 0, covered = c.imag_max >= 0;
     text.summary += fmt::format(
         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(job.xs[std::size_t(ix)], "x"), num(job.ys[std::size_t(iy)], "y"),

@@ -7,25 +7,13 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/scan/summary_map_text.hpp"
 #include "abu/linear/unround_spectrum.hpp"
 
 namespace abu {
 
-namespace {
-// Shortest round-trip form; a non-finite value is a numerical failure naming its cell.
-std::string number(double v, const UnroundMapJob& job, int ix, int iy, const char* what) {
-  if (!std::isfinite(v))
-    throw NumericalError(fmt::format("unround map cell ({}={}, {}={}): {} is not finite", job.x_name, job.xs[std::size_t(ix)],
-                                     job.y_name, job.ys[std::size_t(iy)], what));
-  return fmt::format("{}", v);
-}
-}  // namespace
-
 std::string unround_map_manifest(const UnroundMapJob& job) {
-  std::string m = unround_map_header(job);
-  for (double x : job.xs) m += fmt::format("x {}\n", x);
-  for (double y : job.ys) m += fmt::format("y {}\n", y);
-  return m;
+  return summary_map_manifest(unround_map_header(job), job.xs, job.ys);
 }
 
 std::string unround_map_header(const UnroundMapJob& job) {
@@ -43,6 +31,7 @@ TileText compute_unround_map_tile(const UnroundMapJob& job, int tile) {
   TileText text;
   const int ix = tile;
   for (int iy = 0; iy < int(job.ys.size()); ++iy) {
+    const MapCellPlace cell{"unround map", job.x_name, job.xs[std::size_t(ix)], job.y_name, job.ys[std::size_t(iy)]};
     throw_if_stopped("unround map tile");
     const auto [p, race] = job.cell_input(ix, iy);
     const UnroundResult r = find_unround_equilibria(p, race);
@@ -50,10 +39,10 @@ TileText compute_unround_map_tile(const UnroundMapJob& job, int tile) {
     for (const auto& e : r.list) stable += e.spectrum.stability == Stability::stable ? 1 : 0;
     const double lambda = unround_lambda(p, race);
     text.summary += fmt::format(
-        "{},{},{},{},{},{},{},{}\n", number(job.xs[std::size_t(ix)], job, ix, iy, "x"),
-        number(job.ys[std::size_t(iy)], job, ix, iy, "y"), r.list.size(), stable,
-        r.best_stable ? number(r.list[*r.best_stable].amplitude, job, ix, iy, "|q|") : std::string(),
-        number(lambda, job, ix, iy, "Lambda"), lambda <= kFirstOrderLambda ? 1 : 0, r.doubt.empty() ? 1 : 0);
+        "{},{},{},{},{},{},{},{}\n", cell_number(job.xs[std::size_t(ix)], cell, "x"),
+        cell_number(job.ys[std::size_t(iy)], cell, "y"), r.list.size(), stable,
+        r.best_stable ? cell_number(r.list[*r.best_stable].amplitude, cell, "|q|") : std::string(),
+        cell_number(lambda, cell, "Lambda"), lambda <= kFirstOrderLambda ? 1 : 0, r.doubt.empty() ? 1 : 0);
     ++text.cells;
     text.equilibria += long(r.list.size());
   }

@@ -88,6 +88,12 @@ struct ComposedSweepOptions {
   double match_tolerance = 1e-6;
 };
 
+/// The orbits at one value (what `equilibria` reports, §20.4): every equilibrium of the race on
+/// the mean support continued in delta to a pi/omega-periodic orbit; rows with track 0 (no sweep
+/// yet). Throws NumericalError where an equilibrium of the race has a residual above 1e-8.
+ComposedSweepPoint composed_orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
+                                      const ForcedOrbitOptions& options = {});
+
 /// The sweep over `values` (in sweep order). `at` gives the machine at a value (grid values and
 /// the bisection's). Throws NumericalError where an equilibrium of the race has a residual
 /// above 1e-8 (not an equilibrium: exit 3, as `equilibria`); every other failure is in the

@@ -36,6 +36,10 @@ struct AnisotropicSupport {
   bool isotropic() const { return stiffness_anisotropy() == 0.0 && damping_anisotropy() == 0.0; }
 };
 
+/// K_f and C_f (fixed frame) with k_bar, |kappa|, c_bar, |gamma|, on one line (no newline):
+/// what reports and map manifests print of the support.
+std::string describe_support(const AnisotropicSupport& s);
+
 /// The rule broken by K_f (not positive definite) or C_f (not positive semidefinite),
 /// naming the matrix and the failing minor; nullopt if both hold.
 std::optional<std::string> stiffness_matrix_violation(double k_x, double k_y, double k_xy);
