@@ -6,15 +6,20 @@
 //  * an isotropic support in the anisotropic form: every orbit is an equilibrium of the race,
 //    its multipliers' moduli exp(Re lambda pi/omega) of the unround race's eigenvalues (§11.5).
 // And the tracks: an orbit followed by Newton from the previous value (forced_orbit_near) is
-// the one `equilibria` finds there by the continuation in delta.
+// the one `equilibria` finds there by the continuation in delta. Last, the map's cells (§20.7).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "abu/analysis/composed_map.hpp"
 #include "abu/analysis/composed_sweep.hpp"
 #include "abu/analysis/floquet_sweep.hpp"
 #include "abu/equilibria/unround_equilibria.hpp"
@@ -150,4 +155,82 @@ TEST_CASE("composed sweep: an orbit followed from the previous value is the one 
     }
     CHECK(std::abs(near.multipliers.front()) == Approx(std::abs(row.orbit.multipliers.front())).epsilon(1e-9));
   }
+}
+
+// The map's cells (docs/model.md §20.7): a cell's counts by verdict, its failed orbits and its
+// design figure from a fabricated list (what composed_cell decides), then a tile of two cells
+// against the orbits composed_orbits_at gives at those points. cli/composed_map checks the whole
+// command against `equilibria`; this runs the tile's code under the sanitizers at CI's cost.
+TEST_CASE("composed map: a cell counts its orbits by verdict and keeps the least peak |q| of the stable ones",
+          "[composed_map]") {
+  ComposedSweepPoint point;
+  point.equilibria = 5;
+  const auto orbit = [](Stability verdict, double q_abs_max, bool converged) {
+    ForcedOrbit o;
+    o.verdict = verdict;
+    o.q_abs_max = q_abs_max;
+    o.multipliers = {{0.5, 0.0}};
+    if (!converged) o.status.outcome = Outcome::not_converged;
+    return ComposedOrbitRow{0, 1, false, o};
+  };
+  point.rows = {orbit(Stability::stable, 2e-6, true), orbit(Stability::unstable, 1e-7, true),
+                orbit(Stability::stable, 1.5e-6, true), orbit(Stability::marginal, 1e-8, true),
+                orbit(Stability::stable, 1e-9, false)};  // not converged: no verdict, not the best
+  const ComposedCell c = composed_cell(point);
+  CHECK(c.equilibria == 5);
+  CHECK(c.orbits == 4);
+  CHECK(c.stable == 2);
+  CHECK(c.unstable == 1);
+  CHECK(c.marginal == 1);
+  CHECK(c.failed == 1);
+  REQUIRE(c.best_q_abs.has_value());
+  CHECK(*c.best_q_abs == 1.5e-6);  // exact: a copy of the stable orbit's value
+  CHECK(c.complete);
+  point.search_doubt = "a leaf without an equilibrium";
+  point.rows = {orbit(Stability::unstable, 1e-7, true)};
+  const ComposedCell none = composed_cell(point);
+  CHECK_FALSE(none.best_q_abs.has_value());
+  CHECK_FALSE(none.complete);
+}
+
+TEST_CASE("composed map: a tile's rows are its cells' orbits at their points", "[composed_map]") {
+  const ParamsN base = composed_sweep_params();
+  const RaceShape race = composed_sweep_race(1.0);
+  ComposedMapJob job{"omega", "U", "rad/s", "kg m", {}, {}, {}, {}, {}, {}};
+  job.xs = {1100.0};
+  job.ys = {4e-7, 8e-7};
+  job.support = AnisotropicSupport{12000.0, 9000.0, -800.0, 4.0, 2.5, 0.6};
+  job.cell_input = [&](int ix, int iy) {
+    ParamsN p = base;
+    p.omega = job.xs[std::size_t(ix)];
+    p.rotor.unbalance = job.ys[std::size_t(iy)];
+    return ComposedMachineAt{p, race};
+  };
+  const TileText tile = compute_composed_map_tile(job, 0);
+  CHECK(tile.cells == 2);
+  std::string expected;
+  long orbits = 0;
+  for (int iy = 0; iy < 2; ++iy) {
+    const ComposedSweepPoint point = composed_orbits_at(job.support, job.cell_input(0, iy), 1100.0);
+    int stable = 0, unstable = 0, marginal = 0, failed = 0;
+    std::optional<double> best;
+    for (const auto& row : point.rows) {
+      if (!row.orbit.status.ok()) {
+        ++failed;
+        continue;
+      }
+      stable += row.orbit.stable(), unstable += row.orbit.verdict == Stability::unstable,
+          marginal += row.orbit.verdict == Stability::marginal;
+      if (row.orbit.stable() && (!best || row.orbit.q_abs_max < *best)) best = row.orbit.q_abs_max;
+    }
+    REQUIRE(best.has_value());  // the scene has stable orbits at 1100 rad/s: the figure is checked
+    orbits += long(point.rows.size());
+    expected += fmt::format("1100,{},{},{},{},{},{},{},{},{}\n", job.ys[std::size_t(iy)], point.equilibria,
+                            int(point.rows.size()) - failed, stable, unstable, marginal, failed, *best,
+                            point.search_doubt.empty() ? 1 : 0);
+  }
+  CHECK(tile.summary == expected);
+  CHECK(tile.equilibria == orbits);
+  // The manifest ties the tiles to the axes' values.
+  CHECK(composed_map_manifest(job).find("\ny 8e-07\n") != std::string::npos);
 }

@@ -3,8 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/scan/summary_map_text.hpp"
