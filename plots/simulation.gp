@@ -31,9 +31,11 @@ set y2label 'omega [rad/s]'
 set ytics nomirror
 set y2tics
 set key top left
+# The omega_n line only where there is one (a flexible shaft has none, model.md §18.16): a key
+# entry without its line would name nothing.
+natural = (wn > 0 ? ", wn axes x1y2 with lines lw 1 lc rgb '#999999' title 'omega_n'" : "")
 plot csv using (column("t")):(column("q_abs")) with lines lw 1.5 lc rgb '#1f77b4' title '|q|', \
-     csv using (column("t")):(column("omega")) axes x1y2 with lines lw 1.5 dt (6,4) lc rgb '#d62728' title 'omega', \
-     (wn > 0 ? wn : NaN) axes x1y2 with lines lw 1 lc rgb '#999999' title 'omega_n'
+     csv using (column("t")):(column("omega")) axes x1y2 with lines lw 1.5 dt (6,4) lc rgb '#d62728' title 'omega' @natural
 unset y2tics
 unset y2label
 set ytics mirror
