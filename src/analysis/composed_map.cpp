@@ -15,7 +15,7 @@ ComposedCell composed_cell(const ComposedSweepPoint& point) {
   c.complete = point.search_doubt.empty();
   for (const ComposedOrbitRow& row : point.rows) {
     const ForcedOrbit& o = row.orbit;
-    if (!o.status.ok() || o.multipliers.empty()) {
+    if (!composed_orbit_usable(o)) {
       ++c.failed;
       continue;
     }
@@ -61,8 +61,7 @@ TileText compute_composed_map_tile(const ComposedMapJob& job, int tile) {
     try {
       point = composed_orbits_at(job.support, job.cell_input(ix, iy), job.xs[std::size_t(ix)], job.orbit);
     } catch (const NumericalError& e) {  // an equilibrium of the race that is not one: name the cell
-      throw NumericalError(fmt::format("composed map cell ({}={}, {}={}): {}", job.x_name, cell.x, job.y_name, cell.y,
-                                       e.what()));
+      throw NumericalError(fmt::format("{}: {}", cell_label(cell), e.what()));
     }
     const ComposedCell c = composed_cell(point);
     text.summary += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", cell_number(job.xs[std::size_t(ix)], cell, "x"),

@@ -38,7 +38,6 @@ double composed_orbit_distance(const ParamsN& p, const std::vector<double>& a, c
 // |rho| underflows).
 GrowthSample composed_growth(const ForcedOrbit& o) { return {o.log_moduli.front(), o.multipliers.front()}; }
 
-bool composed_orbit_usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
 
 // The orbit `from` (at value a) continued to value b by Newton (forced_orbit_near); where
 // Newton fails over the whole step, in 2, 4, ... 16 equal sub-steps (natural-parameter
@@ -149,6 +148,8 @@ void locate_composed_crossings(ComposedSweep& s, const AnisotropicSupport& suppo
 }
 
 }  // namespace
+
+bool composed_orbit_usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
 
 ComposedSweepPoint composed_orbits_at(const AnisotropicSupport& support, const ComposedMachineAt& m, double value,
                                       const ForcedOrbitOptions& o) {

@@ -9,10 +9,13 @@
 
 namespace abu {
 
+std::string cell_label(const MapCellPlace& cell) {
+  return fmt::format("{} cell ({}={}, {}={})", cell.map, cell.x_name, cell.x, cell.y_name, cell.y);
+}
+
 std::string cell_number(double v, const MapCellPlace& cell, std::string_view what) {
   if (!std::isfinite(v))
-    throw NumericalError(fmt::format("{} cell ({}={}, {}={}): {} is not finite", cell.map, cell.x_name, cell.x,
-                                     cell.y_name, cell.y, what));
+    throw NumericalError(fmt::format("{}: {} is not finite", cell_label(cell), what));
   return fmt::format("{}", v);
 }
 

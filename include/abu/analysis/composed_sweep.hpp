@@ -88,6 +88,9 @@ struct ComposedSweepOptions {
   double match_tolerance = 1e-6;
 };
 
+/// An orbit with a verdict: converged, its multipliers computed.
+bool composed_orbit_usable(const ForcedOrbit& o);
+
 /// The orbits at one value (what `equilibria` reports, §20.4): every equilibrium of the race on
 /// the mean support continued in delta to a pi/omega-periodic orbit; rows with track 0 (no sweep
 /// yet). Throws NumericalError where an equilibrium of the race has a residual above 1e-8.

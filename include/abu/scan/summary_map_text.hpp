@@ -22,6 +22,8 @@ struct MapCellPlace {
   double y = 0;
 };
 
+/// "MAP cell (X=x, Y=y)": where a failure in a cell happened.
+std::string cell_label(const MapCellPlace& cell);
 /// fmt's "{}" of v; throws NumericalError("MAP cell (X=x, Y=y): WHAT is not finite") otherwise.
 std::string cell_number(double v, const MapCellPlace& cell, std::string_view what);
 
