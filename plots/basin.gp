@@ -4,8 +4,8 @@
 # labels: the classes present (space separated): the attractor, and for an equilibrium
 # reached by the settle test its member, as ATTRACTOR/MEMBER (the two mirror balanced
 # states of two balls are balanced/1 and balanced/2). Each kind has its colours (balanced
-# greens, aligned and an unround race's equilibria red/orange/purple..., periodic blue, stuck
-# grey, not_settled black).
+# greens; aligned, an unround race's equilibria and its orbits on an anisotropic support
+# red/orange/purple...; periodic blue, stuck grey, not_settled black).
 # Columns by name: beta1_0, beta2_0, attractor, member. cells1, cells2: the grid; the cell
 # (i, j) starting at (2 pi i / cells1, 2 pi j / cells2) is drawn as the square from there.
 if (!exists("csv")) csv = 'out/basin/basin.csv'
@@ -29,7 +29,7 @@ b = 0
 do for [k = 1:K] {
   s = word(labels, k)
   palette = palette . sprintf('%s%d "%s"', k > 1 ? ', ' : '', k, colour_of(s, a, b))
-  if (s[1:8] eq 'aligned:' || s[1:11] eq 'equilibrium') { a = a + 1 }
+  if (s[1:8] eq 'aligned:' || s[1:11] eq 'equilibrium' || s[1:5] eq 'orbit') { a = a + 1 }
   if (s[1:8] eq 'balanced') { b = b + 1 }
 }
 if (K == 1) { palette = palette . sprintf(', 2 "%s"', colour_of(word(labels, 1), 0, 0)) }

@@ -63,10 +63,11 @@ std::pair<int, int> parse_grid(const std::string& text) {
   return {one(std::string_view(text).substr(0, x)), one(std::string_view(text).substr(x + 1))};
 }
 
-// The fraction table: balanced first, then the aligned patterns, periodic, stuck, not settled.
+// The fraction table: balanced first, then the aligned patterns and the unround race's states
+// (equilibria, orbits), periodic, stuck, not settled.
 int label_rank(const std::string& label) {
   if (label == "balanced") return 0;
-  if (label.rfind("aligned:", 0) == 0) return 1;
+  if (label.rfind("aligned:", 0) == 0 || label == "equilibrium" || label == "orbit") return 1;
   if (label == "periodic") return 2;
   if (label == "stuck") return 3;
   return 4;
@@ -212,7 +213,8 @@ Action add_basin_command(CLI::App& app) {
                                     n, c2, n - 2, n);
     }
 
-    const std::vector<BasinTarget> targets = machine_basin_targets(job);
+    const BasinAttractors attractors = machine_basin_targets(job);
+    const std::vector<BasinTarget>& targets = attractors.targets;
     {
       std::string t;
       for (const auto& x : targets) t += fmt::format("{}{}{}", t.empty() ? "" : ", ", x.label,
@@ -230,6 +232,8 @@ Action add_basin_command(CLI::App& app) {
         else
           job.provenance += fmt::format("# no certified region for {}: {}\n", name, x.region.reason);
       }
+      for (const auto& why : attractors.unresolved)
+        job.provenance += fmt::format("# not an attractor of the settle test (no verdict): {}\n", why);
     }
     namespace fs = std::filesystem;
     const fs::path dir(b.output);
@@ -246,7 +250,16 @@ Action add_basin_command(CLI::App& app) {
     const MapRunStats& stats = counts->stats;
 
     // Count the attractors.
-    std::map<std::pair<int, std::string>, long> count;
+    // By rank, then label; an unround race's states (equilibrium, orbit) also by their number,
+    // written "orbit 3": which state a start reaches is the design answer there.
+    struct FractionKey {
+      int rank;
+      std::string label;
+      int member;
+      auto operator<=>(const FractionKey&) const = default;
+      std::string name() const { return member > 0 ? fmt::format("{} {}", label, member) : label; }
+    };
+    std::map<FractionKey, long> count;
     std::set<std::pair<int, std::string>> classes;  // of the chart: attractor/member
     long cells = 0, early = 0, certified = 0;
     // coulomb-set (model.md §14.8): the end angles of the cells where every ball stuck, the
@@ -261,7 +274,8 @@ Action add_basin_command(CLI::App& app) {
         std::vector<std::string> f;
         std::stringstream ss(row);
         for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-        ++count[{label_rank(f[4]), f[4]}];
+        const bool numbered = (f[4] == "orbit" || f[4] == "equilibrium") && !f[5].empty();
+        ++count[{label_rank(f[4]), f[4], numbered ? std::stoi(f[5]) : 0}];
         classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
         early += f[6] != "0";
         certified += f[6] == "1";
@@ -285,8 +299,8 @@ Action add_basin_command(CLI::App& app) {
     bool first = true;
     for (const auto& [key, k] : count) {
       const double frac = double(k) / double(cells);
-      fractions += fmt::format("{},{},{:.6f}\n", key.second, k, frac);
-      json += fmt::format("{}\n    \"{}\": {:.6f}", first ? "" : ",", key.second, frac);
+      fractions += fmt::format("{},{},{:.6f}\n", key.name(), k, frac);
+      json += fmt::format("{}\n    \"{}\": {:.6f}", first ? "" : ",", key.name(), frac);
       first = false;
     }
     json += "\n  }";
@@ -322,7 +336,7 @@ Action add_basin_command(CLI::App& app) {
       fmt::print(stderr, "{} cells ({} ended by the settle test), {} tiles computed in {:.2f} s\n", cells, early,
                  stats.tiles, stats.seconds);
       for (const auto& [key, k] : count)
-        fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.second, k, 100.0 * double(k) / double(cells));
+        fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.name(), k, 100.0 * double(k) / double(cells));
       if (set_valued) {
         fmt::print(stderr, "  every ball stuck in {} of {} cells; end points outside the stick set: {}; max |s_i| = {:.6g}; "
                            "largest end |q| = {:.6g} m\n  spread of the end angles (shortest arc holding them):",

@@ -22,6 +22,7 @@
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/dynamics/unround_simulation.hpp"
 #include "abu/input/race_scene.hpp"
+#include "abu/analysis/basin_targets.hpp"
 #include "abu/analysis/equilibrium_start.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
@@ -129,11 +130,15 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     smooth = simulate(p, speed, x0, so);
   if constexpr (N == any_balls) {
     // On an anisotropic support the unround race's equilibria are periodic orbits (model.md
-    // §20): the run's end is not matched against them.
-    if (unround && !scene.support && r_completed(smooth)) {
+    // §20.4): the run's end is matched against them at its spin angle (§20.8).
+    if (unround && r_completed(smooth)) {
       ParamsN at = p;
       at.omega = speed.omega(smooth.t_reached);
-      classify_unround_end(smooth.summary, at, find_unround_equilibria(at, race), so.settle_tolerance);
+      if (scene.support)
+        classify_composed_end(smooth.summary, at, composed_states(at, race, *scene.support),
+                              speed.angle(smooth.t_reached), so.settle_tolerance);
+      else
+        classify_unround_end(smooth.summary, at, find_unround_equilibria(at, race), so.settle_tolerance);
     }
   }
   const SimulationResult<N>& r = stick_slip ? stick_slip->run : smooth;

@@ -58,6 +58,7 @@ std::string_view to_string(SimulationOutcome o) {
     case SimulationOutcome::periodic: return "periodic";
     case SimulationOutcome::not_settled: return "not_settled";
     case SimulationOutcome::equilibrium: return "equilibrium";
+    case SimulationOutcome::orbit: return "orbit";
   }
   return "?";
 }

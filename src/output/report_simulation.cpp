@@ -145,6 +145,10 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
     out += fmt::format("  \"unround_equilibrium\": {{\"member\": {}, \"q_abs\": {}, \"distance\": {}}},\n",
                        s.unround_member, format_number(s.unround_q_abs, "unround q_abs"),
                        format_number(s.unround_distance, "unround distance"));
+  if (s.orbit_member > 0)  // model.md §20.8
+    out += fmt::format("  \"periodic_orbit\": {{\"member\": {}, \"q_abs_max\": {}, \"distance\": {}}},\n",
+                       s.orbit_member, format_number(s.orbit_q_abs_max, "orbit q_abs_max"),
+                       format_number(s.orbit_distance, "orbit distance"));
   out += fmt::format("  \"t_end\": {},\n  \"state_end\": {},\n", format_number(s.t_end, "t_end"),
                      number_list(s.state_end, "state_end"));
   if (r.bristle_count > 0) out += fmt::format("  \"bristle_end\": {},\n", number_list(r.bristle_end, "bristle_end"));

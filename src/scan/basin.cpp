@@ -5,6 +5,7 @@
 #include <gsl/gsl_qrng.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -159,8 +160,10 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   double capacity = p.rotor.unbalance;
   for (const auto& b : p.balls) capacity += b.mass * b.race_radius;
   const double t_change = job.speed.end_of_change();
-  // Scaled distance (model.md §15.2's scaling) of x to a target at rest.
-  const auto distance = [&](const BasinTarget& t, const double* x) {
+  // Scaled distance (model.md §15.2's scaling) of x to a target at rest, or to a periodic
+  // orbit's state at the spin angle theta (§20.8).
+  const auto distance = [&](const BasinTarget& t, const double* x, double theta) {
+    if (t.orbit) return t.orbit->distance(x, theta, L);
     double d = 0;
     for (int k = 0; k < 2; ++k) d = std::max(d, std::abs(x[n + 2 + k]) / (L * w));
     for (int k = 0; k < n; ++k) d = std::max(d, std::abs(x[n + 4 + k]) / w);
@@ -185,9 +188,11 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
   o.stop_at_sample = [&](double t, const double* x) {
     if (t < t_change) return false;  // the attractors are those of the final, constant speed
     const BasinTarget* now = nullptr;
+    const double theta = job.speed.angle(t);
     // A certified region (model.md §15.8) decides by itself; without one, the radius test (§15.5).
     for (const auto& target : targets)
-      if (target.region.certified ? inside_region(target.region, x) : distance(target, x) <= job.settle_radius) {
+      if (target.region.certified ? inside_region(target.region, x)
+                                  : distance(target, x, theta) <= job.settle_radius) {
         now = &target;
         break;
       }
@@ -214,10 +219,12 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     case SimulationOutcome::periodic: c.attractor = "periodic"; break;
     case SimulationOutcome::not_settled: c.attractor = "not_settled"; break;
     case SimulationOutcome::equilibrium: c.attractor = "equilibrium"; break;  // unround race only (§15.7)
+    case SimulationOutcome::orbit: c.attractor = "orbit"; break;  // not from the run's own summary (§20.8)
   }
   if constexpr (N == any_balls) {
     // On an unround race a run at rest is matched against the race's equilibria (§15.7).
-    if (!job.race.round() && (c.attractor == "balanced" || c.attractor == "aligned:" + r.summary.pattern ||
+    // On an anisotropic support too they are periodic orbits (§20.4): only the settle test names those.
+    if (!job.race.round() && !job.support && (c.attractor == "balanced" || c.attractor == "aligned:" + r.summary.pattern ||
                               c.attractor == "stuck")) {
       SimulationSummary s = r.summary;
       ParamsN at = p;
@@ -232,6 +239,39 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
 }
 
 }  // namespace
+
+void BasinOrbit::at(double theta, double* x) const {
+  const int count = phases();
+  double u = std::fmod(theta, M_PI);
+  if (u < 0) u += M_PI;
+  u *= count / M_PI;
+  const int k = std::min(int(u), count - 1), next = (k + 1) % count;
+  const double f = u - k;
+  const double* a = states.data() + std::size_t(k) * std::size_t(dim);
+  const double* b = states.data() + std::size_t(next) * std::size_t(dim);
+  const int n = (dim - 4) / 2;
+  for (int m = 0; m < dim; ++m) {
+    const bool angle = m >= 2 && m < 2 + n;  // along the short arc: the orbit's angles are not wrapped
+    const double step = angle ? std::remainder(b[m] - a[m], kTwoPi) : b[m] - a[m];
+    x[m] = a[m] + f * step;
+  }
+}
+
+double BasinOrbit::distance(const double* x, double theta, double L) const {
+  std::array<double, 2 * (max_balls + 2)> y{};  // no allocation: called at every sample
+  at(theta, y.data());
+  const int n = (dim - 4) / 2;
+  double d = 0;
+  for (int k = 0; k < 2; ++k) {
+    d = std::max(d, std::abs(x[k] - y[std::size_t(k)]) / L);
+    d = std::max(d, std::abs(x[n + 2 + k] - y[std::size_t(n + 2 + k)]) / (L * omega));
+  }
+  for (int k = 0; k < n; ++k) {
+    d = std::max(d, std::abs(std::remainder(x[2 + k] - y[std::size_t(2 + k)], kTwoPi)));
+    d = std::max(d, std::abs(x[n + 4 + k] - y[std::size_t(n + 4 + k)]) / omega);
+  }
+  return d;
+}
 
 int BasinJob::n_balls() const { return any_balls ? ball_count(params_n) : 2; }
 double BasinJob::beta1(int i) const { return kTwoPi * i / cells1; }
@@ -294,7 +334,9 @@ std::vector<BasinTarget> unround_targets(const BasinJob& job) {
 void set_basin_race(BasinJob& job, RaceShape race) {
   job.race = std::move(race);
   job.race_equilibria.reset();
-  if (job.race.round()) return;
+  // With an anisotropic support the race's states are periodic orbits, found with the targets
+  // (analysis/basin_targets.hpp).
+  if (job.race.round() || job.support) return;
   ParamsN p = job.params_n;
   p.omega = job.final_omega();
   job.race_equilibria = std::make_shared<const UnroundResult>(find_unround_equilibria(p, job.race));

@@ -79,8 +79,9 @@ enum class SimulationStatus { completed, interrupted, failed };
 std::string_view to_string(SimulationStatus s);
 
 /// What a run ended in (model.md §15.2).
-/// equilibrium: at rest at an equilibrium of an unround race (model.md §11.4, §15.7).
-enum class SimulationOutcome { balanced, aligned, rest, periodic, not_settled, equilibrium };  // rest is written "stuck"
+/// equilibrium: at rest at an equilibrium of an unround race (model.md §11.4, §15.7); orbit: on
+/// one of its states as a periodic orbit on an anisotropic support (§20.4, §20.8).
+enum class SimulationOutcome { balanced, aligned, rest, periodic, not_settled, equilibrium, orbit };  // rest is written "stuck"
 std::string_view to_string(SimulationOutcome o);
 
 template <int N>
@@ -123,6 +124,11 @@ struct SimulationSummary {
   /// list `equilibria` prints, sorted by |q|), its |q| [m] and the scaled distance to it.
   int unround_member = 0;
   double unround_q_abs = 0, unround_distance = 0;
+  /// Unround race on an anisotropic support (model.md §20.8): the orbit the run ended on (its
+  /// number in `equilibria`'s list), its largest |q| over the period [m] and the scaled distance
+  /// to it at the end's spin angle.
+  int orbit_member = 0;
+  double orbit_q_abs_max = 0, orbit_distance = 0;
 };
 
 template <int N>

@@ -51,8 +51,9 @@ struct BasinJob {
   std::shared_ptr<const UnroundResult> race_equilibria;
   /// An anisotropic support (model.md §10, §20; any_balls true, params_n carrying its mean): the
   /// cells integrate the composed field, the support turning with the spin angle. Its targets
-  /// are the balanced states the Floquet multipliers call stable (analysis/basin_targets.hpp);
-  /// the other states are pi/omega-periodic orbits, judged at t_end by §15.2 (`periodic`).
+  /// are the balanced states the Floquet multipliers call stable and, with an unround race, the
+  /// race's states continued to pi/omega-periodic orbits that they call stable (§20.8;
+  /// analysis/basin_targets.hpp); the other states are judged at t_end by §15.2 (`periodic`).
   std::optional<AnisotropicSupport> support;
   /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
   /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
@@ -73,13 +74,36 @@ struct BasinJob {
 /// the same whatever the thread count. Needs job.cells1, cells2 and the ball count set.
 void set_sobol_starts(BasinJob& job);
 
-/// A stable equilibrium of the final speed, or the balanced set of n >= 3 balls.
+/// A stable pi/omega-periodic orbit of the final speed as an attractor (model.md §20.8): on an
+/// unround race with an anisotropic support no state is at rest in the rotating frame, and the
+/// field depends on the spin angle theta only through 2 theta, so the orbit's state is a
+/// function of theta mod pi. Sampled at `phases` equally spaced spin angles.
+struct BasinOrbit {
+  double omega = 0;  ///< the final speed [rad/s]
+  int dim = 0;       ///< 2n + 4
+  /// phases x dim, SI (model.md (2.2)): row k is the state at spin angle theta = k pi / phases.
+  std::vector<double> states;
+  int phases() const { return dim == 0 ? 0 : int(states.size()) / dim; }
+  /// The state at spin angle theta [rad] (any real; taken mod pi) into x (dim values): linear
+  /// interpolation between the two neighbouring rows, ball angles along their short arc.
+  void at(double theta, double* x) const;
+  /// The scaled distance of state x to the orbit's state at spin angle theta, in the settle
+  /// test's scaling (model.md §15.5, (20.8)): max of |q - q*| / L, |beta - beta*| (mod 2 pi),
+  /// |q' - q*'| / (L omega), |beta' - beta*'| / omega. L the displacement scale [m].
+  double distance(const double* x, double theta, double L) const;
+};
+
+/// A stable equilibrium of the final speed, the balanced set of n >= 3 balls, or a stable
+/// periodic orbit (`orbit` set).
 struct BasinTarget {
-  std::string label;           ///< "balanced", "aligned:+-..." (ball 1 is +) or "equilibrium" (an unround race's)
+  std::string label;           ///< "balanced", "aligned:+-..." (ball 1 is +), "equilibrium" (an unround race's) or "orbit"
   int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set); an
                                ///< unround race's: its number in the list `equilibria` prints
   std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set
   bool balanced_set = false;   ///< n >= 3: the whole (normally stable) balanced set
+  /// A periodic orbit (label "orbit", member = the race's equilibrium it continues, as
+  /// `equilibria` numbers it): the settle test compares with its state at the run's spin angle.
+  std::shared_ptr<const BasinOrbit> orbit;
   /// The Lyapunov region of model.md §15.8 (two balls): entering it decides the cell. Not
   /// certified (n >= 3, the balanced set): the settle radius test of §15.5 instead.
   BasinRegion region;
@@ -99,15 +123,15 @@ std::vector<BasinTarget> basin_targets(const BasinJob& job);
 std::vector<BasinTarget> balanced_targets(const std::vector<EquilibriumN>& states, const std::vector<bool>& stable,
                                           const std::string& why);
 
-/// Puts the balls on `race` (unround: job.race_equilibria found at the final speed; job.params_n
-/// and job.speed must be set).
+/// Puts the balls on `race` (unround on an isotropic support: job.race_equilibria found at the
+/// final speed; job.params_n, job.speed and job.support must be set).
 void set_basin_race(BasinJob& job, RaceShape race);
 
 struct BasinCell {
   int i = 0, j = 0;
   double beta1 = 0, beta2 = 0;      ///< start angles [rad]
   std::vector<double> beta_others;  ///< start angles of balls 3..n [rad]
-  std::string attractor;            ///< balanced | aligned:PATTERN | periodic | stuck | not_settled
+  std::string attractor;            ///< balanced | aligned:PATTERN | equilibrium | orbit | periodic | stuck | not_settled
   int member = 0;                   ///< which target of that label (settle test), 0 if by §15.2 only
   /// How the run ended: 0 at t_end (judged by §15.2), 1 by entering a target's certified
   /// Lyapunov region (§15.8), 2 by the settle radius test of a target without one (§15.5).
