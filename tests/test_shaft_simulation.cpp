@@ -234,6 +234,40 @@ TEST_CASE("shaft simulation: settling runs end at the shaft's equilibria", "[sha
   }
 }
 
+TEST_CASE("shaft simulation: stop_at_sample ends the run at that sample, as the rigid route", "[shaft_simulate]") {
+  // basin's settle test on a shaft (model.md §18.21): the callback sees each sample's balancer
+  // view (2n + 4 values); returning true ends the run there. The stopped run must be the full
+  // run up to that sample (the same steps: samples equal to rounding, 1e-12 of L), end at that
+  // sample's time with x_end the whole state whose view is that sample, and say stopped_early.
+  const ShaftSystem sys = system_of("tests/scenes/shaft/sim_four_elements.toml", 600.0);
+  abu::SimulationOptions o;
+  o.t_end = 0.5;
+  o.every = 1e-3;
+  o.method = abu::IntegrationMethod::rk8pd;
+  const Eigen::VectorXd x0 = abu::shaft_start_at_rest(sys, {0.5, 2.0, 4.0});
+  const auto full = abu::simulate_shaft(sys, abu::SpeedProfile::constant(600.0), x0, o);
+  REQUIRE(full.run.status == abu::SimulationStatus::completed);
+  int seen = 0;
+  o.stop_at_sample = [&](double t, const double* x) {
+    ++seen;
+    CHECK(x[2] == full.run.samples[std::size_t(seen - 1)].x(2));  // the view: ball 1's angle
+    return t >= 0.2371;
+  };
+  const auto stopped = abu::simulate_shaft(sys, abu::SpeedProfile::constant(600.0), x0, o);
+  REQUIRE(stopped.run.status == abu::SimulationStatus::completed);
+  CHECK(stopped.run.stopped_early);
+  const auto& last = stopped.run.samples.back();
+  CHECK(last.t == Approx(0.238).margin(1e-12));
+  CHECK(stopped.run.t_reached == last.t);
+  CHECK(int(stopped.run.samples.size()) == seen);
+  const double L = stopped.run.displacement_scale;
+  const auto& same = full.run.samples[stopped.run.samples.size() - 1];
+  for (int i = 0; i < same.x.size(); ++i) CHECK(std::abs(last.x(i) - same.x(i)) <= 1e-12 * (i < 2 ? L : 1.0));
+  const int b = 4 * sys.spec.balancer_node;
+  CHECK(stopped.x_end(b) == last.x(0));
+  CHECK(stopped.x_end(sys.ball_dof(0)) == last.x(2));
+}
+
 TEST_CASE("shaft simulation: bad input is refused naming the rule", "[shaft_simulate]") {
   const ShaftSystem sys = system_of("tests/scenes/shaft/sim_four_elements.toml", 600.0);
   abu::SimulationOptions o;

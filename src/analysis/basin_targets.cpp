@@ -9,6 +9,7 @@
 
 #include "abu/analysis/composed_sweep.hpp"
 #include "abu/analysis/floquet_states.hpp"
+#include "abu/analysis/shaft_states.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/model/model.hpp"
 
@@ -76,6 +77,72 @@ BasinAttractors composed_targets(const BasinJob& job) {
   return out;
 }
 
+// A shaft's equilibrium seen at the balancer node: (q, beta) of model.md (2.2).
+EquilibriumN balancer_view_of(const ShaftSystem& sys, const ShaftEquilibrium& e) {
+  EquilibriumN v;
+  v.family = e.family;
+  v.pattern = e.pattern;
+  v.member = e.member;
+  v.on_balanced_set = e.on_balanced_set;
+  const int b = 4 * sys.spec.balancer_node, n = sys.n_balls(), u = int(e.position.size()) - n;
+  v.position.resize(n + 2);
+  v.position(0) = e.position(b);
+  v.position(1) = e.position(b + 1);
+  for (int i = 0; i < n; ++i) v.position(2 + i) = e.position(u + i);
+  return v;
+}
+
+// A flexible shaft's stable equilibria at the final speed (model.md §18.21), each by its
+// spectrum as `equilibria` judges it; on a race, the race's equilibria on the shaft.
+BasinAttractors shaft_targets(const BasinJob& job) {
+  ShaftSystem sys = *job.shaft;
+  sys.balancer.omega = job.final_omega();
+  BasinAttractors out;
+  if (has_anisotropic_bearings(sys.spec)) {
+    static const std::string no_floquet =
+        "anisotropic bearings on a flexible shaft: the balanced states' Floquet multipliers are not computed there "
+        "(model.md §18.19), so no state is an attractor of the settle test; every cell is judged at t_end (§15.2)";
+    out.unresolved.push_back(no_floquet);
+    return out;
+  }
+  const bool race = !job.race.round();
+  const ShaftStates st = race ? analyze_shaft_race_states(sys, job.race, {}) : analyze_shaft_states(sys, {}, {});
+  const std::string why = "a flexible shaft: no Lyapunov region of §15.8 for it yet; the settle radius test on the "
+                          "balancer node and the balls (model.md §18.21)";
+  std::vector<EquilibriumN> views;
+  std::vector<bool> stable;
+  int set_samples = 0, set_without_verdict = 0;
+  std::string set_reason;
+  for (const ShaftState& s : st.states) {
+    const bool decided = s.verdict == "stable" || s.verdict == "unstable";
+    if (s.eq.on_balanced_set) {  // one line for the set (model.md §13.5): its samples' verdicts
+      ++set_samples;
+      if (!decided && set_without_verdict++ == 0) set_reason = s.verdict_text;
+    } else if (!decided) {
+      out.unresolved.push_back(fmt::format("equilibrium {} ({}): {}", s.eq.member, s.verdict, s.verdict_text));
+    }
+    if (!race) {
+      views.push_back(balancer_view_of(sys, s.eq));
+      stable.push_back(s.verdict == "stable");
+      continue;
+    }
+    if (s.verdict != "stable") continue;
+    BasinTarget t;
+    t.label = "equilibrium";
+    t.member = s.eq.member;
+    const EquilibriumN v = balancer_view_of(sys, s.eq);
+    const auto pos = v.position_si();
+    t.position.assign(pos.data(), pos.data() + pos.size());
+    t.region.reason = why;
+    out.targets.push_back(std::move(t));
+  }
+  if (set_without_verdict > 0)
+    out.unresolved.push_back(fmt::format("the balanced set: {} of its {} samples have no verdict (the first: {})",
+                                         set_without_verdict, set_samples, set_reason));
+  if (!race) out.targets = balanced_targets(views, stable, why);
+  return out;
+}
+
 }  // namespace
 
 ComposedStates composed_states(const ParamsN& p, const RaceShape& race, const AnisotropicSupport& support) {
@@ -120,6 +187,7 @@ void classify_composed_end(SimulationSummary& s, const ParamsN& p, const Compose
 }
 
 BasinAttractors machine_basin_targets(const BasinJob& job, const BalancedSampling& sampling) {
+  if (job.shaft) return shaft_targets(job);
   if (!job.support) return {basin_targets(job), {}};
   if (!job.race.round()) return composed_targets(job);
   ParamsN p = job.params_n;

@@ -71,7 +71,9 @@ constexpr CommandParts kCommandParts[] = {
     {"simulate",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .shaft_unround = true, .shaft_anisotropic = true}},
-    {"basin", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
+    {"basin",
+     {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
+      .shaft_unround = true, .shaft_anisotropic = true}},
 };
 }  // namespace
 

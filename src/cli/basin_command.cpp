@@ -18,6 +18,8 @@
 
 #include "cli.hpp"
 #include "abu/analysis/basin_targets.hpp"
+#include "abu/analysis/shaft_states.hpp"
+#include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
@@ -178,13 +180,18 @@ Action add_basin_command(CLI::App& app) {
     const RaceShape race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
     // LuGre: bounded 3n + 4 storage; an unround race: the bounded storage of its field.
     // An anisotropic support: the composed field's storage too (model.md §20).
-    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round() || scene.support;
+    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round() || scene.support || scene.shaft;
     job.support = scene.support;
+    if (scene.shaft) job.shaft = std::make_shared<const ShaftSystem>(shaft_system_of(scene));  // model.md §18.21
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);
     for (const auto& s : o->scene.overrides) line += " --set " + s;
     line += fmt::format(" ({}, t_end {} s, rtol {}, method {}, settle radius {} for {} samples)", job.speed.describe(),
                         job.sim.t_end, job.sim.rtol, b.method, job.settle_radius, job.settle_samples);
-    if (job.any_balls) {
+    if (job.shaft) {  // the balancer's view: the settle test's scales; the shaft itself in the header
+      job.params_n = shaft_summary_params(*job.shaft);
+      job.params_n.omega = job.speed.omega(0.0);
+      job.provenance = provenance_header(line, scene.file, job.shaft->balancer) + describe_shaft(job.shaft->spec, "# ");
+    } else if (job.any_balls) {
       job.params_n = params_of<any_balls>(scene);
       job.params_n.omega = job.speed.omega(0.0);
       job.provenance = provenance_header(line, scene.file, job.params_n);

@@ -104,8 +104,8 @@ State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x) 
 
 // The checks of simulate_shaft before any work (InputError naming the option and the rule).
 void check_shaft_input(const ShaftSystem& sys, const Eigen::VectorXd& x0, const SimulationOptions& o) {
-  if (o.support || !o.bristle_start.empty() || o.stop_at_sample)
-    throw std::invalid_argument("simulate_shaft: a rigid support, bristles or stop_at_sample are other routes");
+  if (o.support || !o.bristle_start.empty())
+    throw std::invalid_argument("simulate_shaft: a rigid support or bristles are other routes");
   if (o.race && !o.race->round() && has_anisotropic_bearings(sys.spec))
     throw std::invalid_argument("simulate_shaft: anisotropic bearings with an unround race are not modelled (model.md "
                                 "§18.19, §18.20)");
@@ -241,6 +241,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     s.omega = speed.omega(time);
     s.x = balancer_view(sys, x);
     run.samples.push_back(s);
+    if (o.stop_at_sample && o.stop_at_sample(time, s.x.data())) run.stopped_early = true;
     double worst = -1;
     int node = 0;
     for (int k = 0; k < sys.nodes(); ++k)
@@ -295,7 +296,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     if (int st = dense->start(t, y.data()); st != GSL_SUCCESS) fail(failure_text(st));
     dense->peaks.add({std::hypot(y[std::size_t(b)], y[std::size_t(b + 1)]), 0.0}, ctx.omega_dot != 0);
   }
-  while (!stop && t < o.t_end) {
+  while (!stop && !run.stopped_early && t < o.t_end) {
     double target = breaks[next_break];
     if (dense_on) target = dense->plan(t, h, clock.next(), target);
     const double h_before = h;
@@ -323,8 +324,14 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
         const dense::QPeak pk = pair_peak(pair, s.t0, s.t1, s.y0, s.f0, s.y1, s.f1, 4 * k, d + 4 * k, r.max_deflection);
         if (pk.q_abs > r.max_deflection) r.max_deflection = pk.q_abs, r.t_max_deflection = pk.t, r.max_deflection_node = k;
       }
-      dense->emit(clock, [&](double ts, const double* x) { return record(ts, x), false; }, candidate,
-                  ctx.omega_dot != 0, x_sample.data());
+      const double t_part = dense->emit(
+          clock, [&](double ts, const double* x) { return record(ts, x), run.stopped_early; }, candidate,
+          ctx.omega_dot != 0, x_sample.data());
+      if (run.stopped_early) {  // the run ends at that sample
+        t = t_part;
+        std::copy(x_sample.begin(), x_sample.end(), y.begin());
+        break;
+      }
       dense->advance();
     }
     if (stop_rule(run.stats.steps + drv->e->count - dense->retaken, o, t, run.status, run.reason)) {

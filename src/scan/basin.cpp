@@ -13,6 +13,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/dynamics/unround_simulation.hpp"
 #include "abu/linear/unround_spectrum.hpp"
@@ -140,22 +141,27 @@ BasinCell stick_slip_cell(const BasinJob& job, const ParamsT<double, N>& p, cons
   return c;
 }
 
-template <int N>
-BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
-  ParamsT<double, N> p = params_for<N>(job);
-  const int n = ball_count(p);
-  p.omega = job.speed.omega(0.0);
+// A cell's start angles (grid and Sobol points) in c.
+BasinCell cell_start(const BasinJob& job, int i, int j, std::vector<double>& beta) {
   BasinCell c;
   c.i = i;
   c.j = j;
   c.beta1 = job.beta1(i);
   c.beta2 = job.beta2(j);
   c.beta_others = job.start_of_others(i, j);
-  std::vector<double> beta{c.beta1, c.beta2};
+  beta = {c.beta1, c.beta2};
   beta.insert(beta.end(), c.beta_others.begin(), c.beta_others.end());
-  const State<double, N> x0 = start_at_rest(p, beta);
-  if (p.law == FrictionLaw::coulomb_set) return stick_slip_cell(job, p, x0, c);
+  return c;
+}
 
+// The settle test of model.md §15.5 around one run: `integrate` takes the cell's options (the
+// test in stop_at_sample, which sees the 2n + 4 values of (2.2), the balancer's on a shaft) and
+// returns the run; p gives the scales (L, the balls' capacity). The run's end figures go to c, and
+// its attractor: the target the test named (returns true) or §15.2's outcome of the run.
+template <int N, class Integrate>
+bool settle_run(const BasinJob& job, const std::vector<BasinTarget>& targets, const ParamsT<double, N>& p, BasinCell& c,
+                Integrate&& integrate, SimulationResult<N>& r) {
+  const int n = ball_count(p);
   const double L = displacement_scale(p), w = job.final_omega();
   double capacity = p.rotor.unbalance;
   for (const auto& b : p.balls) capacity += b.mass * b.race_radius;
@@ -203,14 +209,14 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     }
     return inside && ++run >= job.settle_samples;
   };
-  const SimulationResult<N> r = simulate(p, job.speed, x0, o);
+  r = integrate(o);
   take_run(c, r);
   if (r.stopped_early && inside) {
     c.attractor = inside->label;
     c.member = inside->member;
     c.by_settle_test = inside->region.certified ? 1 : 2;
     c.t_settle = t_entry;
-    return c;
+    return true;
   }
   switch (r.summary.outcome) {
     case SimulationOutcome::balanced: c.attractor = "balanced"; break;
@@ -221,20 +227,53 @@ BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int
     case SimulationOutcome::equilibrium: c.attractor = "equilibrium"; break;  // unround race only (§15.7)
     case SimulationOutcome::orbit: c.attractor = "orbit"; break;  // not from the run's own summary (§20.8)
   }
+  if (r.summary.settle_time) c.t_settle = *r.summary.settle_time;
+  return false;
+}
+
+// At rest, not named by the settle test (§15.2's balanced, aligned or stuck).
+bool at_rest_end(const BasinCell& c) {
+  return c.attractor == "balanced" || c.attractor.rfind("aligned:", 0) == 0 || c.attractor == "stuck";
+}
+
+template <int N>
+BasinCell cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
+  ParamsT<double, N> p = params_for<N>(job);
+  p.omega = job.speed.omega(0.0);
+  std::vector<double> beta;
+  BasinCell c = cell_start(job, i, j, beta);
+  const State<double, N> x0 = start_at_rest(p, beta);
+  if (p.law == FrictionLaw::coulomb_set) return stick_slip_cell(job, p, x0, c);
+  SimulationResult<N> r;
+  const bool named =
+      settle_run<N>(job, targets, p, c, [&](const SimulationOptions& o) { return simulate(p, job.speed, x0, o); }, r);
   if constexpr (N == any_balls) {
     // On an unround race a run at rest is matched against the race's equilibria (§15.7).
-    // On an anisotropic support too they are periodic orbits (§20.4): only the settle test names those.
-    if (!job.race.round() && !job.support && (c.attractor == "balanced" || c.attractor == "aligned:" + r.summary.pattern ||
-                              c.attractor == "stuck")) {
+    // On an anisotropic support they are periodic orbits (§20.4): only the settle test names those.
+    if (!named && !job.race.round() && !job.support && at_rest_end(c)) {
       SimulationSummary s = r.summary;
       ParamsN at = p;
-      at.omega = w;
+      at.omega = job.final_omega();
       classify_unround_end(s, at, *job.race_equilibria, job.sim.settle_tolerance);
       c.attractor = s.outcome == SimulationOutcome::equilibrium ? "equilibrium" : "stuck";
       c.member = s.unround_member;
     }
   }
-  if (r.summary.settle_time) c.t_settle = *r.summary.settle_time;
+  return c;
+}
+
+// A cell of a flexible shaft (model.md §18.16, §18.21): the whole shaft integrated, the settle
+// test on the balancer's view (job.params_n: its scales). On a race the run at rest that the test
+// did not name is `stuck` (not within the radius of a stable equilibrium of the race).
+BasinCell shaft_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
+  std::vector<double> beta;
+  BasinCell c = cell_start(job, i, j, beta);
+  const Eigen::VectorXd x0 = shaft_start_at_rest(*job.shaft, beta);
+  SimulationResult<any_balls> r;
+  const bool named = settle_run<any_balls>(
+      job, targets, job.params_n, c,
+      [&](const SimulationOptions& o) { return simulate_shaft(*job.shaft, job.speed, x0, o).run; }, r);
+  if (!named && !job.race.round() && at_rest_end(c)) c.attractor = "stuck";
   return c;
 }
 
@@ -334,9 +373,9 @@ std::vector<BasinTarget> unround_targets(const BasinJob& job) {
 void set_basin_race(BasinJob& job, RaceShape race) {
   job.race = std::move(race);
   job.race_equilibria.reset();
-  // With an anisotropic support the race's states are periodic orbits, found with the targets
-  // (analysis/basin_targets.hpp).
-  if (job.race.round() || job.support) return;
+  // With an anisotropic support the race's states are periodic orbits, on a shaft its equilibria
+  // on the shaft: both found with the targets (analysis/basin_targets.hpp).
+  if (job.race.round() || job.support || job.shaft) return;
   ParamsN p = job.params_n;
   p.omega = job.final_omega();
   job.race_equilibria = std::make_shared<const UnroundResult>(find_unround_equilibria(p, job.race));
@@ -355,6 +394,7 @@ std::vector<BasinTarget> balanced_targets(const std::vector<EquilibriumN>& state
 }
 
 std::vector<BasinTarget> basin_targets(const BasinJob& job) {
+  if (job.shaft) throw std::invalid_argument("basin_targets: a shaft's states are analysis/basin_targets.hpp's");
   if (job.support)
     throw std::invalid_argument("basin_targets: on an anisotropic support the balanced states are judged by their "
                                 "Floquet multipliers (analysis/basin_targets.hpp: machine_basin_targets)");
@@ -377,6 +417,7 @@ std::vector<BasinTarget> basin_targets(const BasinJob& job) {
 }
 
 BasinCell compute_basin_cell(const BasinJob& job, const std::vector<BasinTarget>& targets, int i, int j) {
+  if (job.shaft) return shaft_cell(job, targets, i, j);
   return job.any_balls ? cell<any_balls>(job, targets, i, j) : cell<2>(job, targets, i, j);
 }
 

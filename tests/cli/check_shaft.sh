@@ -112,7 +112,7 @@ else
 fi
 
 for cmd in "continue $one --param omega --to 1000 -o $work/c" "map $one --x omega:100:1000:3 --y k:1e4:1e5:3 -o $work/m" \
-           "basin $one -o $work/b" "sweep $one --param mu --from 1e-3 --to 1e-2 --steps 3 -o $work/w" \
+           "sweep $one --param mu --from 1e-3 --to 1e-2 --steps 3 -o $work/w" \
            "equilibria $one --set k=1e4"; do
   mkdir -p "$work/empty" && (cd "$work/empty" && "$bin" $cmd > "$work/out" 2> "$work/err")
   code=$?

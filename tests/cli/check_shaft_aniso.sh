@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The command-line contract of a shaft with anisotropic bearings (docs/model.md §18.19,
 # docs/cli.md): `simulate` runs it (CSV without NaN naming the bearings' K_f and C_f, a run-up),
-# every other command refuses it (exit 2, one message naming the part and `simulate`, nothing
-# written), and anisotropic bearings with an unround race or coulomb-set balls are refused by all.
+# `basin` too (tests/cli/check_basin_shaft.py), every other command refuses it (exit 2, one
+# message naming the part and the two commands, nothing written), and anisotropic bearings with an unround race or coulomb-set balls are refused by all.
 #   check_shaft_aniso.sh BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -39,12 +39,11 @@ refused() {  # name, expected text, then the command line; run inside an empty d
   if ! head -1 "$work/err" | grep -q "^stability-scan: .*$text"; then fail "$name: message: $(head -c 300 "$work/err")"; return; fi
   pass "$name: exit 2 ($(head -1 "$work/err" | cut -c1-120))"
 }
-what="anisotropic bearings on a flexible shaft (model.md §18.19): only .simulate. analyses"
+what="anisotropic bearings on a flexible shaft (model.md §18.19): only .simulate. and .basin. analyse"
 refused "equilibria" "$what" equilibria "$four" --format csv -o out.csv
 refused "sweep" "$what" sweep "$four" --param omega --from 100 --to 900 --steps 4 -o out
 refused "map" "$what" map "$four" --x omega:100:900:4 --y U:1e-5:1e-4:3 -o out
 refused "continue" "$what" continue "$four" --param omega --to 900 -o out
-refused "basin" "$what" basin "$four" -o out
 sed 's/^law = "viscous"/law = "coulomb-set"\nmu = 0.002/; /^d = /d' "$four" >"$work/set.toml"
 printf '\n[race]\nsurface_unroundness = [{ order = 2, amplitude = 2e-5, phase = 1.0 }]\n' | cat "$four" - >"$work/unround.toml"
 refused "simulate with coulomb-set balls" "anisotropic bearings .* together with a LuGre or coulomb-set law" \

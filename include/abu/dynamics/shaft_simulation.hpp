@@ -61,10 +61,12 @@ ParamsN shaft_summary_params(const ShaftSystem& sys);
 /// `speed` (sys.balancer.omega is not used). Never throws on numerical trouble (status failed
 /// with the reason, samples up to there). Throws InputError for invalid options, a state of
 /// the wrong size (naming 2 (4 N_nodes + n)) or above shaft_simulation_max_states, and
-/// std::invalid_argument for options of other routes (support, bristles, stop_at_sample) and for
+/// std::invalid_argument for options of other routes (support, bristles) and for
 /// an unround race on anisotropic bearings. options.race (not round): the balls run on its paths
 /// (model.md §18.20) and run.unround_race is set; the summary is §15.2's, to be matched against
-/// the race's equilibria (analysis/shaft_race_end.hpp, §15.7).
+/// the race's equilibria (analysis/shaft_race_end.hpp, §15.7). options.stop_at_sample sees each
+/// sample's balancer view (the 2n + 4 values of run.samples), and ends the run there as on the
+/// rigid route (run.stopped_early; x_end the whole state at that sample).
 ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile& speed, const Eigen::VectorXd& x0,
                                      const SimulationOptions& options);
 

@@ -23,6 +23,7 @@
 #include "abu/dynamics/simulation.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
 #include "abu/model/anisotropic_support.hpp"
+#include "abu/model/shaft_system.hpp"
 #include "abu/model/speed_profile.hpp"
 #include "abu/linear/unround_spectrum.hpp"
 #include "abu/model/unround_race.hpp"
@@ -55,6 +56,10 @@ struct BasinJob {
   /// race's states continued to pi/omega-periodic orbits that they call stable (§20.8;
   /// analysis/basin_targets.hpp); the other states are judged at t_end by §15.2 (`periodic`).
   std::optional<AnisotropicSupport> support;
+  /// A flexible shaft (model.md §18.16, §18.21; any_balls true): the cells integrate the whole
+  /// shaft (simulate_shaft, with `race` on it if unround), the settle test and the outcome judged
+  /// on the balancer's view; params_n is then that view (shaft_summary_params: its L, U and balls).
+  std::shared_ptr<const ShaftSystem> shaft;
   /// Settle test (model.md §15.5): scaled distance to a stable equilibrium (or to the
   /// balanced set, n >= 3) at most settle_radius for settle_samples samples in a row.
   double settle_radius = 1e-2;
@@ -123,8 +128,8 @@ std::vector<BasinTarget> basin_targets(const BasinJob& job);
 std::vector<BasinTarget> balanced_targets(const std::vector<EquilibriumN>& states, const std::vector<bool>& stable,
                                           const std::string& why);
 
-/// Puts the balls on `race` (unround on an isotropic support: job.race_equilibria found at the
-/// final speed; job.params_n, job.speed and job.support must be set).
+/// Puts the balls on `race` (unround on a rigid rotor's isotropic support: job.race_equilibria
+/// found at the final speed; job.params_n, job.speed, job.support and job.shaft must be set).
 void set_basin_race(BasinJob& job, RaceShape race);
 
 struct BasinCell {
