@@ -67,9 +67,22 @@ TargetKind check_output_target(const fs::path& target, std::string_view option) 
 void check_output_directory(const fs::path& dir, std::string_view option) {
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0) {
-    if (errno == ENOENT) return;
-    throw InputError(std::string(option), 0, escaped(dir.string()),
-                     fmt::format("cannot inspect the output directory: {}", std::strerror(errno)));
+    if (errno != ENOENT)
+      throw InputError(std::string(option), 0, escaped(dir.string()),
+                       fmt::format("cannot inspect the output directory: {}", std::strerror(errno)));
+    // It will be created, with its missing parents: none of them may be a symbolic link to a
+    // path that does not exist (creating it would fail with a raw filesystem error, exit 1).
+    for (fs::path p = dir; !p.empty(); p = p.parent_path()) {
+      struct stat part {};
+      if (::stat(p.c_str(), &part) == 0) break;  // the first existing ancestor
+      if (::lstat(p.c_str(), &part) == 0 && S_ISLNK(part.st_mode))
+        throw InputError(std::string(option), 0, escaped(dir.string()),
+                         fmt::format("{} is a symbolic link to a path that does not exist: the output directory cannot "
+                                     "be created there (give another directory, or remove the link)",
+                                     escaped(p.string())));
+      if (p == p.parent_path()) break;
+    }
+    return;
   }
   if (!S_ISDIR(st.st_mode))
     throw InputError(std::string(option), 0, escaped(dir.string()), "the output directory exists and is not a directory");

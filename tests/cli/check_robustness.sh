@@ -28,6 +28,14 @@ check "-o SYMLINK refused with exit 2, its target untouched" \
 echo x >"$work/notdir"
 "$bin" sweep "$scene" --param omega --from 100 --to 200 --steps 2 --no-chart -o "$work/notdir" 2>"$work/nd.err"
 check "-o DIR that is a file refused with exit 2" "[ $? -eq 2 ] && [ \"\$(cat '$work/notdir')\" = x ]"
+# -o at a dangling symbolic link (or below one): exit 2 naming the link, nothing created.
+ln -s "$work/nowhere/deeper" "$work/dangling"
+"$bin" sweep "$scene" --param omega --from 100 --to 200 --steps 2 --no-chart -o "$work/dangling" 2>"$work/dl.err"
+check "-o DANGLING_SYMLINK refused with exit 2 naming the link" \
+  "[ $? -eq 2 ] && grep -q 'symbolic link to a path that does not exist' '$work/dl.err' && [ ! -e '$work/nowhere' ]"
+"$bin" sweep "$scene" --param omega --from 100 --to 200 --steps 2 --no-chart -o "$work/dangling/sub" 2>"$work/dl2.err"
+check "-o DIR below a dangling symbolic link refused with exit 2" \
+  "[ $? -eq 2 ] && grep -q 'dangling is a symbolic link' '$work/dl2.err' && [ ! -e '$work/nowhere' ]"
 # A planted link with the old predictable temporary name is not followed.
 mkdir -p "$work/plant"
 for pid in $(seq $$ $(($$ + 400))); do ln -s "$work/precious" "$work/plant/.eq.csv.tmp-$pid"; done
