@@ -406,7 +406,10 @@ class Simulation(Result):
       status 'completed', 'interrupted' or 'failed' (then reason says where and why; the
              samples up to there are kept, as the CLI keeps them)
       method the integrator used; spectral_radius [1/s], stiffness_ratio, displacement_scale [m]
-      summary: Result with outcome ('balanced', 'aligned', 'stuck', 'periodic', 'not settled'),
+      summary: Result with outcome ('balanced', 'aligned', 'stuck', 'periodic', 'not settled';
+             on an unround race 'equilibrium' with unround_equilibrium {member, q_abs,
+             distance}, with an anisotropic support too 'orbit' with periodic_orbit {member,
+             q_abs_max, distance}: model.md §15.7, §20.8),
              pattern, note, t_end, state_end, max_q_abs [m], t_max_q_abs [s], settle_time [s]
              (None unless settled), window_from, stalled, stalled_balls (1-based),
              ball_speed_fixed [rad/s], omega_mean_window, omega_n, t_omega_n,

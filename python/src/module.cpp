@@ -22,6 +22,7 @@
 #include "abu/output/report.hpp"
 #include "abu/input/scene.hpp"
 #include "abu/scan/scan.hpp"
+#include "abu/input/ranges.hpp"
 #include "bindings.hpp"
 
 namespace abu::python {
@@ -166,6 +167,7 @@ py::dict machine_equilibria_dict(const Scene& scene, const EquilibriaReport& rep
 }
 
 py::dict equilibria(const Scene& scene, int samples_per_sheet) {
+  check_numerical_range(scene, "abu.equilibria");  // the CLI's range checks (input/ranges.hpp)
   EquilibriaOptions options;
   options.sampling.samples_per_sheet = samples_per_sheet;
   if (const auto rule = options_violation(options.sampling)) throw InputError("equilibria", 0, "samples_per_sheet", *rule);

@@ -17,6 +17,9 @@
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/analysis/equilibrium_start.hpp"
+#include "abu/analysis/race_end.hpp"
+#include "abu/input/race_scene.hpp"
+#include "abu/input/ranges.hpp"
 #include "abu/output/report.hpp"
 #include "abu/output/report_simulation.hpp"
 #include "abu/input/scene.hpp"
@@ -32,20 +35,11 @@ const double nan_value = std::nan("");
 // ---------------------------------------------------------------------------------------
 // Continuation
 
-// The continuation parameter: a known symbol (not the ball radius: it does not enter the
-// equations of motion), its end value inside the parameter's range by the scene's rules
-// and away from the start value. The CLI's checks (checked_param, check_moves), with the
-// Python argument names as the origin.
-ParamRef checked_param(const Scene& scene, const std::string& symbol, double to) {
-  const auto ref = parse_param(symbol, int(scene.balls.size()));
-  if (!ref) throw InputError("param", 0, symbol, fmt::format("unknown parameter; known: {}", param_symbols_help()));
-  if (ref->quantity == Quantity::ball_radius)
-    throw InputError("param", 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
-  Scene probe = scene;
-  set_checked(probe, *ref, to, "to");
-  const double from = get(params_of<any_balls>(scene), *ref);
+// The end value must move the parameter away from the scene's value (as the CLI's check_moves;
+// the rest of the parameter's checks is the library's checked_param, input/ranges.hpp).
+void check_moves(const Scene& scene, ParamRef ref, const std::string& symbol, double to) {
+  const double from = get(params_of<any_balls>(scene), ref);
   if (to == from) throw InputError("to", 0, symbol, fmt::format("must differ from the start value {}", from));
-  return *ref;
 }
 
 py::dict stats_dict(const ContinuationStats& st) {
@@ -301,7 +295,9 @@ py::dict continue_run(const Scene& scene, const std::string& param, double to, s
                       int max_steps, int samples_per_sheet) {
   require_parts(scene, "continue_branches", {});
   const int n = int(scene.balls.size());
-  const ParamRef ref = checked_param(scene, param, to);
+  check_numerical_range(scene, "abu.continue_branches");  // the start, as the CLI checks a scene
+  const ParamRef ref = checked_param(scene, "param", param, "to", to);  // the CLI's checks, the same library call
+  check_moves(scene, ref, param, to);
   ContinuationOptions options;
   options.ds = ds;
   options.ds_min = ds_min;
@@ -406,6 +402,12 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
     x0 = start_from_equilibrium(p, analyze(p), *q.equilibrium, q.perturb, "from_equilibrium");
   }
   SimulationOptions so = q.options;
+  // An unround race (model.md §15.6) and an anisotropic support (§20), as `simulate`.
+  const RaceShape race = race_shape(scene);
+  if constexpr (N == any_balls) {
+    if (!race.round()) so.race = &race;
+    if (scene.support) so.support = &*scene.support;
+  }
   const auto method = integration_method_from_string(q.method);
   if (!method)
     throw InputError("simulate", 0, "method",
@@ -430,6 +432,7 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
     r = simulate(p, speed, x0, so);
   }
   if (interrupted) throw py::error_already_set();
+  if constexpr (N == any_balls) judge_race_end(r, p, speed, race, so.support, so.settle_tolerance);  // §15.7, §20.8
 
   const auto S = py::ssize_t(r.samples.size());
   const int dim = 2 * n + 4;
@@ -463,6 +466,13 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
   summary["max_q_abs_run_up"] =
       m.max_q_abs_run_up ? py::object(py::float_(*m.max_q_abs_run_up)) : py::object(py::none());
   summary["speed_changing_at_end"] = m.speed_changing_at_end;
+  if (m.unround_member > 0)  // model.md §15.7
+    summary["unround_equilibrium"] =
+        py::dict(py::arg("member") = m.unround_member, py::arg("q_abs") = m.unround_q_abs,
+                 py::arg("distance") = m.unround_distance);
+  if (m.orbit_member > 0)  // model.md §20.8
+    summary["periodic_orbit"] = py::dict(py::arg("member") = m.orbit_member, py::arg("q_abs_max") = m.orbit_q_abs_max,
+                                         py::arg("distance") = m.orbit_distance);
   py::dict stats;
   stats["steps"] = r.stats.steps;
   stats["rejected"] = r.stats.rejected;
@@ -495,7 +505,9 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
                       std::optional<double> perturb, std::optional<std::vector<double>> ramp,
                       std::optional<std::vector<std::pair<double, double>>> speed_profile, const std::string& method,
                       double rtol, double every, unsigned long max_steps, double settle_tol) {
-  require_parts(scene, "simulate", {});
+  // Smooth laws on a rigid rotor with any of its parts (docs/cli.md's table, `simulate`).
+  require_parts(scene, "simulate", {.unround = true, .anisotropic = true, .unround_anisotropic = true});
+  check_numerical_range(scene, "abu.simulate");
   SimulationRequest q;
   q.balls = std::move(balls);
   q.state = std::move(state);
@@ -520,7 +532,11 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
   q.options.max_steps = max_steps;
   q.options.settle_tolerance = settle_tol;
   q.method = method;
-  if (scene.balls.size() == 2) return simulate_scene<2>(scene, q);
+  if (!scene.race.round() && from_equilibrium)
+    throw NotSupportedError("from_equilibrium on an unround race (model.md §11): not supported yet; start from balls "
+                            "or from an equilibrium's state");
+  // An unround race and an anisotropic support run in the any-ball storage (model.md §15.6, §20).
+  if (scene.balls.size() == 2 && scene.race.round() && !scene.support) return simulate_scene<2>(scene, q);
   return simulate_scene<any_balls>(scene, q);
 }
 

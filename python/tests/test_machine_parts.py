@@ -51,6 +51,8 @@ def test_other_calls_refuse_the_part_they_do_not_model(source, name, route):
     }
     if route == "lugre":
         del calls["map"]  # the map of LuGre's z = 0 equilibria is the CLI's (below)
+    if route in ("anisotropic", "unround", "unround_anisotropic"):
+        del calls["simulate"]  # the rigid rotor's parts, integrated as the CLI's (below)
     for call, run in calls.items():
         # A shaft, a race, a support or a bristle state dropped would leave the rigid rotor's
         # answer to another question: each must be refused, naming the module's call.
@@ -70,3 +72,24 @@ def test_lugre_map_is_the_cli_map(run_cli, source, tmp_path):
     for row in rows:
         ix, iy = int(row[0]), int(row[1])
         assert m.n_stable[ix, iy] == int(row[stable])
+
+
+@pytest.mark.parametrize("name,kind", [("anisotropic/base_viscous.toml", None),
+                                       ("unround/oval_offset_viscous.toml", "unround_equilibrium"),
+                                       ("composed/oval_anisotropic.toml", "periodic_orbit")])
+def test_simulate_on_a_race_and_a_support_is_the_cli_run(run_cli, source, tmp_path, name, kind):
+    # The same integration (the composed field of model.md §20) and the same naming of its end:
+    # the race's equilibrium (§15.7) or, on an anisotropic support, its periodic orbit at the
+    # end's spin angle (§20.8), by the one library call both use. The same doubles: no tolerance.
+    scene_path = source / "tests" / "scenes" / name
+    run_cli("simulate", scene_path, "--t-end", "20", "--balls", "1,2", "-o", tmp_path, "--no-chart", "--quiet",
+            "--summary", tmp_path / "summary.json")
+    cli = json.loads((tmp_path / "summary.json").read_text())
+    sim = abu.simulate(abu.load_scene(scene_path), 20.0, balls=[1.0, 2.0])
+    s = sim.summary
+    assert (sim.status, s.outcome) == (cli["status"], cli["outcome"])
+    assert list(s.state_end) == cli["state_end"]
+    if kind is None:
+        return
+    assert s.outcome == ("equilibrium" if kind == "unround_equilibrium" else "orbit")
+    assert getattr(s, kind) == cli[kind]

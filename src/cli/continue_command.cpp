@@ -66,22 +66,6 @@ Coordinates<long double, 2> parse_state(const std::string& text) {
   if (n != 4) throw InputError("--from-state", 0, text, "expected four finite numbers q1,q2,beta1,beta2 (SI)");
   return s;
 }
-// A continuation parameter given by `option` (--param, --param2): a known symbol (not the
-// ball radius, unless `radius_allowed`), its end value `to` (option `to_option`) inside the
-// parameter's range by the scene's own rules.
-ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
-                       const std::string& to_option, double to, bool radius_allowed = false) {
-  const auto ref = parse_param(symbol, int(scene.balls.size()));
-  if (!ref)
-    throw InputError(option, 0, symbol,
-                     unknown_name_rule("unknown parameter", closest_param(symbol), "known", param_symbols_help()));
-  if (!radius_allowed && ref->quantity == Quantity::ball_radius)
-    throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
-  Scene probe = scene;
-  set_checked(probe, *ref, to, to_option);
-  check_numerical_range(probe, to_option);
-  return *ref;
-}
 
 // The end value must move the parameter away from the scene's value.
 template <class P>

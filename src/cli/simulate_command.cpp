@@ -20,9 +20,8 @@
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/dynamics/stick_slip.hpp"
-#include "abu/dynamics/unround_simulation.hpp"
 #include "abu/input/race_scene.hpp"
-#include "abu/analysis/basin_targets.hpp"
+#include "abu/analysis/race_end.hpp"
 #include "abu/analysis/equilibrium_start.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
@@ -49,13 +48,6 @@ std::function<void(double)> simulate_progress(const SimulateOptions& o, double t
 }
 
 namespace {
-
-
-
-template <int N>
-bool r_completed(const SimulationResult<N>& r) {
-  return r.status == SimulationStatus::completed && !r.samples.empty();
-}
 
 template <int N>
 int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProfile& speed) {
@@ -128,19 +120,10 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
     stick_slip = simulate_stick_slip(p, speed, x0, so);
   else
     smooth = simulate(p, speed, x0, so);
-  if constexpr (N == any_balls) {
-    // On an anisotropic support the unround race's equilibria are periodic orbits (model.md
-    // §20.4): the run's end is matched against them at its spin angle (§20.8).
-    if (unround && r_completed(smooth)) {
-      ParamsN at = p;
-      at.omega = speed.omega(smooth.t_reached);
-      if (scene.support)
-        classify_composed_end(smooth.summary, at, composed_states(at, race, *scene.support),
-                              speed.angle(smooth.t_reached), so.settle_tolerance);
-      else
-        classify_unround_end(smooth.summary, at, find_unround_equilibria(at, race), so.settle_tolerance);
-    }
-  }
+  // On an unround race the run's end is matched against the race's states (model.md §15.7; on
+  // an anisotropic support their periodic orbits at its spin angle, §20.8).
+  if constexpr (N == any_balls)
+    if (!stick_slip) judge_race_end(smooth, p, speed, race, so.support, so.settle_tolerance);
   const SimulationResult<N>& r = stick_slip ? stick_slip->run : smooth;
   if (show) fmt::print(stderr, "\r{:80}\r", "");
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/suggest.hpp"
 
 namespace abu {
 
@@ -53,6 +54,20 @@ std::optional<RangeViolation> numerical_range_violation(const Scene& scene) {
 void check_numerical_range(const Scene& scene, const std::string& origin, const std::string& what) {
   if (const auto v = numerical_range_violation(scene))
     throw InputError(origin, 0, v->key, what.empty() ? v->rule : fmt::format("{} ({})", v->rule, what));
+}
+
+ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
+                       const std::string& to_option, double to, bool radius_allowed) {
+  const auto ref = parse_param(symbol, int(scene.balls.size()));
+  if (!ref)
+    throw InputError(option, 0, symbol,
+                     unknown_name_rule("unknown parameter", closest_param(symbol), "known", param_symbols_help()));
+  if (!radius_allowed && ref->quantity == Quantity::ball_radius)
+    throw InputError(option, 0, symbol, "the ball radius does not enter the equations of motion (model.md §3)");
+  Scene probe = scene;
+  set_checked(probe, *ref, to, to_option);
+  check_numerical_range(probe, to_option);
+  return *ref;
 }
 
 }  // namespace abu

@@ -35,4 +35,12 @@ std::optional<RangeViolation> numerical_range_violation(const Scene& scene);
 /// Throws InputError(origin, 0, key, rule) for a violation (`what`: e.g. "at --to").
 void check_numerical_range(const Scene& scene, const std::string& origin, const std::string& what = "");
 
+/// A parameter to move, as `continue` and the Python module's continue_branches take it: the
+/// symbol given by `option` (--param, --param2, param) must be known (a suggestion otherwise)
+/// and not the ball radius (unless `radius_allowed`), its end value `to` (option `to_option`)
+/// inside the parameter's range by the scene's own rules (set_checked) and inside the
+/// numerical range above. Throws InputError naming the option, the symbol and the rule.
+ParamRef checked_param(const Scene& scene, const std::string& option, const std::string& symbol,
+                       const std::string& to_option, double to, bool radius_allowed = false);
+
 }  // namespace abu
