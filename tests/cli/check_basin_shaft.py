@@ -18,19 +18,11 @@ import json
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import tomllib
 
-RADIUS = 1e-2  # the default settle radius (model.md §15.5)
-
-
-def run(*args):
-    r = subprocess.run(list(args), capture_output=True, text=True)
-    if r.returncode != 0:
-        raise SystemExit(f"{' '.join(args)}: exit {r.returncode}\n{r.stderr}")
-    return r.stdout
+from check_basin_composed import RADIUS, run  # the settle radius, a command that must succeed
 
 
 def view_scale(scene):
