@@ -17,6 +17,7 @@
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/analysis/equilibrium_start.hpp"
+#include "abu/analysis/machine_parts.hpp"
 #include "abu/analysis/race_end.hpp"
 #include "abu/input/race_scene.hpp"
 #include "abu/input/ranges.hpp"
@@ -535,8 +536,7 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
   if (!scene.race.round() && from_equilibrium)
     throw NotSupportedError("from_equilibrium on an unround race (model.md §11): not supported yet; start from balls "
                             "or from an equilibrium's state");
-  // An unround race and an anisotropic support run in the any-ball storage (model.md §15.6, §20).
-  if (scene.balls.size() == 2 && scene.race.round() && !scene.support) return simulate_scene<2>(scene, q);
+  if (two_ball_storage(scene)) return simulate_scene<2>(scene, q);  // as the CLI's simulate
   return simulate_scene<any_balls>(scene, q);
 }
 

@@ -218,4 +218,9 @@ void refuse_unmodelled(const Scene& scene, std::string_view command, Handles han
                                         command, scene.file, commands_handling(&Handles::shaft)));
 }
 
+bool two_ball_storage(const Scene& scene) {
+  return scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round() && !scene.support &&
+         !scene.shaft;
+}
+
 }  // namespace abu

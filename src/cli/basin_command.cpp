@@ -180,7 +180,7 @@ Action add_basin_command(CLI::App& app) {
     const RaceShape race = race_shape(scene);  // an unround race: its paths and equilibria (model.md §15.7)
     // LuGre: bounded 3n + 4 storage; an unround race: the bounded storage of its field.
     // An anisotropic support: the composed field's storage too (model.md §20).
-    job.any_balls = n != 2 || scene.law == FrictionLaw::lugre || !race.round() || scene.support || scene.shaft;
+    job.any_balls = !two_ball_storage(scene);
     job.support = scene.support;
     if (scene.shaft) job.shaft = std::make_shared<const ShaftSystem>(shaft_system_of(scene));  // model.md §18.21
     std::string line = fmt::format("stability-scan basin {} --grid {}x{}", o->scene.scene, c1, c2);

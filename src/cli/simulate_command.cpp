@@ -277,8 +277,7 @@ Action add_simulate_command(CLI::App& app) {
     // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
     // An unround race and an anisotropic support run in the any-ball storage too (model.md §15.6, §20).
     if (scene.shaft) return run_shaft_simulation(scene, *o, speed);  // model.md §18.16
-    if (scene.balls.size() == 2 && scene.law != FrictionLaw::lugre && scene.race.round() && !scene.support)
-      return run_simulation<2>(scene, *o, speed);
+    if (two_ball_storage(scene)) return run_simulation<2>(scene, *o, speed);
     return run_simulation<any_balls>(scene, *o, speed);
   };
 }

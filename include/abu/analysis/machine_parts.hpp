@@ -72,4 +72,9 @@ std::string commands_handling(bool Handles::*part);
 /// handles_of(command)), naming the commands that do.
 void refuse_unmodelled(const Scene& scene, std::string_view command, Handles handles);
 
+/// Whether a run of the scene's rigid rotor takes the two-ball fixed-size storage (the fast
+/// path of the general code): two balls, the round race, an isotropic support, no LuGre
+/// bristles and no shaft. Otherwise the any-ball storage (model.md §13, §12.7, §15.6, §20).
+bool two_ball_storage(const Scene& scene);
+
 }  // namespace abu
