@@ -64,7 +64,7 @@ TEST_CASE("composed basin: an orbit's state between its samples", "[composed_bas
 TEST_CASE("composed basin: the attractors are the stable orbits equilibria finds", "[composed_basin]") {
   // At 1100 rad/s (the scene's speed) the targets must be exactly the converged orbits whose
   // multipliers say stable, numbered as composed_orbits_at numbers them. Each target's samples
-  // come from one run from x(0) (sample_basin_orbit throws if it does not close to 1e-7); their
+  // come from one run from x(0) (an orbit that does not close to 1e-7 is no target); their
   // largest |q| is compared with the orbit's q_abs_max, which the shooting computes by another
   // route (trigonometric interpolation of its step points, §10.18): the 128 samples see the
   // maximum to (pi/128)^2 / 8 ~ 7.5e-5 of the orbit's variation, asserted 1e-4 of |q|max, and

@@ -514,7 +514,7 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
   q.state = std::move(state);
   if (perturb && !from_equilibrium) throw InputError("perturb", 0, "", "perturb goes with from_equilibrium");
   if (from_equilibrium) {
-    q.equilibrium = parse_equilibrium_choice(*from_equilibrium, "from_equilibrium");
+    q.equilibrium = parse_equilibrium_choice(*from_equilibrium, "from_equilibrium", !scene.race.round(), "balls", "state");
     q.perturb = perturb.value_or(1e-3);
   }
   if (ramp && speed_profile) throw InputError("simulate", 0, "", "give ramp or speed_profile, not both");
@@ -533,9 +533,6 @@ py::dict simulate_run(const Scene& scene, double t_end, std::optional<std::vecto
   q.options.max_steps = max_steps;
   q.options.settle_tolerance = settle_tol;
   q.method = method;
-  if (!scene.race.round() && from_equilibrium)
-    throw NotSupportedError("from_equilibrium on an unround race (model.md §11): not supported yet; start from balls "
-                            "or from an equilibrium's state");
   if (two_ball_storage(scene)) return simulate_scene<2>(scene, q);  // as the CLI's simulate
   return simulate_scene<any_balls>(scene, q);
 }

@@ -11,6 +11,7 @@
 #include "abu/analysis/floquet_states.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/model/model.hpp"
 
 namespace abu {
@@ -84,11 +85,8 @@ EquilibriumN balancer_view_of(const ShaftSystem& sys, const ShaftEquilibrium& e)
   v.pattern = e.pattern;
   v.member = e.member;
   v.on_balanced_set = e.on_balanced_set;
-  const int b = 4 * sys.spec.balancer_node, n = sys.n_balls(), u = int(e.position.size()) - n;
-  v.position.resize(n + 2);
-  v.position(0) = e.position(b);
-  v.position(1) = e.position(b + 1);
-  for (int i = 0; i < n; ++i) v.position(2 + i) = e.position(u + i);
+  const Eigen::VectorXd x = e.state();
+  v.position = balancer_view(sys, x.data()).head(sys.n_balls() + 2).cast<long double>();
   return v;
 }
 
@@ -130,8 +128,7 @@ BasinAttractors shaft_targets(const BasinJob& job) {
     BasinTarget t;
     t.label = "equilibrium";
     t.member = s.eq.member;
-    const EquilibriumN v = balancer_view_of(sys, s.eq);
-    const auto pos = v.position_si();
+    const auto pos = balancer_view_of(sys, s.eq).position_si();
     t.position.assign(pos.data(), pos.data() + pos.size());
     t.region.reason = why;
     out.targets.push_back(std::move(t));

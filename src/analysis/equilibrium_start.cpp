@@ -10,6 +10,15 @@
 
 namespace abu {
 
+EquilibriumChoice parse_equilibrium_choice(const std::string& text, const std::string& option, bool unround_race,
+                                           const std::string& balls_option, const std::string& state_option) {
+  if (unround_race)  // its equilibria are not the analysis this start displaces (model.md §11)
+    throw NotSupportedError(fmt::format("{} on an unround race (model.md §11): start from {} or from an equilibrium's "
+                                        "state with {}",
+                                        option, balls_option, state_option));
+  return parse_equilibrium_choice(text, option);
+}
+
 EquilibriumChoice parse_equilibrium_choice(const std::string& text, const std::string& option) {
   EquilibriumChoice c;
   std::vector<std::string> parts;

@@ -87,14 +87,12 @@ int run_simulation(const Scene& scene, const SimulateOptions& o, const SpeedProf
   // An anisotropic support (model.md §20): p carries its mean (k_bar, c_bar), the field adds
   // the force that turns with the spin angle.
   if (scene.support) so.support = &*scene.support;
-  if (unround && !o.from_equilibrium.empty())
-    throw NotSupportedError("--from-equilibrium on an unround race (model.md §11): not supported yet; start from "
-                            "--balls or from an equilibrium's state with --from-state");
   if (!o.from_equilibrium.empty()) {
     const double eps = o.perturb.value_or(1e-3);
     if (!(std::isfinite(eps) && eps >= 0 && eps <= 1))
       throw InputError("--perturb", 0, "", fmt::format("EPS must lie in [0, 1] (scaled units), got {}", eps));
-    const EquilibriumChoice choice = parse_equilibrium_choice(o.from_equilibrium, "--from-equilibrium");
+    const EquilibriumChoice choice =
+        parse_equilibrium_choice(o.from_equilibrium, "--from-equilibrium", unround, "--balls", "--from-state");
     // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3); the start is
     // displaced along that model's rightmost mode, with z(0) = 0 (model.md §12.7).
     ParamsT<double, N> at = p;

@@ -93,15 +93,6 @@ std::string failure_text(int st) {
   return fmt::format("{} [GSL {}: {}]", why, st, gsl_strerror(st));
 }
 
-// The rigid route's 2n + 4 values of state x: the balancer node's (u1, u2) as q, the balls, their rates.
-State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x) {
-  const int n = sys.n_balls(), ns = sys.shaft_dofs(), d = sys.configuration_size(), b = sys.balancer_dof();
-  State<double, any_balls> v = State<double, any_balls>::Zero(2 * n + 4);
-  for (int k = 0; k < 2; ++k) v(k) = x[b + k], v(n + 2 + k) = x[d + b + k];
-  for (int i = 0; i < n; ++i) v(2 + i) = x[ns + i], v(n + 4 + i) = x[d + ns + i];
-  return v;
-}
-
 // The checks of simulate_shaft before any work (InputError naming the option and the rule).
 void check_shaft_input(const ShaftSystem& sys, const Eigen::VectorXd& x0, const SimulationOptions& o) {
   if (o.support || !o.bristle_start.empty())
@@ -162,6 +153,14 @@ void set_scales(ScaledControlState& cs, const ShaftSystem& sys, double L, double
 }
 
 }  // namespace
+
+State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x) {
+  const int n = sys.n_balls(), ns = sys.shaft_dofs(), d = sys.configuration_size(), b = sys.balancer_dof();
+  State<double, any_balls> v = State<double, any_balls>::Zero(2 * n + 4);
+  for (int k = 0; k < 2; ++k) v(k) = x[b + k], v(n + 2 + k) = x[d + b + k];
+  for (int i = 0; i < n; ++i) v(2 + i) = x[ns + i], v(n + 4 + i) = x[d + ns + i];
+  return v;
+}
 
 Eigen::VectorXd shaft_start_at_rest(const ShaftSystem& sys, const std::vector<double>& beta) {
   const int n = sys.n_balls();

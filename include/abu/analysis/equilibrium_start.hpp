@@ -22,8 +22,12 @@ struct EquilibriumChoice {
 };
 
 /// Parses FAMILY[:K] | aligned:PATTERN[:K]. Throws InputError naming `option` and the
-/// expected form.
+/// expected form. On an unround race (`unround_race`) there is no such start yet: throws
+/// NotSupportedError naming `option` and the starts to use instead (`balls_option`,
+/// `state_option`).
 EquilibriumChoice parse_equilibrium_choice(const std::string& text, const std::string& option);
+EquilibriumChoice parse_equilibrium_choice(const std::string& text, const std::string& option, bool unround_race,
+                                           const std::string& balls_option, const std::string& state_option);
 
 /// The chosen equilibrium of `analysis` (at p) displaced by eps (scaled: q / L, rad) along
 /// the real part of its rightmost non-structural eigenmode. Throws InputError naming

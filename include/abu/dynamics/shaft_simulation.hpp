@@ -56,6 +56,9 @@ Eigen::VectorXd shaft_start_at_rest(const ShaftSystem& sys, const std::vector<do
 
 /// The summary's rigid view of the shaft (ShaftSimulationResult::view).
 ParamsN shaft_summary_params(const ShaftSystem& sys);
+/// The rigid route's 2n + 4 values of a whole state x (size sys.state_size()): the balancer
+/// node's (u1, u2) as q, the balls, their rates (model.md (2.2)).
+State<double, any_balls> balancer_view(const ShaftSystem& sys, const double* x);
 
 /// Integrates from x0 (size sys.state_size()) at t = 0 to options.t_end with omega(t) of
 /// `speed` (sys.balancer.omega is not used). Never throws on numerical trouble (status failed

@@ -104,7 +104,7 @@ struct BasinTarget {
   std::string label;           ///< "balanced", "aligned:+-..." (ball 1 is +), "equilibrium" (an unround race's) or "orbit"
   int member = 0;              ///< 1-based among targets of the same label (0 for the balanced set); an
                                ///< unround race's: its number in the list `equilibria` prints
-  std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set
+  std::vector<double> position;  ///< q1, q2, beta1.. [m, rad]; empty for the balanced set and an orbit
   bool balanced_set = false;   ///< n >= 3: the whole (normally stable) balanced set
   /// A periodic orbit (label "orbit", member = the race's equilibrium it continues, as
   /// `equilibria` numbers it): the settle test compares with its state at the run's spin angle.
