@@ -375,7 +375,9 @@ class StabilityMap(Result):
       equilibria  Table, one row per equilibrium per cell (the long CSV): ix, iy, balls,
                   family, pattern, member, stable, n_unstable, n_structural_zero,
                   spectral_abscissa [1/s], q_abs [m], beta (rows, max n) [rad] (NaN beyond
-                  a cell's ball count)
+                  a cell's ball count), n_undecided (two balls: eigenvalues within their
+                  error bound of the axis that neither the refined spectrum nor the
+                  certified Routh count places; stable is then 0, n_unstable a lower bound)
       summary     the summary arrays as a dict
     """
 

@@ -221,6 +221,7 @@ struct CellRow {
   bool stable = false;
   double abscissa = 0, q_abs = 0;
   std::array<double, max_balls> beta{};
+  int n_undecided = 0;  ///< two balls: the map's undecided eigenvalues (scan/map.hpp)
 };
 
 void check_cell_finite(double v, const MapJob& job, int ix, int iy, const char* what) {
@@ -284,6 +285,7 @@ void map_tile(const MapJob& job, int tile, CellWorkspace& ws, std::vector<CellSu
           CellRow r{ix, iy, 2, e.family, 0, e.member, e.n_unstable, 0, e.stable, e.abscissa, e.q_abs, {}};
           r.beta[0] = e.beta1;
           r.beta[1] = e.beta2;
+          r.n_undecided = e.n_undecided;
           rows.push_back(r);
         }
         if (balanced_stable >= 0) s.balanced_stable = balanced_stable;
@@ -434,7 +436,7 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
   const auto nr = py::ssize_t(total);
   const int max_n = job.max_balls_in_map();
   auto r_ix = zeros<int>({nr}), r_iy = zeros<int>({nr}), r_balls = zeros<int>({nr}), r_member = zeros<int>({nr});
-  auto r_unstable = zeros<int>({nr}), r_structural = zeros<int>({nr});
+  auto r_unstable = zeros<int>({nr}), r_structural = zeros<int>({nr}), r_undecided = zeros<int>({nr});
   auto r_stable = zeros<bool>({nr});
   auto r_abscissa = zeros<double>({nr}), r_q_abs = zeros<double>({nr}), r_beta = zeros<double>({nr, max_n});
   py::list r_family, r_pattern;
@@ -451,6 +453,7 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
       r_stable.mutable_data()[k] = r.stable;
       r_unstable.mutable_data()[k] = r.n_unstable;
       r_structural.mutable_data()[k] = r.n_structural;
+      r_undecided.mutable_data()[k] = r.n_undecided;
       r_abscissa.mutable_data()[k] = r.abscissa;
       r_q_abs.mutable_data()[k] = r.q_abs;
       for (int b = 0; b < max_n; ++b) B(k, b) = b < r.balls ? r.beta[std::size_t(b)] : std::nan("");
@@ -466,6 +469,7 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
   rows["stable"] = r_stable;
   rows["n_unstable"] = r_unstable;
   rows["n_structural_zero"] = r_structural;
+  rows["n_undecided"] = r_undecided;
   rows["spectral_abscissa"] = r_abscissa;
   rows["q_abs"] = r_q_abs;
   rows["beta"] = r_beta;

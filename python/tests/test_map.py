@@ -35,6 +35,7 @@ def test_two_ball_map_equals_cli(run_cli, default_scene, tmp_path):
         assert same(t.spectral_abscissa[i], number(row["spectral_abscissa"]))
         assert same(t.q_abs[i], number(row["q_abs"]))
         assert same(t.beta[i, 0], number(row["beta1"])) and same(t.beta[i, 1], number(row["beta2"]))
+        assert t.n_undecided[i] == int(row["n_undecided"])
     # Something happens on this map: stable and unstable cells both.
     assert m.n_stable.max() > 0 and (m.balanced_stable == 0).any()
 
@@ -71,3 +72,18 @@ def test_bad_axis_raises_cli_message(run_cli, default_scene):
         assert p.stderr.startswith(f"stability-scan: error: {e}")
     else:
         raise AssertionError("a 0-count axis was accepted")
+
+
+def test_undecided_rows_equal_cli(run_cli, default_scene, tmp_path):
+    # kappa = 4e13 through resonance: the full method leaves 2 of 34,417 rows undecided
+    # (tests/map/check_map_kappa.sh); the module says the same rows, and calls none stable.
+    args = ("--x", "omega:50:3000:80", "--y", "mu:1e-4:0.1:72:log", "--set", "kappa=4e13")
+    run_cli("map", default_scene, *args, "--method", "full", "--long", "--threads", "2", "--no-chart",
+            "--no-boundaries", "--quiet", "-o", tmp_path)
+    scene = abu.load_scene(default_scene, ["kappa=4e13"])
+    t = abu.map(scene, x="omega:50:3000:80", y="mu:1e-4:0.1:72:log", method="full", threads=2).equilibria
+    rows = read_csv(tmp_path / "map_omega_mu.csv")
+    undecided = [(int(r["ix"]), int(r["iy"]), r["family"], int(r["member"])) for r in rows if int(r["n_undecided"])]
+    mine = [(t.ix[i], t.iy[i], t.family[i], t.member[i]) for i in range(len(t)) if t.n_undecided[i]]
+    assert mine == undecided and 0 < len(mine) <= len(rows) // 1000
+    assert not any(t.stable[i] for i in range(len(t)) if t.n_undecided[i])

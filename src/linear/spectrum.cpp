@@ -349,7 +349,12 @@ SpectrumT<N> compute_spectrum(const Linearization<ld, N>& lin, SpectrumMethod me
       double scale = 0;
       for (std::size_t i = 0; i < m; ++i) {
         kept[i] = sp.eigenvalues[i];
-        if (failed[i]) scale = std::max(scale, std::abs(current->estimates[i].value));
+        // A start inside its own QR error (a creep mode at 0 +- 1e-13) sets the scale by
+        // that error: a shift there resolves what the QR could not.
+        if (failed[i]) {
+          const auto& e = current->estimates[i];
+          scale = std::max({scale, std::abs(e.value), e.source ? apriori_error(e) : 0.0});
+        }
       }
       if (!(scale > 0) || !std::isfinite(scale)) scale = 1;
       bool progress = false;

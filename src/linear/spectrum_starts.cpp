@@ -146,20 +146,32 @@ bool middle_starts(const Linearization<ld, N>& lin, double sigma, const std::arr
     if (theta == 0.0 || !std::isfinite(std::abs(theta))) return false;
     candidate[i] = {sigma + 1.0 / theta, theta, &out.middle};
   }
-  // Each kept eigenvalue claims the nearest candidate (its copy in this QR).
+  // Each kept eigenvalue claims its copy in this QR, the nearest pair first: first among
+  // the candidates it is compatible with (within 1e4 times the candidate's a-priori
+  // error), then among the rest. (Nearest alone let a kept -8 + 150i claim a creep mode
+  // resolved to 1e-31 at 2e-15 rather than the QR's unresolved value 20 away from it, and
+  // the failed slot got that unresolved value.)
+  std::array<bool, state_capacity<N>> claimed{};
   std::size_t n_failed = 0;
-  for (std::size_t j = 0; j < m; ++j) {
-    if (failed[j]) {
-      ++n_failed;
-      continue;
+  for (std::size_t j = 0; j < m; ++j) n_failed += failed[j] ? 1 : 0;
+  for (const bool compatible_only : {true, false}) {
+    for (;;) {
+      std::size_t best_i = m, best_j = m;
+      double best_distance = 0;
+      for (std::size_t j = 0; j < m; ++j) {
+        if (failed[j] || claimed[j]) continue;
+        for (std::size_t i = 0; i < m; ++i) {
+          const double distance = std::abs(candidate[i].value - kept[j]);
+          if (taken[i] || (compatible_only && !(distance <= 1e4 * apriori_error(candidate[i])))) continue;
+          if (best_i == m || distance < best_distance) best_i = i, best_j = j, best_distance = distance;
+        }
+      }
+      if (best_i == m) break;
+      taken[best_i] = claimed[best_j] = true;
     }
-    std::size_t best = m;
-    for (std::size_t i = 0; i < m; ++i)
-      if (!taken[i] && (best == m || std::abs(candidate[i].value - kept[j]) < std::abs(candidate[best].value - kept[j])))
-        best = i;
-    if (best == m) return false;
-    taken[best] = true;
   }
+  for (std::size_t j = 0; j < m; ++j)
+    if (!failed[j] && !claimed[j]) return false;
   // The failed slots get what is left, closest to sigma first (best resolved there).
   std::array<std::size_t, state_capacity<N>> left{};
   std::size_t n_left = 0;

@@ -71,6 +71,36 @@ void CellAnalyzer::start_column(int ix) {
   }
 }
 
+namespace {
+
+// Eigenvalues inside their error bands (at kappa = 4e13 near resonance neither QR resolves
+// the rotor pair at -8 +- 13i nor, then, its creep pair at 3e-15 +- 6e-16i, and their
+// refinements fail): the certified Routh count of the same polynomial (with its error
+// bounds) and an abscissa certified as rightmost decide instead; else the verdict stays
+// undecided, and says so.
+void second_opinion(const Spectrum& sp, const Polynomial& p, MapEquilibrium& m) {
+  const RouthCount rc = routh_count(p);
+  if (!rc.decided || rc.n_unstable < sp.n_unstable || rc.n_unstable > sp.n_unstable + sp.n_marginal) {
+    m.n_undecided = std::int8_t(sp.n_marginal);
+    return;
+  }
+  // The rightmost root, polished from each eigenvalue in turn (the unplaced ones too) and
+  // from 0, until one is certified (no root right of it).
+  for (int i = 0; i <= sp.count; ++i) {
+    std::complex<double> rightmost = i < sp.count ? sp.eigenvalues[std::size_t(i)] : std::complex<double>{};
+    if (i < sp.count && sp.structural[std::size_t(i)]) continue;
+    if (certified_abscissa(p, rightmost) && (rightmost.real() > 0) == (rc.n_unstable > 0)) {
+      m.n_unstable = std::int8_t(rc.n_unstable);
+      m.stable = rc.n_unstable == 0;
+      m.abscissa = rightmost.real();
+      return;
+    }
+  }
+  m.n_undecided = std::int8_t(sp.n_marginal);
+}
+
+}  // namespace
+
 void CellAnalyzer::decide(Tracked& t, const Polynomial& p, const Linearization<long double, 2>& lin,
                           MapEquilibrium& m, MapCell& cell) {
   if (method_ == CellMethod::fast && !t.equilibrium.singular() && t.have_roots) {
@@ -98,7 +128,9 @@ void CellAnalyzer::decide(Tracked& t, const Polynomial& p, const Linearization<l
   m.n_unstable = std::int8_t(sp.n_unstable);
   m.stable = sp.stability == Stability::stable;
   m.abscissa = sp.abscissa;
+  if (sp.n_marginal > 0 && !t.equilibrium.singular()) second_opinion(sp, p, m);
 }
+
 
 void CellAnalyzer::analyze(int ix, int iy, MapCell& out) {
   if (ix != column_) start_column(ix);

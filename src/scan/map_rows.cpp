@@ -133,8 +133,11 @@ std::string map_csv_header(const MapJob& job) {
              "positive real part; spectral_abscissa [1/s] = largest real part;\n"
              "#   q_abs [m] = |q|, the residual vibration: the rotor centre's whirl radius, which is also the "
              "amplitude in the fixed frame (x_fixed = R(omega t) q, model.md §2);\n"
-             "#   beta1, beta2 [rad] ball angles from the unbalance direction, in [0, 2 pi)\n"
-             "ix,iy,{0},{1},family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2\n",
+             "#   beta1, beta2 [rad] ball angles from the unbalance direction, in [0, 2 pi);\n"
+             "#   n_undecided = eigenvalues within their error bound of the axis that neither the refined "
+             "spectrum nor the certified Routh count places (model.md §8): the verdict is undecided, stable is 0 "
+             "and n_unstable a lower bound (0 everywhere else)\n"
+             "ix,iy,{0},{1},family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2,n_undecided\n",
              x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
 }
 
@@ -261,9 +264,9 @@ void write_cell(const MapJob& job, int ix, int iy, std::string_view x, std::stri
     check_finite(e.beta1, job, ix, iy, "beta1");
     check_finite(e.beta2, job, ix, iy, "beta2");
     if (job.long_rows)
-      fmt::format_to(fmt::appender(out.rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x, y,
-                     to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
-                     e.beta1, e.beta2);
+      fmt::format_to(fmt::appender(out.rows), FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{},{},{}\n"), ix, iy, x,
+                     y, to_string(e.family), int(e.member), int(e.stable), int(e.n_unstable), e.abscissa, e.q_abs,
+                     e.beta1, e.beta2, int(e.n_undecided));
   }
   fmt::memory_buffer& summary = out.summary;
   fmt::format_to(fmt::appender(summary), FMT_COMPILE("{},{},{},{},{},{},{},"), ix, iy, x, y, members[0], members[1],

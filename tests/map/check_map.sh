@@ -31,7 +31,7 @@ check "only the two csvs and the ranges json are written" "[ \"\$(ls -A '$work/t
 # --- content ---------------------------------------------------------------------------
 long=$work/t1/map_omega_mu.csv
 summary=$work/t1/summary_omega_mu.csv
-check "long header" "[ \"\$(grep -v '^#' '$long' | head -1)\" = 'ix,iy,omega,mu,family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2' ]"
+check "long header" "[ \"\$(grep -v '^#' '$long' | head -1)\" = 'ix,iy,omega,mu,family,member,stable,n_unstable,spectral_abscissa,q_abs,beta1,beta2,n_undecided' ]"
 check "summary has one row per cell (1200)" "[ \$(rows '$summary' | wc -l) -eq 1200 ]"
 check "every cell has a row in the long csv" "[ \$(rows '$long' | cut -d, -f1,2 | sort -u | wc -l) -eq 1200 ]"
 check "no nan or inf" "! rows '$long' | grep -qiE 'nan|inf' && ! rows '$summary' | grep -qiE 'nan|inf'"

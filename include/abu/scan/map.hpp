@@ -60,6 +60,10 @@ struct MapEquilibrium {
   Family family = Family::balanced;
   std::int8_t member = 1;
   std::int8_t n_unstable = 0;
+  /// Eigenvalues within their error bound of the imaginary axis that neither the refined
+  /// spectrum nor the certified Routh count could place: the verdict is undecided (stable
+  /// is then false and n_unstable a lower bound).
+  std::int8_t n_undecided = 0;
   bool stable = false;
   double abscissa = 0;  ///< spectral abscissa [1/s]
   double q_abs = 0;     ///< |q| [m]: the rotor's whirl radius, the same in the fixed frame
