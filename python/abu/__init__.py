@@ -408,6 +408,8 @@ class Simulation(Result):
       status 'completed', 'interrupted' or 'failed' (then reason says where and why; the
              samples up to there are kept, as the CLI keeps them)
       method the integrator used; spectral_radius [1/s], stiffness_ratio, displacement_scale [m]
+      start_below_resolution  start components below 1e-3 of their absolute tolerance,
+             integrated as 0 (a start such as a 1e-200 perturbation is the equilibrium itself)
       summary: Result with outcome ('balanced', 'aligned', 'stuck', 'periodic', 'not settled';
              on an unround race 'equilibrium' with unround_equilibrium {member, q_abs,
              distance}, with an anisotropic support too 'orbit' with periodic_orbit {member,

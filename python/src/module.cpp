@@ -221,7 +221,7 @@ struct CellRow {
   bool stable = false;
   double abscissa = 0, q_abs = 0;
   std::array<double, max_balls> beta{};
-  int n_undecided = 0;  ///< two balls: the map's undecided eigenvalues (scan/map.hpp)
+  int n_undecided = 0;  ///< two balls: the map's undecided eigenvalues (scan/map.hpp); n balls 0
 };
 
 void check_cell_finite(double v, const MapJob& job, int ix, int iy, const char* what) {
@@ -282,10 +282,8 @@ void map_tile(const MapJob& job, int tile, CellWorkspace& ws, std::vector<CellSu
           if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
           check_cell_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
           check_cell_finite(e.q_abs, job, ix, iy, "|q|");
-          CellRow r{ix, iy, 2, e.family, 0, e.member, e.n_unstable, 0, e.stable, e.abscissa, e.q_abs, {}};
-          r.beta[0] = e.beta1;
-          r.beta[1] = e.beta2;
-          r.n_undecided = e.n_undecided;
+          const CellRow r{ix,       iy,         2,       e.family,           0, e.member, e.n_unstable, 0,
+                          e.stable, e.abscissa, e.q_abs, {e.beta1, e.beta2}, e.n_undecided};
           rows.push_back(r);
         }
         if (balanced_stable >= 0) s.balanced_stable = balanced_stable;

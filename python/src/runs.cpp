@@ -494,6 +494,7 @@ py::dict simulate_scene(const Scene& scene, SimulationRequest& q) {
   d["spectral_radius"] = r.spectral_radius;
   d["stiffness_ratio"] = r.stiffness_ratio;
   d["displacement_scale"] = r.displacement_scale;
+  d["start_below_resolution"] = r.start_below_resolution;
   d["speed"] = speed.describe();
   d["stats"] = stats;
   d["summary"] = summary;

@@ -72,6 +72,9 @@ std::string simulation_csv(const SimulationResult<N>& r, const ParamsT<double, N
   out += fmt::format("# method: {} (stiffness ratio rho(J)/(omega_max + omega_n) = {:.4g}, rho = {:.4g} 1/s; model.md §15.1)\n",
                      to_string(r.method), r.stiffness_ratio, r.spectral_radius);
   out += fmt::format("# status: {}{}\n", to_string(r.status), r.reason.empty() ? "" : ": " + r.reason);
+  if (r.start_below_resolution > 0)
+    out += fmt::format("# start: {} component(s) below 1e-3 of their absolute tolerance, integrated as 0\n",
+                       r.start_below_resolution);
   out += fmt::format("# steps {}, rejected {}, rhs evaluations {}, jacobian evaluations {}, restarts {}\n",
                      r.stats.steps, r.stats.rejected, r.stats.rhs_evaluations, r.stats.jacobian_evaluations,
                      r.stats.restarts);
@@ -166,6 +169,7 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
                      json_string(to_string(r.method)), format_number(r.stiffness_ratio, "stiffness"),
                      format_number(r.spectral_radius, "spectral radius"));
   out += fmt::format("  \"displacement_scale\": {},\n", format_number(r.displacement_scale, "L"));
+  out += fmt::format("  \"start_below_resolution\": {},\n", r.start_below_resolution);
   out += fmt::format(
       "  \"stats\": {{\"steps\": {}, \"rejected\": {}, \"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, "
       "\"restarts\": {}, \"wall_seconds\": {}}},\n",
@@ -183,6 +187,10 @@ std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& sp
   std::string out;
   out += fmt::format("simulate: {} to t = {:.6g} s ({}), method {} (stiffness ratio {:.3g})\n", to_string(r.status),
                      s.t_end, speed.describe(), to_string(r.method), r.stiffness_ratio);
+  if (r.start_below_resolution > 0)
+    out += fmt::format("  start: {} component(s) below 1e-3 of their absolute tolerance (rtol times their scale, "
+                       "model.md §15.1), integrated as 0\n",
+                       r.start_below_resolution);
   out += fmt::format("  outcome: {}{} — {}\n", to_string(s.outcome), s.pattern.empty() ? "" : " " + s.pattern, s.note);
   if (s.settle_time) out += fmt::format("  settle time: {:.6g} s\n", *s.settle_time);
   out += fmt::format("  largest |q|: {:.6g} m at t = {:.6g} s\n", s.max_q_abs, s.t_max_q_abs);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "abu/core/cancel.hpp"
@@ -32,8 +33,9 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
     for (std::size_t i = 0; i < pairs.size(); ++i)
       if (!v.structural[i] && pairs[i].residual >= 1.0) v.structural[i] = 1, ++v.zero_copies;
   // A real part decides only beyond its error bound: the relative residual r makes lambda exact
-  // for a pencil perturbed by r |lambda| ||B v||, which moves a well-conditioned eigenvalue by
-  // about r |lambda| (model.md §18.12). Within it the sign is not known.
+  // for a pencil perturbed by r |lambda| ||B v||, which moves an eigenvalue of condition c by
+  // about c r |lambda| (model.md §18.12, §19.3). Within it the sign is not known; a condition
+  // that could not be computed (0) leaves every sign near the axis unknown.
   bool certified_positive = false, uncertain = false;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (v.structural[i]) continue;
@@ -41,12 +43,13 @@ ShaftVerdict shaft_verdict(const SparseSpectrum& s, int structural_zeros) {
     const auto& l = pairs[i].value;
     // The first of equal real parts in the sorted list has Im >= 0 (sparse_spectrum.hpp's order).
     if (l.real() > v.abscissa) v.abscissa = l.real(), v.rightmost = {l.real(), std::abs(l.imag())};
-    const double bound = pairs[i].residual * std::abs(l);
+    const double c = pairs[i].condition;
+    const double bound = c > 0.0 ? c * pairs[i].residual * std::abs(l) : std::numeric_limits<double>::infinity();
     if (l.real() > bound) certified_positive = true;
     else if (std::abs(l.real()) <= bound && v.doubt.empty())
-      v.doubt = fmt::format("the eigenvalue {:.6g}{:+.6g}i 1/s has |Re| within its error bound {:.3g} 1/s (relative "
-                            "residual {:.3g} times |lambda|): its sign is not known",
-                            l.real(), l.imag(), bound, pairs[i].residual),
+      v.doubt = fmt::format("the eigenvalue {:.6g}{:+.6g}i 1/s has |Re| within its error bound {:.3g} 1/s (condition "
+                            "{:.3g} times relative residual {:.3g} times |lambda|): its sign is not known",
+                            l.real(), l.imag(), bound, c, pairs[i].residual),
       uncertain = true;
   }
   const SpectrumCoverage& c = s.coverage;

@@ -139,6 +139,10 @@ struct SimulationResult {
   double spectral_radius = 0;   ///< rho(J) [1/s] at the stiffness probe (model.md §15.1)
   double stiffness_ratio = 0;   ///< rho(J) / (omega_max + omega_n)
   double displacement_scale = 0;  ///< L [m]
+  /// Start components nonzero but below 1e-3 of their absolute tolerance (rtol times their
+  /// scale, model.md §15.1), integrated as 0: below what the run resolves, and GSL's bsimp
+  /// takes any change of so tiny a component for a runaway (its weights are |y_i|).
+  int start_below_resolution = 0;
   std::vector<TrajectorySample<N>> samples;
   IntegrationStats stats;
   SimulationSummary summary;

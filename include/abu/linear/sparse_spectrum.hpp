@@ -79,6 +79,11 @@ struct SparseEigenpair {
   /// true for eigenvalues_near, whose certificate is the shift's disc.
   bool covered = true;
   bool refined = false;        ///< value and residual are from the refinement (options.refine)
+  /// ||B v|| ||w|| / |w^H B v| with w the left eigenvector (model.md §19.3): the first-order
+  /// error of lambda is about condition * residual * |lambda|. Computed (one sparse LU at
+  /// lambda and three adjoint solves) only where it can decide a sign: |Re lambda| within
+  /// 1e4 residual |lambda|; 1 elsewhere.
+  double condition = 1.0;
   Eigen::VectorXcd vector;     ///< unit 2-norm; empty unless options.keep_vectors
 };
 
