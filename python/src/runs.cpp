@@ -337,6 +337,7 @@ py::dict continue_run(const Scene& scene, const std::string& param, double to, s
     return d;
   }
   StartSelection start;
+  start.family_option = "family";
   if (family) {
     if (*family != "balanced" && *family != "together" && *family != "opposite")
       throw InputError("family", 0, *family, "must be 'balanced', 'together' or 'opposite'");

@@ -58,3 +58,20 @@ def test_continuation_end_value_refused_by_both(run_cli, default_scene, tmp_path
     with pytest.raises(abu.InputError) as caught:
         abu.continue_branches(abu.load_scene(default_scene), key, value, family="balanced")
     assert rule_of(str(caught.value)) == (cli_key, cli_rule)
+
+
+def test_absent_family_refused_by_both(run_cli, default_scene, tmp_path):
+    # U = 2e-6 is more than the balls' capacity 1.188e-6: no balanced state at either end.
+    # `continue --from-equilibrium balanced` wrote empty branch files and exited 0; now both
+    # front ends refuse it with the library's one rule (the families that do exist named).
+    p = run_cli("continue", default_scene, "--set", "U=2e-6", "--set", "omega=100", "--param", "omega", "--to",
+                "200", "--from-equilibrium", "balanced", "--no-chart", "-o", tmp_path / "c", check=False)
+    assert p.returncode == 2 and not (tmp_path / "c").exists(), p.stderr
+    cli_key, cli_rule = rule_of(p.stderr)
+    assert cli_key == "balanced" and "no balanced equilibrium" in cli_rule and "together, opposite" in cli_rule
+    scene = abu.load_scene(default_scene, ["U=2e-6", "omega=100"])
+    with pytest.raises(abu.InputError) as caught:
+        abu.continue_branches(scene, "omega", 200, family="balanced")
+    assert rule_of(str(caught.value)) == (cli_key, cli_rule)
+    # A family that exists is continued as before.
+    assert len(abu.continue_branches(scene, "omega", 200, family="together").branches) > 0

@@ -50,6 +50,19 @@ std::vector<Equilibrium> start_points(const Params& p, const StartSelection& sta
   return out;
 }
 
+// "together, opposite" (or "none"): the families with an equilibrium in `p`.
+std::string families_at(const Params& p) {
+  std::string out;
+  const EquilibriumSet found = find_equilibria(p);
+  const auto points = found.points();
+  for (const Family f : {Family::balanced, Family::together, Family::opposite}) {
+    if (std::none_of(points.begin(), points.end(), [f](const Equilibrium& e) { return e.family == f; })) continue;
+    if (!out.empty()) out += ", ";
+    out += to_string(f);
+  }
+  return out.empty() ? "none" : out;
+}
+
 }  // namespace
 
 std::string_view to_string(Label label) {
@@ -193,6 +206,11 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
   const std::size_t near_starts = starts.size();
   if (!start.state)
     for (const auto& e : start_points(far, start, run.notes)) starts.push_back({e, ld(to), 1});
+  if (start.family && starts.empty())
+    throw InputError(std::string(start.family_option), 0, std::string(to_string(*start.family)),
+                     fmt::format("no {} equilibrium at {} = {} or at {} (model.md §5): nothing to continue (there: {}; "
+                                 "{})",
+                                 to_string(*start.family), to_string(param), run.from, to, families_at(p), families_at(far)));
   // Each start's branch is traced independently of the others (trace_branch reads only
   // the equations and its start), so the starts of one batch are traced concurrently and
   // then kept or dropped in their order, exactly as one after the other: a start is

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -163,6 +164,8 @@ void copy_in_place(const fs::path& from, const fs::path& to) {
 }
 }  // namespace
 
+void OutputTransaction::retire(const fs::path& target) { retired_.push_back(target); }
+
 void OutputTransaction::commit() {
   std::lock_guard commit_lock(g_commit_mutex);
   std::vector<Entry> entries;
@@ -199,6 +202,19 @@ void OutputTransaction::commit() {
           fmt::format("cannot move the old {} aside: {}; nothing replaced", escaped(e.target.string()), std::strerror(err)));
     }
     aside.emplace_back(old, e.target);
+  }
+  for (const auto& target : retired_) {
+    std::error_code ec;
+    const bool replaced = std::any_of(entries.begin(), entries.end(), [&](const Entry& e) { return e.target == target; });
+    if (replaced || !fs::is_regular_file(fs::symlink_status(target, ec))) continue;
+    fs::path old = target.parent_path() / fmt::format(".{}.old-{}", target.filename().string(), random_suffix());
+    if (target.parent_path().empty()) old = old.filename();
+    if (const int err = rename_no_replace(target, old)) {
+      roll_back();
+      throw std::runtime_error(
+          fmt::format("cannot move the old {} aside: {}; nothing replaced", escaped(target.string()), std::strerror(err)));
+    }
+    aside.emplace_back(old, target);
   }
   for (const auto& e : entries) {
     if (e.kind == TargetKind::in_place) continue;

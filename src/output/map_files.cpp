@@ -269,6 +269,12 @@ MapFilesReport write_map_files(const MapJob& job, const MapRunReport& run, const
   else if (options.chart)
     draw_map_charts(out, job, dir, summary_path, curves, grid ? &*grid : nullptr, sink, options.title);
   if (options.stop && options.stop->load()) return report;  // `out` removes its temporaries
+  // An earlier map of the same axes in this directory: what this run does not write again
+  // would stand beside its summary as if it belonged to it.
+  for (const char* kind : {"map", "boundary"}) out.retire(dir / fmt::format("{}_{}_{}.csv", kind, x, y));
+  for (const char* kind : {"stability", "vibration"})
+    for (const char* ext : {"png", "svg"}) out.retire(dir / fmt::format("{}_{}_{}.{}", kind, x, y, ext));
+  for (const char* kind : {"stick_worst", "stick_area"}) out.retire(dir / fmt::format("{}_{}_{}.png", kind, x, y));
   out.commit();
   store.remove();
   report.written = true;

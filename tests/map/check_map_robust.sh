@@ -51,6 +51,19 @@ mkdir -p "$tiles"
 "$bin" map "$scene" --long --x "$RX" --y "$RY" --no-chart --no-boundaries --quiet -o "$work/m" 2>"$work/empty.err"
 check "an empty tile directory (a failed first write) does not make the next run refuse" "[ $? -eq 0 ]"
 
+# --- no stale outputs: a second, smaller map of the same axes in the same directory without
+# --long, charts or boundaries left the first run's long CSV, boundary curves and charts
+# beside its own summary; now they go with the commit, and another map's files stay.
+"$bin" map "$scene" --x omega:50:2000:20 --y mu:1e-4:0.1:10:log --long --quiet -o "$work/stale" 2>/dev/null
+"$bin" map "$scene" --x omega:50:2000:4 --y c:1:3:3 --no-chart --no-boundaries --quiet -o "$work/stale" 2>/dev/null
+first=$(ls "$work/stale" | grep -c '_omega_mu\.')
+"$bin" map "$scene" --x omega:50:2000:10 --y mu:1e-4:0.1:5:log --no-chart --no-boundaries --quiet -o "$work/stale" \
+  2>/dev/null
+check "a smaller rerun leaves no stale output of the same axes ($first files before), another map's kept" \
+  "[ $? -eq 0 ] && [ $first -eq 8 ] && [ \"\$(ls '$work/stale' | grep '_omega_mu\.' | tr '\n' ' ')\" = \
+  'summary_omega_mu.csv summary_omega_mu.json ' ] && [ -s '$work/stale/summary_omega_c.csv' ] && \
+  [ -z \"\$(find '$work/stale' -name '.*')\" ]"
+
 # --- too big for the disk: refused before any work ----------------------------------------
 free_kb=$(df -Pk "$work" | awk 'NR == 2 {print $4}')
 if [ "$free_kb" -lt 150000000 ]; then

@@ -118,9 +118,13 @@ struct ContinuationRun {
 struct StartSelection {
   std::optional<Family> family;                       ///< only this family (nullopt: all)
   std::optional<Coordinates<long double, 2>> state;  ///< or a given configuration (polished first)
+  /// The front end's name of `family`, for the refusal when it has no equilibrium.
+  std::string_view family_option = "--from-equilibrium";
 };
 
-/// Continues every selected equilibrium of `p` (at its value of `param`) to `to`.
+/// Continues every selected equilibrium of `p` (at its value of `param`) to `to`. Throws
+/// InputError (start.family_option) when the selected family has no equilibrium at either
+/// end of the interval: there is nothing to continue.
 ContinuationRun continue_branches(const Params& p, ParamRef param, double to, const ContinuationOptions& options,
                                   const StartSelection& start = {});
 

@@ -45,6 +45,10 @@ class OutputTransaction {
   /// The same for a data file a stream writes here (a CSV): never taken for a chart's
   /// output, so a chart that fails to draw from it does not keep it from being committed.
   std::filesystem::path reserve_data(const std::filesystem::path& target);
+  /// An earlier run's output at `target` that this one supersedes but may not write (a map's
+  /// long CSV without --long, its charts with --no-chart): removed by the commit unless a
+  /// file is committed there, restored with the rest if the commit fails. Regular files only.
+  void retire(const std::filesystem::path& target);
   void commit();
 
  private:
@@ -54,6 +58,7 @@ class OutputTransaction {
   };
   std::filesystem::path temporary_for(const std::filesystem::path& target);
   std::vector<Entry> staged_;
+  std::vector<std::filesystem::path> retired_;
   std::vector<std::filesystem::path> created_dirs_;
   bool committed_ = false;
 };
