@@ -4,7 +4,7 @@
 # For every SCENE_DIR/*.toml (whose first line is `# expect: line=N key=KEY rule=TEXT`)
 # runs `BINARY equilibria SCENE --format csv -o WORK/out.csv` from a fresh empty
 # directory WORK and checks the CLI contract for bad input: exit code exactly 2, a
-# non-empty stderr naming the scene path and KEY, and nothing written (WORK stays
+# non-empty stderr naming the scene path, line N (as PATH:N:, unless N = 0) and KEY, and nothing written (WORK stays
 # empty, so neither out.csv nor a stray file in the working directory appears).
 # Prints one line per scene and a final count; exits 1 if any scene fails, 2 on misuse.
 set -u
@@ -49,9 +49,11 @@ for scene in "${scenes[@]}"; do  # glob expansion is sorted
   problems=()
 
   expect=$(head -n 1 "$scene")
-  if [[ "$expect" =~ ^"# expect: line="[0-9]+" key="([^ ]*)" rule=". ]]; then
-    key=${BASH_REMATCH[1]}
+  if [[ "$expect" =~ ^"# expect: line="([0-9]+)" key="([^ ]*)" rule=". ]]; then
+    line=${BASH_REMATCH[1]}
+    key=${BASH_REMATCH[2]}
   else
+    line=0
     key=""
     problems+=("first line is not '# expect: line=N key=KEY rule=TEXT'")
   fi
@@ -68,6 +70,10 @@ for scene in "${scenes[@]}"; do  # glob expansion is sorted
   else
     err=$(cat "$capture/stderr")
     [[ "$err" == *"$scene"* ]] || problems+=("stderr does not name the scene path")
+    # line=0: the rule is about the whole file (a missing table or key) and names no line.
+    if [ "$line" -gt 0 ] && [[ "$err" != *"$scene:$line:"* ]]; then
+      problems+=("stderr does not name line $line")
+    fi
     # Look for the key outside the path: `ball` or `rolling` may be part of the file name.
     rest=${err//"$scene"/}
     if [ -n "$key" ] && [[ "$rest" != *"$key"* ]]; then

@@ -209,13 +209,15 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   try {
     return toml::parse(text, std::string_view(file));
   } catch (const toml::parse_error& e) {
-    throw InputError(file, int(e.source().begin.line), "", fmt::format("TOML syntax error: {}", e.description()));
+    const int line = int(e.source().begin.line);
+    throw InputError(file, line, detail::key_at_line(text, line), fmt::format("TOML syntax error: {}", e.description()));
   }
 #else
   auto result = toml::parse(text, std::string_view(file));
   if (!result) {
     const auto& e = result.error();
-    throw InputError(file, int(e.source().begin.line), "", fmt::format("TOML syntax error: {}", e.description()));
+    const int line = int(e.source().begin.line);
+    throw InputError(file, line, detail::key_at_line(text, line), fmt::format("TOML syntax error: {}", e.description()));
   }
   return std::move(result).table();
 #endif

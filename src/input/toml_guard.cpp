@@ -85,4 +85,42 @@ void prevalidate_toml(std::string_view text, const std::string& file) {
   }
 }
 
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+// The key of a header line "[rotor]" / "[[ball]]" (comments aside), or "" if not a header.
+std::string_view header_of(std::string_view line) {
+  line = trimmed(line.substr(0, line.find('#')));
+  if (line.size() < 2 || line.front() != '[' || line.back() != ']') return {};
+  while (!line.empty() && line.front() == '[') line.remove_prefix(1);
+  while (!line.empty() && line.back() == ']') line.remove_suffix(1);
+  return trimmed(line);
+}
+
+}  // namespace
+
+std::string key_at_line(std::string_view text, int line) {
+  std::string_view table, here;
+  int at = 1;
+  for (std::size_t begin = 0; begin <= text.size() && at <= line; ++at) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view row = text.substr(begin, end - begin);
+    if (at == line) here = row;
+    else if (const auto h = header_of(row); !h.empty()) table = h;
+    begin = end + 1;
+  }
+  if (!header_of(here).empty()) return {};
+  here = trimmed(here.substr(0, here.find('#')));
+  const auto eq = here.find('=');
+  std::string_view key = trimmed(eq == std::string_view::npos ? here.substr(0, here.find_first_of(" \t")) : here.substr(0, eq));
+  if (key.empty()) return {};
+  return table.empty() ? std::string(key) : fmt::format("{}.{}", table, key);
+}
+
 }  // namespace abu::detail

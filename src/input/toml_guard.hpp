@@ -12,4 +12,9 @@ namespace abu::detail {
 /// or a '#' inside a table header's brackets.
 void prevalidate_toml(std::string_view text, const std::string& file);
 
+/// The dotted key a syntax error on `line` (1-based) belongs to, read from the text: the last
+/// table header above it ("rotor", "ball" for [[ball]]) and the line's key (before '=', or
+/// its first word when '=' is missing), e.g. "rotor.mass"; "" on a header or an empty line.
+std::string key_at_line(std::string_view text, int line);
+
 }  // namespace abu::detail
