@@ -75,3 +75,12 @@ def test_absent_family_refused_by_both(run_cli, default_scene, tmp_path):
     assert rule_of(str(caught.value)) == (cli_key, cli_rule)
     # A family that exists is continued as before.
     assert len(abu.continue_branches(scene, "omega", 200, family="together").branches) > 0
+
+
+def test_endless_scene_refused_by_both(run_cli, tmp_path):
+    # /dev/zero was read without limit by both; the library's reader stops at 16 MiB.
+    p = run_cli("equilibria", "/dev/zero", "--format", "csv", "-o", tmp_path / "e.csv", check=False)
+    assert p.returncode == 2 and not (tmp_path / "e.csv").exists(), p.stderr
+    with pytest.raises(abu.InputError) as caught:
+        abu.load_scene("/dev/zero")
+    assert "larger than 16 MiB" in str(caught.value) and str(caught.value) in p.stderr

@@ -14,13 +14,10 @@
 #include "abu/input/scene.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <system_error>
 #include <tuple>
 
@@ -28,6 +25,7 @@
 #include <toml++/toml.h>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/text_file.hpp"
 #include "race_reading.hpp"
 #include "abu/core/speed_units.hpp"
 #include "abu/core/suggest.hpp"
@@ -486,19 +484,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "", "cannot read file: it is a directory");
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    throw InputError(path, 0, "",
-                     fmt::format("cannot read file: {}", err ? std::generic_category().message(err) : "open failed"));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path, 0, "", "cannot read file: read error");
-  return parse_scene(text.str(), path);
+  return parse_scene(read_text_file(path, scene_size_limit, "scene"), path);
 }
 
 }  // namespace abu

@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/text_file.hpp"
 
 namespace abu {
 
@@ -79,8 +79,7 @@ SpeedProfile SpeedProfile::piecewise_linear(std::vector<Point> points, const std
 }
 
 SpeedProfile SpeedProfile::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot read the speed profile file");
+  std::istringstream in(read_text_file(path, profile_size_limit, "speed profile"));
   std::vector<Point> points;
   std::string line;
   int number = 0;

@@ -182,6 +182,18 @@ disagree=$(paste -d, <(grep -v '^#' "$work/k12_fast/map_omega_mu.csv" | cut -d, 
 rows=$(grep -vc '^#' "$work/k12_full/map_omega_mu.csv")
 check "kappa=1e12 map: fast and full agree on every row ($disagree of $rows differ)" "[ $rows -gt 8000 ] && [ $disagree -eq 0 ]"
 
+# Inputs without end: a scene or a speed profile read from /dev/zero was read without limit
+# (memory growing until killed); now refused at 16 MiB / 256 MiB, exit 2, nothing written.
+if [ -r /dev/zero ]; then
+  timeout 20 "$bin" equilibria /dev/zero --format csv -o "$work/z.csv" 2>"$work/z.err"
+  check "a scene from /dev/zero: exit 2 naming the limit, nothing written" \
+    "[ $? -eq 2 ] && grep -q 'larger than 16 MiB' '$work/z.err' && [ ! -e '$work/z.csv' ]"
+  timeout 20 "$bin" simulate "$scene" --balls 1,2 --speed-profile /dev/zero --t-end 0.1 --no-chart -o "$work/zp" \
+    2>"$work/zp.err"
+  check "a speed profile from /dev/zero: exit 2 naming the limit, nothing written" \
+    "[ $? -eq 2 ] && grep -q 'larger than 256 MiB' '$work/zp.err' && [ ! -e '$work/zp' ]"
+fi
+
 # --- 5. exit codes, escapes, integers, overlaps, --set order -------------------------------
 "$bin" continue "$scene" --set omega=200 --param omega --to 400 --max-steps 2 --no-chart -o "$work/mx" 2>/dev/null
 check "a branch ending in MX exits 3" "[ $? -eq 3 ] && grep -q ',MX,' '$work/mx/special_omega.csv'"
