@@ -11,16 +11,15 @@
 #include <cstdio>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
-#include <sys/statvfs.h>
 
 #include "abu/core/errors.hpp"
 #include "abu/core/escaped.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/core/suggest.hpp"
 #include "abu/input/ranges.hpp"
 #include "abu/scan/map_mpi.hpp"
@@ -216,27 +215,6 @@ MapJob map_job(const Scene& scene, const MapRequest& request) {
 }
 
 namespace {
-// Free bytes on the file system that will hold `dir` (its nearest existing ancestor).
-std::optional<double> free_bytes(std::filesystem::path dir) {
-  std::error_code ec;
-  dir = std::filesystem::absolute(dir, ec);
-  while (!dir.empty() && !std::filesystem::exists(dir, ec) && dir != dir.parent_path()) dir = dir.parent_path();
-  struct statvfs fs {};
-  if (::statvfs(dir.c_str(), &fs) != 0) return std::nullopt;
-  return double(fs.f_bavail) * double(fs.f_frsize);
-}
-
-std::optional<double> available_memory() {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  double kb = 0;
-  std::string unit;
-  while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024;
-  return std::nullopt;
-}
-
-std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
 
 // Refuses (exit 2) a map whose tiles and CSVs cannot fit on the disk, or whose workers'
 // tiles cannot fit in memory, before any work (docs/robustness.md "Maps").

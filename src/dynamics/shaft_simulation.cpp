@@ -112,7 +112,7 @@ void check_shaft_input(const ShaftSystem& sys, const Eigen::VectorXd& x0, const 
                      fmt::format("a state of this shaft has 2 (4 N_nodes + n) = 2 (4 x {} + {}) = {} values (u1,u2,psi1,"
                                  "psi2 per node, beta1..beta{}, then their rates), got {}",
                                  sys.nodes(), n, dim, n, x0.size()));
-  check_simulation_input(o, dim, x0.data(), dim);
+  check_simulation_input(o, dim, x0.data(), dim, n);
 }
 
 // The stiffness probe (model.md §15.1, (18.16.5)): J at x0 with the balls at rest relative to the
@@ -213,6 +213,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
   run.unround_race = ode.unround();
   const double follow = probe_stiffness(ode, sys, x0, w_max, w_n, run);
   run.method = o.method;
+  run.memory_estimate = simulation_memory_estimate(o, sys.n_balls());
   if (o.method == IntegrationMethod::automatic)
     run.method = run.stiffness_ratio > o.stiffness_threshold ? IntegrationMethod::bsimp : IntegrationMethod::rk8pd;
 

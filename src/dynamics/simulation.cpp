@@ -15,6 +15,7 @@
 #include <mutex>
 
 #include "abu/core/errors.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/model/lugre.hpp"
 #include "dense_output.hpp"
 #include "scaled_control.hpp"
@@ -71,7 +72,16 @@ double natural_frequency(double k, double M) { return std::sqrt(k / M); }
 
 }  // namespace
 
-void check_simulation_input(const SimulationOptions& o, int dim, const double* x0, int size) {
+double simulation_memory_estimate(const SimulationOptions& o, int balls) {
+  if (!o.record) return 0;
+  const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
+  const double samples = std::ceil(o.t_end / every) + 2;
+  const double columns = 3.0 * balls + 9;
+  const double per_sample = double(sizeof(TrajectorySample<any_balls>)) + 8.0 * balls + 2 * 24 * columns;
+  return samples * per_sample;
+}
+
+void check_simulation_input(const SimulationOptions& o, int dim, const double* x0, int size, int balls) {
   if (!(std::isfinite(o.t_end) && o.t_end > 0))
     throw InputError("--t-end", 0, "", fmt::format("the end time must be > 0 s (got {})", o.t_end));
   if (!(o.every >= 0 && std::isfinite(o.every)))
@@ -79,6 +89,16 @@ void check_simulation_input(const SimulationOptions& o, int dim, const double* x
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
   if (o.record && o.t_end / every > 2e7)
     throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
+  if (const auto available = available_memory(); available && o.record) {
+    const double need = simulation_memory_estimate(o, balls);
+    if (need > 0.8 * *available)
+      throw InputError("--every", 0, "",
+                       fmt::format("the run would hold about {} ({:.3g} samples of {} balls: the samples and the CSV "
+                                   "text), more than 80 % of the {} this machine has available; use --every >= {:.3g} "
+                                   "s or a shorter --t-end",
+                                   gigabytes(need), o.t_end / every, balls, gigabytes(*available),
+                                   every * need / (0.8 * *available)));
+  }
   if (!(o.rtol >= 1e-14 && o.rtol < 0.1))
     throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in [1e-14, 0.1): below 1e-14 no double-precision step meets it (unit roundoff 1.1e-16) (got {})", o.rtol));
   if (size != dim)
@@ -137,12 +157,13 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   if (!RigidMachine{o.race, o.support}.base() && (N != any_balls || lugre))
     throw std::invalid_argument("simulate: an unround race or an anisotropic support runs with N = any_balls and a smooth law");
   const int n = ball_count(p), mech = 2 * n + 4, dim = lugre ? 3 * n + 4 : mech;
-  check_simulation_input(o, mech, x0.data(), int(x0.size()));
+  check_simulation_input(o, mech, x0.data(), int(x0.size()), n);
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
   if (!o.bristle_start.empty() && (!lugre || int(o.bristle_start.size()) != n))
     throw InputError("--from-state", 0, "", fmt::format("bristle states z(0) go with friction law 'lugre', one per ball ({})", n));
 
   SimulationResult<N> r;
+  r.memory_estimate = simulation_memory_estimate(o, n);
   const auto wall0 = std::chrono::steady_clock::now();
   const double L = displacement_scale(p);
   const double w_max = speed.max_omega();

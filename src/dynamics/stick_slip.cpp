@@ -239,7 +239,7 @@ StickSlipResult<N> simulate_stick_slip(const ParamsT<double, N>& p, const SpeedP
                                        const State<double, N>& x0, const SimulationOptions& o) {
   quiet_gsl_errors();
   const int n = ball_count(p), d = n + 2, dim = 2 * d;
-  check_simulation_input(o, dim, x0.data(), int(x0.size()));
+  check_simulation_input(o, dim, x0.data(), int(x0.size()), n);
   for (const auto& b : p.balls)
     if (!(b.mu > 0))
       throw NotSupportedError("coulomb-set stick-slip needs mu_i > 0 for every ball (model.md §14.2: with mu_i = 0 "

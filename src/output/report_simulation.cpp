@@ -170,6 +170,7 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
                      format_number(r.spectral_radius, "spectral radius"));
   out += fmt::format("  \"displacement_scale\": {},\n", format_number(r.displacement_scale, "L"));
   out += fmt::format("  \"start_below_resolution\": {},\n", r.start_below_resolution);
+  out += fmt::format("  \"memory_estimate\": {},\n", format_number(r.memory_estimate, "memory estimate"));
   out += fmt::format(
       "  \"stats\": {{\"steps\": {}, \"rejected\": {}, \"rhs_evaluations\": {}, \"jacobian_evaluations\": {}, "
       "\"restarts\": {}, \"wall_seconds\": {}}},\n",
@@ -187,6 +188,10 @@ std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& sp
   std::string out;
   out += fmt::format("simulate: {} to t = {:.6g} s ({}), method {} (stiffness ratio {:.3g})\n", to_string(r.status),
                      s.t_end, speed.describe(), to_string(r.method), r.stiffness_ratio);
+  if (r.memory_estimate > 1e8)
+    out += fmt::format("  memory: at most about {:.3g} GB held for the samples and the CSV text (estimated before "
+                       "the run)\n",
+                       r.memory_estimate / 1e9);
   if (r.start_below_resolution > 0)
     out += fmt::format("  start: {} component(s) below 1e-3 of their absolute tolerance (rtol times their scale, "
                        "model.md §15.1), integrated as 0\n",

@@ -59,6 +59,33 @@ s = json.load(open('$work/tiny$eps$m.json'))
 sys.exit(0 if s['outcome'] == 'balanced' and s['start_below_resolution'] > 0 else 1)\" && grep -q 'integrated as 0' '$work/tiny.err'"
   done
 done
+# Memory known before the work: a run's samples and CSV text are estimated before it starts
+# (printed and in the JSON); 11 balls, 2e5 samples: the peak (whole process, /usr/bin/time)
+# stays below it. Before, 1.9e7 samples of 11 balls were accepted and the run was killed by
+# the kernel at 24 GB; now a run estimated above 80 % of MemAvailable is refused up front.
+ring11=$src/data/scenes/ring11.toml
+balls11=0,0.5,1,1.5,2,2.5,3,3.5,4,4.5,5
+if [ -z "${ASAN_OPTIONS:-}" ]; then  # under the sanitizers the shadow memory is not the program's
+  /usr/bin/time -f %M -o "$work/mem.kb" "$bin" simulate "$ring11" --balls $balls11 --t-end 0.2 --every 1e-6 \
+    --no-chart -o "$work/mem" --summary "$work/mem.json" 2>"$work/mem.err"
+  estimate=$(/usr/bin/python3 -c "import json; print(int(json.load(open('$work/mem.json'))['memory_estimate']))")
+  peak=$(($(tail -1 "$work/mem.kb") * 1024))
+  check "11 balls, 2e5 samples: peak $((peak / 1000000)) MB below the printed estimate $((estimate / 1000000)) MB" \
+    "[ $peak -lt $estimate ] && grep -q 'memory: at most about' '$work/mem.err'"
+fi
+available=$(awk '/^MemAvailable:/ {print $2 * 1024}' /proc/meminfo)
+# 2 344 bytes a sample for 11 balls (simulation.hpp); the 2e7-sample cap must not come first.
+t_end=$(/usr/bin/python3 -c "print(f'{1.5 * $available / 2344 * 1e-6:.6g}')")
+if /usr/bin/python3 -c "import sys; sys.exit(0 if 1.5 * $available / 2344 < 2e7 else 1)"; then
+  mkdir -p "$work/huge"
+  (cd "$work/huge" && "$bin" simulate "$ring11" --balls $balls11 --t-end "$t_end" --every 1e-6 -o out \
+    --summary s.json 2>"$work/huge.err")
+  check "a run estimated at 1.5 times MemAvailable: exit 2 naming --every and the figures, nothing written" \
+    "[ $? -eq 2 ] && grep -q -- '--every: the run would hold about' '$work/huge.err' && [ -z \"\$(ls -A '$work/huge')\" ]"
+else
+  echo "skip (MemAvailable above 31 GB: the 2e7-sample cap refuses first)"
+fi
+
 printf 't,omega\n0,100\n0.01,150\n0.02,150\n' >"$work/profile.csv"
 "$bin" simulate "$src/data/scenes/ring11.toml" --speed-profile "$work/profile.csv" --t-end 0.02 \
   --balls 0,0.5,1,1.5,2,2.5,3,3.5,4,4.5,5 --no-chart -o "$work/n11" 2>"$work/n11.err"
