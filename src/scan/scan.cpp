@@ -97,6 +97,10 @@ std::vector<double> grid_values(double from, double to, int steps, bool logarith
   return values;
 }
 
+double sweep_memory_estimate(std::size_t values) {
+  return 20e6 + double(values) * (2.0 * double(sizeof(Analysis)) + 2 * 12.5e3);
+}
+
 SweepResult sweep(const Params& base, ParamRef param, const std::vector<double>& values) {
   SweepResult r;
   r.param = param;
