@@ -4,6 +4,7 @@
 // |q . n_i| <= mu_i l_i around a balanced point, model.md §14.3), and the refusals.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -147,4 +148,30 @@ TEST_CASE("stick set verdict: where the bound does not decide, the full scan's f
     CHECK(v.mean_q_abs == 0.0);  // not computed
   }
   CHECK(verdict(cases[0], o).whole_torus);
+}
+
+TEST_CASE("stick set: as mu -> 0 it shrinks onto the smooth equilibria, never empty", "[stick_set]") {
+  // Every smooth equilibrium is in E (tau = 0, model.md §14.2); its part of E has a width
+  // proportional to mu. At mu = 1e-20 that is ~1e-20 rad, below any column: the scan found
+  // nothing and reported "no balanced state", V_E = 0. Each equilibrium is now a point
+  // component: V within rounding of the balanced points' |q| = 0 (the first-order V is
+  // 3.6e-22 m; 1e-20 m allows the seeds' own rounding), V_E the largest |q| of an equilibrium,
+  // as at mu = 1e-8 (where the set is resolved) to 1e-4 (V_E moves by O(mu) relative).
+  const abu::StickSet resolved = abu::stick_set(rotor(2, 1e-8));
+  REQUIRE(resolved.balanced_exists);
+  CHECK(resolved.point_components == 0);
+  for (const double mu : {1e-20, 1e-300}) {
+    const abu::StickSet s = abu::stick_set(rotor(2, mu));
+    CHECK(s.balanced_exists);
+    CHECK(s.status.ok());
+    CHECK(s.point_components == int(s.seeds.size()));
+    CHECK(s.components.size() == s.seeds.size());
+    CHECK(s.seeds.size() == 6);
+    CHECK(s.area == 0.0);
+    CHECK(s.worst_q_abs < 1e-20);
+    double largest = 0;
+    for (const auto& sd : s.seeds) largest = std::max(largest, sd.q_abs);
+    CHECK(s.worst_q_abs_any == largest);
+    CHECK(s.worst_q_abs_any == Approx(resolved.worst_q_abs_any).epsilon(1e-4));
+  }
 }

@@ -73,6 +73,34 @@ std::optional<StickSet> whole_torus_by_bound(const StickModel& m, const std::vec
   S.components.push_back(std::move(c));
   return S;
 }
+// Every smooth equilibrium is in E (tau = 0, model.md §14.2), and as mu -> 0 its part of E
+// shrinks onto it, with a width proportional to mu: below the scan's resolution (mu = 1e-20
+// on the default scene: ~1e-20 rad) no column or grid point falls inside, and E came out
+// empty, "no balanced state". Such an equilibrium is kept as a component of its own, a point
+// of area 0 (below the resolution), |q| its own; V and V_E then hold to O(mu).
+void keep_unresolved_seeds(StickSet& S, int n) {
+  int added = 0;  // (S.point_components)
+  for (std::size_t k = 0; k < S.seeds.size(); ++k) {
+    StickSeed& sd = S.seeds[k];
+    if (sd.component >= 0) continue;
+    StickComponent c;
+    c.q_abs_max = sd.q_abs;
+    c.beta_at_max = sd.beta;
+    c.seeds = {int(k)};
+    if (sd.anchor) c.balanced_points = {int(k)};
+    c.spread.assign(std::size_t(n), 0.0);
+    sd.component = int(S.components.size());
+    S.components.push_back(std::move(c));
+    ++added;
+    if (sd.q_abs > S.worst_q_abs_any) S.worst_q_abs_any = sd.q_abs, S.worst_beta_any = sd.beta;
+    if (!sd.anchor) continue;
+    if (!S.balanced_exists || sd.q_abs > S.worst_q_abs) S.worst_q_abs = sd.q_abs, S.worst_beta = sd.beta;
+    if (!S.balanced_exists) S.status = Status{};  // "no balanced state in the stick set" no longer holds
+    S.balanced_exists = true;
+  }
+  S.point_components = added;
+}
+
 }  // namespace
 
 StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
@@ -113,6 +141,7 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options) {
       return *whole;
     }
   StickSet S = m.n == 2 ? two_ball_set(m, options, std::move(seeds)) : sampled_set(m, options, std::move(seeds));
+  keep_unresolved_seeds(S, m.n);
   const double bare = std::abs(m.G) * m.U;
   S.bare_rotor_q_abs = bare;
   return S;

@@ -252,9 +252,13 @@ std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view pre
                                                              : "§14");
   if (!d.set) return out + fmt::format("not defined: {}\n", d.not_defined);
   const StickSet& s = *d.set;
-  const std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
-                                      s.area, s.n_balls, s.area_fraction, s.whole_torus ? ": every arrangement sticks" : "",
-                                      s.components.size(), s.components.size() == 1 ? "" : "s");
+  std::string set = fmt::format("the stick set has area {:.6g} rad^{} ({:.4g} of the torus{}), {} component{}",
+                                s.area, s.n_balls, s.area_fraction, s.whole_torus ? ": every arrangement sticks" : "",
+                                s.components.size(), s.components.size() == 1 ? "" : "s");
+  if (s.point_components > 0)
+    set += fmt::format(" ({} of them a smooth equilibrium alone: its part of the set, whose width shrinks with mu, is "
+                       "narrower than the scan's resolution)",
+                       s.point_components);
   if (s.balanced_exists)
     out += fmt::format("the balls stick inside the set, residual vibration at most V = {:.6g} m ({:.3g} x the rotor "
                        "without balls, {:.6g} m; V_E = {:.6g} m over the whole set); {}\n",

@@ -131,7 +131,6 @@ void CellAnalyzer::decide(Tracked& t, const Polynomial& p, const Linearization<l
   if (sp.n_marginal > 0 && !t.equilibrium.singular()) second_opinion(sp, p, m);
 }
 
-
 void CellAnalyzer::analyze(int ix, int iy, MapCell& out) {
   if (ix != column_) start_column(ix);
   out = MapCell{};

@@ -1,4 +1,5 @@
-// libFuzzer target for the scene parser and --set (docs/robustness.md "Fuzzing").
+// libFuzzer target for the scene parser, --set and the checks and machine building that
+// follow them in every command (docs/robustness.md "Fuzzing").
 // Input: a scene's TOML text, then optionally a NUL byte and `--set` assignments, one per
 // line. Bad input must end in InputError / NotSupportedError (exit 2 in the CLI); any
 // other exception, a crash, a sanitizer report or an assertion is a finding.
@@ -9,7 +10,13 @@
 
 #include "abu/core/errors.hpp"
 #include "abu/core/params.hpp"
+#include "abu/analysis/machine_parts.hpp"
+#include "abu/analysis/shaft_states.hpp"
+#include "abu/input/plausibility.hpp"
+#include "abu/input/race_scene.hpp"
+#include "abu/input/ranges.hpp"
 #include "abu/input/scene.hpp"
+#include "abu/input/shaft_scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
@@ -26,6 +33,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (scene.balls.size() == 2) (void)abu::params_of<2>(scene);
     (void)abu::params_of<abu::any_balls>(scene);
+    // What every command does next with the scene's parts (the race, the support, the shaft,
+    // the [simulate] table, a ring): the checks and the building of the machine.
+    (void)abu::implausible_values(scene);
+    (void)abu::numerical_range_violation(scene);
+    (void)abu::route_of(scene);
+    if (!scene.race.round()) (void)abu::race_shape(scene);
+    if (scene.shaft) {
+      (void)abu::shaft_warnings(scene);
+      abu::check_shaft_range(scene, "fuzz");
+      if (scene.shaft->nodes() <= 64) (void)abu::shaft_system_of(scene);  // bounded work per input
+    }
   } catch (const abu::InputError&) {
   } catch (const abu::NotSupportedError&) {
   }

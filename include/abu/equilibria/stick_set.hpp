@@ -88,6 +88,9 @@ struct StickSet {
   bool whole_torus = false;     ///< every arrangement sticks
   double max_abs_s = 0.0;       ///< max over the torus of max_i |s_i| (sampled): E = T^n iff <= 1
   std::vector<StickComponent> components;
+  /// Components that are a smooth equilibrium alone, its part of E narrower than the scan's
+  /// resolution (small mu: the width shrinks with mu), area 0, |q| the equilibrium's.
+  int point_components = 0;
   std::vector<StickSeed> seeds;
   /// What anchors V (StickSeed::anchor): "balanced point", or "least-|q| stable equilibrium of the
   /// race" on an unround race (model.md §20.5); the fields named balanced_* below mean the anchor.
