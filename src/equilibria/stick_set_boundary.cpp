@@ -48,10 +48,11 @@ struct Tracer {
     std::vector<std::array<double, 2>> pts{start};
     double b[2] = {start[0], start[1]};
     closed = false;
-    const int max_steps = int(40.0 * two_pi / step) + 1000;
+    // (in double first: at mu = 1e-20 the step is ~1e-16 rad and 40 turns overflow an int)
+    const long max_steps = long(std::min(40.0 * two_pi / step, 1e8)) + 1000;
     int out_steps = 0;
     std::array<double, 2> dir{};
-    for (int k = 0; k < max_steps; ++k) {
+    for (long k = 0; k < max_steps; ++k) {
       const auto g = gradient(i, b);
       const double gn = std::hypot(g[0], g[1]);
       if (!(gn > 0)) break;
@@ -104,7 +105,9 @@ std::vector<StickBoundaryArc> trace_boundary(const StickModel& m, const AxisAnal
   }
   // spatial hash of traced points per curve
   const double cell = 2.0 * step;
-  const int cells = std::max(1, int(two_pi / cell));
+  // At most 2^30 cells a side (the keys, cx * cells + cy, fit a long): a step of 1e-16 rad
+  // (mu = 1e-20) made two_pi / cell overflow an int.
+  const long cells = std::max(1L, long(std::min(two_pi / cell, double(1L << 30))));
   std::vector<std::unordered_map<long, char>> seen(4);
   auto key = [&](double x, double y) {
     const long cx = long(wrap(x) / two_pi * cells) % cells, cy = long(wrap(y) / two_pi * cells) % cells;
