@@ -62,6 +62,16 @@ struct ScaledControlState {
   }
 };
 
+// Start components nonzero but below 1e-3 of their absolute tolerance rtol * scale_i are set
+// to 0 and counted (SimulationResult::start_below_resolution): below what the run resolves,
+// and GSL's bsimp, which weighs a change by |y_i|, takes any change of one for a runaway.
+inline int zero_below_resolution(double* y, int dim, const ScaledControlState& s, double rtol) {
+  int zeroed = 0;
+  for (int i = 0; i < dim; ++i)
+    if (y[i] != 0.0 && std::abs(y[i]) < 1e-3 * rtol * s.scale[std::size_t(i)]) y[i] = 0.0, ++zeroed;
+  return zeroed;
+}
+
 inline void* scaled_alloc() { return new (std::nothrow) ScaledControlState; }
 inline int scaled_init(void* vs, double eps_abs, double, double, double) {
   static_cast<ScaledControlState*>(vs)->rtol = eps_abs;

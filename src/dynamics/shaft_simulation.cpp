@@ -233,10 +233,7 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     throw NumericalError(fmt::format("simulate: GSL control init: {}", gsl_strerror(st)));
 
   std::vector<double> y(x0.data(), x0.data() + dim), x_sample(y.size());
-  // As the rigid route (simulation.hpp, start_below_resolution): below the run's resolution is 0.
-  for (int i = 0; i < dim; ++i)
-    if (y[std::size_t(i)] != 0.0 && std::abs(y[std::size_t(i)]) < 1e-3 * o.rtol * cs->scale[std::size_t(i)])
-      y[std::size_t(i)] = 0.0, ++run.start_below_resolution;
+  run.start_below_resolution = zero_below_resolution(y.data(), dim, *cs, o.rtol);
   double t = 0, h = h0;
   const auto record = [&](double time, const double* x) {
     if (!o.record) return;

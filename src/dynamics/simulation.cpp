@@ -251,8 +251,7 @@ SimulationResult<N> simulate(const ParamsT<double, N>& p, const SpeedProfile& sp
   double y[lugre_state_capacity];
   for (int i = 0; i < mech; ++i) y[i] = x0(i);
   for (int i = mech; i < dim; ++i) y[i] = o.bristle_start.empty() ? 0.0 : o.bristle_start[std::size_t(i - mech)];
-  for (int i = 0; i < dim; ++i)
-    if (y[i] != 0.0 && std::abs(y[i]) < 1e-3 * o.rtol * cs->scale[std::size_t(i)]) y[i] = 0.0, ++r.start_below_resolution;
+  r.start_below_resolution = zero_below_resolution(y, dim, *cs, o.rtol);
   r.bristle_count = dim - mech;
   double t = 0, h = h0;
   const auto record = [&](double time, const double* x) {
