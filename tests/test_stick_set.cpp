@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 
 #include "abu/core/errors.hpp"
 #include "abu/equilibria/stick_set.hpp"
@@ -71,6 +72,49 @@ TEST_CASE("stick set: small mu, V approaches the parallelogram vertex", "[stick_
   int balanced_components = 0;
   for (const auto& c : s.components) balanced_components += !c.balanced_points.empty();
   CHECK(balanced_components == 2);
+}
+
+TEST_CASE("stick set: the mirror islands of equal balls have equal areas", "[stick_set]") {
+  // Equal balls: E is symmetric under beta_1 <-> beta_2, so the "opposite" island at
+  // (0.020, 3.162) and its mirror at (3.162, 0.020) have one area (and one mean |q|). The
+  // scan crosses the first in columns of beta_1 and the second within them, each area an
+  // adaptive Simpson over beta_1 (model.md §14.3). The components' areas were the columns'
+  // trapezoid rescaled to the total: the first island, wider in beta_1 than the dense columns
+  // at its seed, had its last arcs weighted by half a uniform gap, and came out 5.30e-5 rad^2
+  // against 4.24e-5 at mu = 1e-6, 4.433e-3 against 4.426e-3 at mu = 1e-5.
+  // mu = 1e-6: each area within the Simpson tolerance, 1e-10 rad^2 per rad of beta_1, so the
+  // two within 2 pi 1e-10 (they agree to 8e-12). mu = 1e-5: 1e-4 relative, the area's accuracy
+  // (tests/reference/stick_set_reference.py): the island's thin tip along beta_1 (1e-4 rad
+  // across, beyond the dense samples) is partly shorter than the beta_2 sample step, and the
+  // scan misses 4e-8 rad^2 of it (9e-6 relative; the mirror's tip lies across the columns).
+  abu::StickSetOptions o;
+  o.trace = false;
+  for (const auto& [mu, tolerance] : {std::pair{1e-6, two_pi * o.area_tolerance}, std::pair{1e-5, 1e-4 * 4.43e-3}}) {
+    CAPTURE(mu);
+    const abu::StickSet s = abu::stick_set(rotor(2, mu), o);
+    REQUIRE(s.components.size() == 6);
+    std::vector<const abu::StickSeed*> opposite;
+    for (const auto& sd : s.seeds)
+      if (sd.family == "opposite") opposite.push_back(&sd);
+    REQUIRE(opposite.size() == 2);
+    REQUIRE(opposite[0]->component >= 0);
+    REQUIRE(opposite[1]->component >= 0);
+    REQUIRE(opposite[0]->component != opposite[1]->component);
+    const abu::StickComponent& x = s.components[std::size_t(opposite[0]->component)];
+    const abu::StickComponent& y = s.components[std::size_t(opposite[1]->component)];
+    CHECK(std::fabs(x.area - y.area) <= tolerance);
+    // the island is O(mu) wide, |q| on it within O(mu) of the seed's (its max 1.1e-4 above
+    // at mu = 1e-6, 7e-4 at 1e-5): the mean |q| too (the rescaled trapezoid gave 5.30e-6 m
+    // at mu = 1e-6, the seed's |q| being 5.414e-6 m)
+    for (const abu::StickComponent* c : {&x, &y}) {
+      CHECK(c->q_abs_integral / c->area <= c->q_abs_max);
+      CHECK(c->q_abs_integral / c->area >= opposite[0]->q_abs * (1 - 1e-3));
+    }
+    // every arc is attributed to a component: their areas sum to the total
+    double sum = 0.0;
+    for (const auto& c : s.components) sum += c.area;
+    CHECK(sum == Approx(s.area).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("stick set: n = 3 on a grid, large mu", "[stick_set]") {

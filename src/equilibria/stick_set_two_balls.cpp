@@ -4,7 +4,7 @@
 #include "stick_set_model.hpp"
 
 #include <algorithm>
-#include <numeric>
+#include <utility>
 #include <unordered_map>
 
 #include "abu/core/cancel.hpp"
@@ -34,64 +34,7 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
   AxisAnalysis A = analyze_axis(scan1, cols1);
   S.resolution = smallest_width;
 
-  // --- area and integral of |q|: adaptive Simpson over beta_1 on each panel.
-  // (verdict_only: the |q| integral, v[1], stays 0; the area's panels are the same)
-  const bool integrals = !o.verdict_only;
-  auto column_values = [&](double c) {
-    std::array<double, 2> v{0.0, 0.0};
-    for (const auto& arc : scan1.arcs(wrap(c))) {
-      v[0] += arc.length();
-      if (integrals) v[1] += scan1.q_abs_integral(wrap(c), arc);
-    }
-    return v;
-  };
-  struct Panel {
-    double a, b;
-    std::array<double, 2> fa, fm, fb;
-    int depth;
-  };
-  double area = 0.0, qint = 0.0;
-  std::vector<std::array<double, 2>> at_column(A.columns.size());
-  for (std::size_t j = 0; j < A.columns.size(); ++j) {
-    double L = 0.0;
-    for (const auto& arc : A.columns[j].arcs) L += arc.length();
-    at_column[j] = {L, 0.0};
-    if (integrals)
-      for (const auto& arc : A.columns[j].arcs) at_column[j][1] += scan1.q_abs_integral(A.columns[j].column, arc);
-  }
-  for (std::size_t j = 0; j < A.columns.size(); ++j) {
-    throw_if_stopped("stick set");
-    const std::size_t jn = (j + 1) % A.columns.size();
-    const double a = A.columns[j].column;
-    const double b = jn == 0 ? two_pi : A.columns[jn].column;
-    std::vector<Panel> stack{{a, b, at_column[j], column_values(0.5 * (a + b)), at_column[jn], 0}};
-    while (!stack.empty()) {
-      const Panel P = stack.back();
-      stack.pop_back();
-      const double h = P.b - P.a;
-      const double l = P.a + 0.25 * h, r = P.a + 0.75 * h;
-      const auto fl = column_values(l), fr = column_values(r);
-      std::array<double, 2> coarse{}, fine{};
-      for (int k = 0; k < 2; ++k) {
-        coarse[std::size_t(k)] = h / 6 * (P.fa[std::size_t(k)] + 4 * P.fm[std::size_t(k)] + P.fb[std::size_t(k)]);
-        fine[std::size_t(k)] = h / 12 *
-                               (P.fa[std::size_t(k)] + 4 * fl[std::size_t(k)] + 2 * P.fm[std::size_t(k)] +
-                                4 * fr[std::size_t(k)] + P.fb[std::size_t(k)]);
-      }
-      const double err = std::fabs(fine[0] - coarse[0]);
-      if (err <= 15.0 * o.area_tolerance * h || P.depth >= 24) {
-        area += fine[0] + (fine[0] - coarse[0]) / 15.0;
-        qint += fine[1] + (fine[1] - coarse[1]) / 15.0;
-      } else {
-        stack.push_back({P.a, P.a + 0.5 * h, P.fa, fl, P.fm, P.depth + 1});
-        stack.push_back({P.a + 0.5 * h, P.b, P.fm, fr, P.fb, P.depth + 1});
-      }
-    }
-  }
-  S.area = std::clamp(area, 0.0, two_pi * two_pi);
-  S.area_fraction = S.area / (two_pi * two_pi);
-
-  // --- components
+  // --- components: the linked arcs of the scan (stick_set_columns.cpp)
   std::unordered_map<int, int> comp_of_root;
   for (auto& col : A.columns)
     for (int node : col.node) {
@@ -106,33 +49,171 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
   S.whole_torus = std::all_of(A.columns.begin(), A.columns.end(), [](const ColumnData& c) {
     return c.arcs.size() == 1 && c.arcs[0].length() >= two_pi;
   });
+  const int n_comp = int(S.components.size());
 
-  // per-component area and |q| integral (trapezoid on the columns; the totals above are
-  // the accurate ones, these split them), best column for the maximum
+  // --- area and integral of |q|: adaptive Simpson over beta_1 on each panel between two scan
+  // columns, of E and of each component in the same panels (model.md §14.3); the error test
+  // holds for each component's area, not only for their sum. An arc on a column inside a panel
+  // belongs to the component of an arc on the panel's end columns it overlaps or is linked to
+  // (the test that joins neighbouring columns, component_of below). The components' areas were
+  // the columns' trapezoid, rescaled to the total: an island wider in beta_1 than the dense
+  // columns around its seed (an "opposite" one; its mirror is the wider in beta_2) has arcs on
+  // its last dense column, next to a uniform gap, and the trapezoid gave them half that gap
+  // (4e-3 rad; the island is 2e-4 rad wide at mu = 1e-8): it came out 25 % larger than its
+  // mirror at mu = 1e-6 and 23 times at 1e-8, the rescaling moving the excess onto the others.
+  // (verdict_only: the |q| integrals stay 0; the panels are the same)
+  const bool integrals = !o.verdict_only;
+  std::vector<int> comp_of_node(A.uf.parent.size());
+  for (auto& col : A.columns)
+    for (int node : col.node) comp_of_node[std::size_t(node)] = comp_of_root[A.uf.find(node)];
+  // one column's values: the totals (length of E on it, integral of |q|) and per component
+  struct Values {
+    std::array<double, 2> total{0.0, 0.0};
+    std::vector<std::pair<int, std::array<double, 2>>> part;  // (component, its values); -1: none
+    void add(int c, double length, double q) {
+      total[0] += length;
+      total[1] += q;
+      for (auto& [k, v] : part)
+        if (k == c) {
+          v[0] += length, v[1] += q;
+          return;
+        }
+      part.push_back({c, {length, q}});
+    }
+    std::array<double, 2> of(int c) const {
+      for (const auto& [k, v] : part)
+        if (k == c) return v;
+      return {0.0, 0.0};
+    }
+  };
+  std::vector<Values> at_column(A.columns.size());
+  for (std::size_t j = 0; j < A.columns.size(); ++j) {
+    const auto& col = A.columns[j];
+    for (std::size_t k = 0; k < col.arcs.size(); ++k)
+      at_column[j].add(comp_of_node[std::size_t(col.node[k])], col.arcs[k].length(),
+                       integrals ? scan1.q_abs_integral(col.column, col.arcs[k]) : 0.0);
+  }
+  // the component of arc z of the column at c, inside the panel between scan columns j (at a)
+  // and jn (at b): of an arc of theirs it overlaps or is linked to; else of the nearest column
+  // beyond them, within one uniform column step of c, with such an arc (a tip whose arcs on the
+  // panel's columns were shorter than the sample step, which the scan missed); else -1
+  const std::size_t N = A.columns.size();
+  const double uniform_step = two_pi / o.columns;
+  auto component_of = [&](std::size_t j, double a, std::size_t jn, double b, double c, const Arc& z) {
+    // column i at position x (x < c: left of c), by overlap or, with `link`, by linked()
+    auto found_in = [&](std::size_t i, double x, bool link) {
+      const auto& col = A.columns[i];
+      for (std::size_t k = 0; k < col.arcs.size(); ++k)
+        if (link ? (x < c ? linked(scan1, x, col.arcs[k], c, z, 6) : linked(scan1, c, z, x, col.arcs[k], 6))
+                 : arcs_overlap(col.arcs[k], z))
+          return comp_of_node[std::size_t(col.node[k])];
+      return -1;
+    };
+    for (const bool link : {false, true})
+      for (const auto& [i, x] : {std::pair{j, a}, std::pair{jn, b}})
+        if (const int found = found_in(i, x, link); found >= 0) return found;
+    for (std::size_t d = 1; 2 * d < N; ++d) {
+      const std::size_t left = (j + N - d) % N, right = (jn + d) % N;
+      const double to_left = wrap(c - A.columns[left].column), to_right = wrap(A.columns[right].column - c);
+      if (to_left > uniform_step && to_right > uniform_step) break;
+      for (const bool left_first : {to_left <= to_right, to_left > to_right}) {
+        const double dist = left_first ? to_left : to_right;
+        if (dist > uniform_step) continue;
+        const std::size_t i = left_first ? left : right;
+        const double x = left_first ? c - to_left : c + to_right;
+        for (const bool link : {false, true})
+          if (const int found = found_in(i, x, link); found >= 0) return found;
+      }
+    }
+    return -1;
+  };
+  struct Panel {
+    double a, b;
+    Values fa, fm, fb;
+    int depth;
+  };
+  double area = 0.0, qint = 0.0;
+  std::vector<std::array<double, 2>> comp_sum(std::size_t(n_comp) + 1, {0.0, 0.0});  // last: no component
+  std::vector<int> present;
+  std::vector<std::array<std::array<double, 2>, 2>> parts;
+  for (std::size_t j = 0; j < A.columns.size(); ++j) {
+    throw_if_stopped("stick set");
+    const std::size_t jn = (j + 1) % A.columns.size();
+    const double a = A.columns[j].column;
+    const double b = jn == 0 ? two_pi : A.columns[jn].column;
+    auto column_values = [&](double c) {
+      Values v;
+      for (const auto& arc : scan1.arcs(wrap(c)))
+        v.add(component_of(j, a, jn, b, c, arc), arc.length(), integrals ? scan1.q_abs_integral(wrap(c), arc) : 0.0);
+      return v;
+    };
+    std::vector<Panel> stack{{a, b, at_column[j], column_values(0.5 * (a + b)), at_column[jn], 0}};
+    while (!stack.empty()) {
+      Panel P = std::move(stack.back());
+      stack.pop_back();
+      const double h = P.b - P.a;
+      const double l = P.a + 0.25 * h, r = P.a + 0.75 * h;
+      const Values fl = column_values(l), fr = column_values(r);
+      // Simpson on three and on five points, their difference the error estimate
+      auto simpson = [&](const std::array<double, 2>& fa, const std::array<double, 2>& f_l,
+                         const std::array<double, 2>& fm, const std::array<double, 2>& f_r,
+                         const std::array<double, 2>& fb) {
+        std::array<std::array<double, 2>, 2> cf{};  // {coarse, fine}
+        for (std::size_t k = 0; k < 2; ++k) {
+          cf[0][k] = h / 6 * (fa[k] + 4 * fm[k] + fb[k]);
+          cf[1][k] = h / 12 * (fa[k] + 4 * f_l[k] + 2 * fm[k] + 4 * f_r[k] + fb[k]);
+        }
+        return cf;
+      };
+      const auto total = simpson(P.fa.total, fl.total, P.fm.total, fr.total, P.fb.total);
+      present.clear();
+      for (const Values* v : {&std::as_const(P.fa), &fl, &std::as_const(P.fm), &fr, &std::as_const(P.fb)})
+        for (const auto& part : v->part)
+          if (std::find(present.begin(), present.end(), part.first) == present.end()) present.push_back(part.first);
+      // the error estimate: of each component's area, not only of their sum (theirs may cancel);
+      // with one component present its values are the total's, bit for bit
+      double err = std::fabs(total[1][0] - total[0][0]);
+      parts.clear();
+      if (present.size() > 1) {
+        double err_parts = 0.0;
+        for (int c : present) {
+          parts.push_back(simpson(P.fa.of(c), fl.of(c), P.fm.of(c), fr.of(c), P.fb.of(c)));
+          err_parts += std::fabs(parts.back()[1][0] - parts.back()[0][0]);
+        }
+        err = std::max(err, err_parts);
+      }
+      if (err <= 15.0 * o.area_tolerance * h || P.depth >= 24) {
+        area += total[1][0] + (total[1][0] - total[0][0]) / 15.0;
+        qint += total[1][1] + (total[1][1] - total[0][1]) / 15.0;
+        for (std::size_t i = 0; i < present.size(); ++i) {
+          const auto& cf = parts.empty() ? total : parts[i];
+          auto& sum = comp_sum[present[i] < 0 ? std::size_t(n_comp) : std::size_t(present[i])];
+          for (std::size_t k = 0; k < 2; ++k) sum[k] += cf[1][k] + (cf[1][k] - cf[0][k]) / 15.0;
+        }
+      } else {
+        stack.push_back({P.a, P.a + 0.5 * h, P.fa, fl, P.fm, P.depth + 1});
+        stack.push_back({P.a + 0.5 * h, P.b, std::move(P.fm), fr, std::move(P.fb), P.depth + 1});
+      }
+    }
+  }
+  S.area = std::clamp(area, 0.0, two_pi * two_pi);
+  S.area_fraction = S.area / (two_pi * two_pi);
+
+  // best column of each component for the maximum
   struct Best {
     double w2 = -1.0;
     int column = -1, arc = -1;
     double along = 0.0;
   };
   std::vector<Best> best(S.components.size());
-  std::vector<double> comp_area(S.components.size(), 0.0), comp_q(S.components.size(), 0.0);
-  const std::size_t N = A.columns.size();
-  for (std::size_t j = 0; j < N; ++j) {
-    const std::size_t jn = (j + 1) % N, jp = (j + N - 1) % N;
-    double dnext = (jn == 0 ? two_pi : A.columns[jn].column) - A.columns[j].column;
-    double dprev = A.columns[j].column - (j == 0 ? A.columns[jp].column - two_pi : A.columns[jp].column);
-    const double weight = 0.5 * (dnext + dprev);
+  for (std::size_t j = 0; j < A.columns.size(); ++j) {
     const auto& col = A.columns[j];
     for (std::size_t k = 0; k < col.arcs.size(); ++k) {
-      const int c = comp_of_root[A.uf.find(col.node[k])];
-      comp_area[std::size_t(c)] += weight * col.arcs[k].length();
-      if (integrals) comp_q[std::size_t(c)] += weight * scan1.q_abs_integral(col.column, col.arcs[k]);
+      const int c = comp_of_node[std::size_t(col.node[k])];
       const auto [w2, along] = scan1.max_w2(col.column, col.arcs[k]);
       if (w2 > best[std::size_t(c)].w2) best[std::size_t(c)] = {w2, int(j), int(k), along};
     }
   }
-  const double trapezoid_area = std::accumulate(comp_area.begin(), comp_area.end(), 0.0);
-  const double trapezoid_q = std::accumulate(comp_q.begin(), comp_q.end(), 0.0);
 
   // refine each component's maximum (stick_set_maxima.cpp)
   const double gabs = std::abs(m.G);
@@ -146,10 +227,8 @@ StickSet two_ball_set(const StickModel& m, const StickSetOptions& o,
                                  4.0 * std::max(two_pi / o.samples, S.resolution));
     comp.q_abs_max = gabs * std::sqrt(std::max(0.0, top.w2));
     comp.beta_at_max = {top.column, top.along};
-    const double scale_a = trapezoid_area > 0 ? S.area / trapezoid_area : 0.0;
-    const double scale_q = trapezoid_q > 0 ? qint / trapezoid_q : 0.0;
-    comp.area = comp_area[c] * scale_a;
-    comp.q_abs_integral = comp_q[c] * scale_q;
+    comp.area = std::clamp(comp_sum[c][0], 0.0, two_pi * two_pi);
+    comp.q_abs_integral = std::max(0.0, comp_sum[c][1]);
   }
 
   // seeds in components

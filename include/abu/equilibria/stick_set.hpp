@@ -55,7 +55,7 @@ struct StickBoundaryArc {
 
 /// One connected component of E.
 struct StickComponent {
-  double area = 0.0;          ///< [rad^n]
+  double area = 0.0;          ///< [rad^n]; two balls: its own adaptive Simpson, in the panels of StickSet::area
   double q_abs_max = 0.0;     ///< max |q| on the component [m]
   std::vector<double> beta_at_max;  ///< where it is attained [rad]
   double q_abs_integral = 0.0;  ///< integral of |q| over the component [m rad^n]
