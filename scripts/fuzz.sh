@@ -17,6 +17,9 @@ mkdir -p "$corpus"
 find data tests/scenes -name '*.toml' -exec cp {} "$corpus/" \;
 # Seeds with --set lines after a NUL byte.
 printf '%s\0omega=1e155\nm=0.02\nr=0.03\nl=0.2\n' "$(cat data/scenes/default.toml)" >"$corpus/with_sets"
+# Seeds with option values after a second NUL byte (a list, a grid, a ramp, a parameter).
+printf '%s\0omega=300\n\000mu2\n2, 4.5,1e-3\n40x30\n100:400:200\n1e308:1e-308:1e308\n' \
+  "$(cat data/scenes/default.toml)" >"$corpus/with_values"
 # The two toml++ 3.3 traps, guarded by src/input/toml_guard.cpp.
 printf '[rotor]\nmass = 1\xc3\xa9\n' >"$corpus/nonascii_after_number"
 printf '[# speed]\nomega = 1\n' >"$corpus/hash_in_header"

@@ -3,8 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/analysis/machine_parts.hpp"
 #include "abu/core/widen_params.hpp"
 #include "abu/input/race_scene.hpp"
@@ -126,7 +129,23 @@ template std::vector<KappaSensitivity<2>> kappa_sensitivities<Analysis, 2>(const
 template std::vector<KappaSensitivity<any_balls>> kappa_sensitivities<AnalysisN, any_balls>(const AnalysisN&,
                                                                                            const ParamsN&);
 
+EquilibriaEstimate equilibria_estimate(const Scene& scene, const EquilibriaOptions& o) {
+  const int n = int(scene.balls.size());
+  const double balanced = n >= 3 ? balanced_grid_points(n, o.sampling) : 2.0;
+  const double aligned = 3.0 * std::ldexp(1.0, n);
+  const bool dry = scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck ||
+                   scene.law == FrictionLaw::coulomb_set;
+  const double grid = dry && n >= 3 ? std::pow(std::floor(std::pow(double(o.stick.grid_budget), 1.0 / n)), n) : 0.0;
+  return {balanced + aligned, 60e6 + balanced * (10e3 + o.output_bytes_per_state) +
+                                  aligned * 2 * (12e3 + o.output_bytes_per_state) + 16 * grid};
+}
+
 EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions& o) {
+  const EquilibriaEstimate estimate = equilibria_estimate(scene, o);
+  require_memory(estimate.memory, "--set-samples", "the equilibria",
+                 fmt::format("up to {:.0f} states of {} balls with their spectra and text", estimate.states,
+                             scene.balls.size()),
+                 "use a smaller --set-samples (or --stick-grid)");
   EquilibriaReport r;
   const Route route = route_of(scene);
   if (!o.stuck_balls.empty() && route != Route::lugre)

@@ -23,6 +23,7 @@
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/dynamics/simulation.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/output/format.hpp"
 #include "abu/output/files.hpp"
@@ -47,23 +48,6 @@ struct BasinOptions {
   int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   bool resume = false, fresh = false, chart = true, progress = false, quiet = false;
 };
-
-// "N" or "N1xN2": cells per axis, 2..1000.
-std::pair<int, int> parse_grid(const std::string& text) {
-  const auto x = text.find('x');
-  auto one = [&](std::string_view s) {
-    int v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size() || v < 2 || v > 1000)
-      throw InputError("--grid", 0, text, "expected N or N1xN2, cells per axis, integers in 2..1000");
-    return v;
-  };
-  if (x == std::string::npos) {
-    const int n = one(text);
-    return {n, n};
-  }
-  return {one(std::string_view(text).substr(0, x)), one(std::string_view(text).substr(x + 1))};
-}
 
 // The fraction table: balanced first, then the aligned patterns and the unround race's states
 // (equilibria, orbits), periodic, stuck, not settled.
@@ -162,7 +146,7 @@ Action add_basin_command(CLI::App& app) {
                 : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
                 : scene.simulate && scene.simulate->speed ? *scene.simulate->speed
                                                           : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
-    const auto [c1, c2] = parse_grid(b.grid);
+    const auto [c1, c2] = parse_cell_grid(b.grid, "--grid");
     job.cells1 = c1;
     job.cells2 = c2;
     if (!b.fixed.empty()) {
@@ -247,6 +231,15 @@ Action add_basin_command(CLI::App& app) {
     const fs::path csv_path = dir / "basin.csv", fractions_path = dir / "basin_fractions.csv",
                    json_path = dir / "basin.json", png_path = dir / "basin.png";
     const fs::path tiles_dir = dir / ".basin.tiles";
+    const BasinEstimate estimate = basin_estimate(job, b.threads);
+    require_memory(estimate.memory, estimate.runs > estimate.cells ? "--every" : "--grid", "the basin",
+                   fmt::format("{} workers' recorded runs and {} cells' text", std::max(1, std::min(b.threads, job.cells1)),
+                               job.cells1 * job.cells2),
+                   estimate.runs > estimate.cells ? "use a longer --every, a shorter --t-end or fewer --threads"
+                                                  : "use a smaller --grid");
+    require_disk(estimate.disk, dir, "-o", "the basin", fmt::format("{} cells: tiles, then CSV", job.cells1 * job.cells2),
+                 "use a smaller --grid or write elsewhere");
+    if (estimate.memory > 1e8) fmt::print(stderr, "basin: memory: at most about {}\n", gigabytes(estimate.memory));
     const TiledRunFlags flags{b.resume, b.fresh, b.progress, b.quiet, b.threads};
     const TileStore store(tiles_dir, basin_manifest(job), job.cells1, tile_store_mode(flags));
     const std::optional<FinishedTiles> counts = run_missing_tiles(store, tiles_dir, job.cells1, flags,

@@ -136,24 +136,6 @@ std::string in_si(const SceneOptions& options, const std::string& assignment) {
 }
 }  // namespace
 
-std::vector<double> parse_real_list(const std::string& text, const std::string& option) {
-  std::vector<double> v;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    std::string_view item(text.data() + start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    double x = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x))
-      throw InputError(option, 0, "", fmt::format("expected a comma-separated list of finite reals, got '{}'", text));
-    v.push_back(x);
-    start = comma + 1;
-  }
-  return v;
-}
-
 // The overrides do not depend on their order for being accepted: a rule between two
 // values (r < l) is judged on the final scene. They are applied in the given order; one
 // refused only because of a value a later override changes is applied again after the

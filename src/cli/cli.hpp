@@ -9,6 +9,7 @@
 
 #include "abu/core/speed_units.hpp"
 #include "abu/analysis/machine_parts.hpp"
+#include "abu/input/option_values.hpp"
 #include "abu/input/scene.hpp"
 
 namespace abu::cli {
@@ -38,10 +39,7 @@ double omega_input(const SceneOptions& options, double typed);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);
-/// A comma-separated list of finite reals ("2, 4.5,1e-3"; spaces around items allowed), as
-/// --balls, --from-state, --fixed and --at-balls take it; otherwise InputError naming
-/// `option`, exit 2.
-std::vector<double> parse_real_list(const std::string& text, const std::string& option);
+// parse_real_list: abu/input/option_values.hpp
 
 
 

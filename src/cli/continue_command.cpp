@@ -12,6 +12,7 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/continuation/special_rows.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/core/suggest.hpp"
 #include "abu/dynamics/periodic_orbits.hpp"
 #include "abu/output/chart_labels.hpp"
@@ -246,6 +247,9 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
     check_moves(p, *ref2, o.to2, "--to2", o.param2);
   }
   const ContinuationRunN run = continue_branches(p, param, o.to, o.numerics, o.sampling);
+  if (double(run.branches.size()) * run.memory_estimate > 1e8)
+    fmt::print(stderr, "memory: at most about {} ({} branches)\n",
+               gigabytes(double(run.branches.size()) * run.memory_estimate), run.branches.size());
   fmt::print(stderr, "{}", continuation_warnings(run));
   const std::string name = to_string(param);
   const std::filesystem::path dir(o.output_dir);
@@ -398,7 +402,16 @@ Action add_continue_command(CLI::App& app) {
       check_moves(p, *ref2, o->to2, "--to2", o->param2);
     }
 
+    const double cycle_memory = o->cycles ? cycle_branch_memory_estimate(o->cycle) : 0.0;
+    if (o->cycles)  // before any work: the branches found are never lost to the cycles' memory
+      require_memory(cycle_memory, "--cycle-intervals", "a cycle branch",
+                     fmt::format("{} orbits, up to {} shooting intervals", o->cycle.continuation.max_steps,
+                                 std::max(o->cycle.intervals, o->cycle.max_intervals)),
+                     "use fewer --cycle-intervals or --cycle-steps");
     const ContinuationRun run = continue_branches(p, param, o->to, o->numerics, start);
+    if (run.memory_estimate + cycle_memory > 1e8)
+      fmt::print(stderr, "memory: at most about {} (the branches{})\n", gigabytes(run.memory_estimate + cycle_memory),
+                 o->cycles ? " and one cycle branch at a time" : "");
     fmt::print(stderr, "{}", continuation_warnings(run));
     const std::string name = to_string(param);
     const std::filesystem::path dir(o->output_dir);

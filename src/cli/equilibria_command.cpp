@@ -11,6 +11,7 @@
 #include "abu/output/equilibria_report.hpp"
 #include "abu/output/files.hpp"
 #include "cli.hpp"
+#include "abu/core/resources.hpp"
 #include "commands.hpp"
 #include "shaft_commands.hpp"
 #include "stick_options.hpp"
@@ -75,6 +76,16 @@ Action add_equilibria_command(CLI::App& app) {
     request.stick = stick_resolution(options->stick);
     request.mode_shapes = !options->mode_shapes.empty();
     if (!options->at_balls.empty()) request.stuck_balls = parse_real_list(options->at_balls, "--at-balls");
+    request.output_bytes_per_state = equilibria_text_bytes_per_state(options->format);
+    const EquilibriaEstimate estimate = equilibria_estimate(scene, request);
+    if (!options->output.empty())
+      require_disk(estimate.states * request.output_bytes_per_state,
+                   std::filesystem::absolute(options->output).parent_path(), "-o", "the equilibria",
+                   fmt::format("up to {:.0f} states as {}", estimate.states, options->format),
+                   "use a smaller --set-samples or write elsewhere");
+    if (estimate.memory > 1e8)
+      fmt::print(stderr, "equilibria: up to {:.0f} states; memory: at most about {}\n", estimate.states,
+                 gigabytes(estimate.memory));
     const EquilibriaReport report = analyze_equilibria(scene, request);
     const OutputContext context{command_line(), scene.file, options->scene.speed_unit()};
     OutputTransaction out;

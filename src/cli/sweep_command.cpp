@@ -263,12 +263,8 @@ Action add_sweep_command(CLI::App& app) {
     if (scene.support)  // Floquet multipliers per value and their crossings (model.md §10.11)
       return sweep_anisotropic(scene, o->scene, *ref, values, o->logarithmic, o->chart, o->output_dir, o->sampling);
     const Params base = params_of<2>(scene);
-    if (const auto available = available_memory(); available && sweep_memory_estimate(values.size()) > 0.8 * *available)
-      throw InputError("--steps", 0, "steps",
-                       fmt::format("the sweep would hold about {} ({} values, their analyses and text), more than 80 % "
-                                   "of the {} this machine has available; use fewer steps",
-                                   gigabytes(sweep_memory_estimate(values.size())), values.size(),
-                                   gigabytes(*available)));
+    require_memory(sweep_memory_estimate(values.size()), "--steps", "the sweep",
+                   fmt::format("{} values, their analyses and text", values.size()), "use fewer steps");
     const SweepResult result = sweep(base, *ref, values);
     for (std::size_t i = 0; i < values.size(); ++i)
       fmt::print(stderr, "{}", analysis_warnings(result.points[i], fmt::format("{}={}", o->param, values[i])));

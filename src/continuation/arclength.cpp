@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "abu/core/resources.hpp"
+
 namespace abu {
 
 std::optional<std::string> options_violation(const ContinuationOptions& o) {
@@ -13,6 +15,19 @@ std::optional<std::string> options_violation(const ContinuationOptions& o) {
     return fmt::format("--max-steps must be in [1, 1000000] (got {})", o.max_steps);
   if (o.threads < 0 || o.threads > 1024) return fmt::format("--threads must be in [0, 1024] (got {})", o.threads);
   return std::nullopt;
+}
+
+double branch_memory_bound(const ContinuationOptions& o, std::size_t point_bytes) {
+  return 2.0 * (double(o.max_steps) + 1) * 2.0 * double(point_bytes);
+}
+
+double require_branch_memory(const ContinuationOptions& o, std::size_t point_bytes, std::size_t branches) {
+  const double bytes = 20e6 + double(branches) * branch_memory_bound(o, point_bytes);
+  require_memory(bytes, "--max-steps", "the branches",
+                 fmt::format("{} branch{} of up to {} points each way, {} bytes a point", branches,
+                             branches == 1 ? "" : "es", o.max_steps + 1, point_bytes),
+                 "use fewer --max-steps");
+  return bytes;
 }
 
 namespace arclength {

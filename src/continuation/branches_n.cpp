@@ -382,6 +382,7 @@ ContinuationRunN continue_branches(const ParamsN& p, ParamRef param, double to, 
     throw InputError("continuation", 0, "n", "the n-ball continuation needs n >= 3 (two balls: continuation.hpp)");
   if (const auto rule = range_violation(param.quantity, to)) throw InputError("continuation", 0, to_string(param), *rule);
   if (to == run.from) throw InputError("continuation", 0, to_string(param), "the end value equals the start value");
+  run.memory_estimate = require_branch_memory(options, sizeof(BranchPointN), 1);
   const StaticEquationsN eq(p, param, run.from, ld(to) - ld(run.from));
   ParamsN near = p;  // LuGre: the z = 0 equilibria are the frictionless model's (model.md §12.3)
   if (p.law == FrictionLaw::lugre) near.law = FrictionLaw::none;

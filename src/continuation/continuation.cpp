@@ -211,6 +211,7 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
                      fmt::format("no {} equilibrium at {} = {} or at {} (model.md §5): nothing to continue (there: {}; "
                                  "{})",
                                  to_string(*start.family), to_string(param), run.from, to, families_at(p), families_at(far)));
+  run.memory_estimate = require_branch_memory(options, sizeof(BranchPoint), starts.size());
   // Each start's branch is traced independently of the others (trace_branch reads only
   // the equations and its start), so the starts of one batch are traced concurrently and
   // then kept or dropped in their order, exactly as one after the other: a start is

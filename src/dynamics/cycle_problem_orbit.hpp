@@ -51,7 +51,7 @@ inline arclength::Evaluation<double, 3> CycleProblem<Chord>::evaluate(const Vec&
   }
   orbit.state0.resize(kDim);
   for (int i = 0; i < kDim; ++i) orbit.state0[std::size_t(i)] = point(u, 0)(i) * ctx_.scale(i);
-  for (int j = 0; j < m_; ++j) {
+  for (int j = 0; j < (o_.keep_profiles ? m_ : 0); ++j) {
     std::vector<double> row{mesh_.node(j)};
     for (int i = 0; i < kDim; ++i) row.push_back(point(u, j)(i) * ctx_.scale(i));
     orbit.profile.push_back(std::move(row));

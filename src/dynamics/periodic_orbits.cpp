@@ -87,6 +87,13 @@ CycleBranch trace_cycles(Problem& problem, const Params& p, ParamRef ref, const 
 
 }  // namespace
 
+double cycle_branch_memory_estimate(const CycleOptions& o) {
+  const double intervals = std::max({o.intervals, o.adapt_intervals ? o.max_intervals : 0, o.stiff_intervals});
+  const double orbit = 1.5e3 + (o.keep_profiles ? 120 * intervals : 0);
+  return 10e6 + 32e3 * intervals + 1e3 * double(o.stiff_intervals) * o.max_stiff_steps +
+         double(o.continuation.max_steps) * orbit;
+}
+
 CycleBranch continue_cycles(const Params& p0, ParamRef ref, const SpecialPoint& hopf, double from, double to,
                             const CycleOptions& o) {
   quiet_gsl_errors();

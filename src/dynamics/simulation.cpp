@@ -72,12 +72,12 @@ double natural_frequency(double k, double M) { return std::sqrt(k / M); }
 
 }  // namespace
 
-double simulation_memory_estimate(const SimulationOptions& o, int balls) {
+double simulation_memory_estimate(const SimulationOptions& o, int balls, bool with_text) {
   if (!o.record) return 0;
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
   const double samples = std::ceil(o.t_end / every) + 2;
   const double columns = 3.0 * balls + 9;
-  const double per_sample = double(sizeof(TrajectorySample<any_balls>)) + 8.0 * balls + 2 * 24 * columns;
+  const double per_sample = double(sizeof(TrajectorySample<any_balls>)) + 8.0 * balls + (with_text ? 2 * 24 * columns : 0);
   return samples * per_sample;
 }
 
@@ -89,15 +89,13 @@ void check_simulation_input(const SimulationOptions& o, int dim, const double* x
   const double every = o.every > 0 ? std::min(o.every, o.t_end) : o.t_end / 2000;
   if (o.record && o.t_end / every > 2e7)
     throw InputError("--every", 0, "", fmt::format("more than 2e7 samples (t_end / every = {:.3g})", o.t_end / every));
-  if (const auto available = available_memory(); available && o.record) {
+  if (o.record) {
     const double need = simulation_memory_estimate(o, balls);
-    if (need > 0.8 * *available)
-      throw InputError("--every", 0, "",
-                       fmt::format("the run would hold about {} ({:.3g} samples of {} balls: the samples and the CSV "
-                                   "text), more than 80 % of the {} this machine has available; use --every >= {:.3g} "
-                                   "s or a shorter --t-end",
-                                   gigabytes(need), o.t_end / every, balls, gigabytes(*available),
-                                   every * need / (0.8 * *available)));
+    const auto available = available_memory();
+    require_memory(need, "--every", "the run",
+                   fmt::format("{:.3g} samples of {} balls: the samples and the CSV text", o.t_end / every, balls),
+                   fmt::format("use --every >= {:.3g} s or a shorter --t-end",
+                               every * need / (kUsableMemoryShare * available.value_or(need))));
   }
   if (!(o.rtol >= 1e-14 && o.rtol < 0.1))
     throw InputError("--rtol", 0, "", fmt::format("the tolerance must lie in [1e-14, 0.1): below 1e-14 no double-precision step meets it (unit roundoff 1.1e-16) (got {})", o.rtol));

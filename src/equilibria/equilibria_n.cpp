@@ -165,7 +165,7 @@ void add_balanced_samples(const ParamsN& p, const Problem& f, const BalancedSamp
     return;
   }
   const int free = f.n - 2;
-  const int G = free == 0 ? 1 : std::max(2, int(std::lround(std::pow(double(sampling.samples_per_sheet), 1.0 / free))));
+  const int G = balanced_grid_size(f.n, sampling);
   long per_sheet = 1;
   for (int j = 0; j < free; ++j) per_sheet *= G;
   info.grid = G;
@@ -221,6 +221,15 @@ std::optional<std::string> options_violation(const BalancedSampling& s) {
   if (s.samples_per_sheet < 1 || s.samples_per_sheet > 100000)
     return fmt::format("samples per sheet must be in 1 .. 100000 (got {})", s.samples_per_sheet);
   return std::nullopt;
+}
+
+int balanced_grid_size(int n, const BalancedSampling& sampling) {
+  const int free = n - 2;
+  return free <= 0 ? 1 : std::max(2, int(std::lround(std::pow(double(sampling.samples_per_sheet), 1.0 / free))));
+}
+
+double balanced_grid_points(int n, const BalancedSampling& sampling) {
+  return n <= 2 ? 2.0 : 2 * std::pow(double(balanced_grid_size(n, sampling)), n - 2);
 }
 
 bool balanced_set_exists(const ParamsN& p) {

@@ -78,6 +78,10 @@ std::string unround_anisotropic_text(const UnroundAnisotropicStates& s, std::str
 
 }  // namespace
 
+double equilibria_text_bytes_per_state(std::string_view format) {
+  return format == "json" ? 14e3 : format == "table" ? 3e3 : 1.5e3;
+}
+
 std::string equilibria_text(const EquilibriaReport& r, std::string_view format, const OutputContext& c) {
   const auto header = [&](const auto& p) { return provenance_header(c.command_line, c.scene_file, p); };
   return std::visit(

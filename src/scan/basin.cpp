@@ -472,6 +472,17 @@ std::string basin_manifest(const BasinJob& job) {
   return out;
 }
 
+BasinEstimate basin_estimate(const BasinJob& job, int threads) {
+  BasinEstimate e;
+  const double cells = double(job.cells1) * double(job.cells2);
+  const int workers = std::max(1, std::min(threads, job.cells1));
+  e.runs = workers * simulation_memory_estimate(cell_options(job), job.n_balls(), false);
+  e.cells = 2 * 600 * cells;
+  e.memory = 20e6 + e.runs + e.cells;
+  e.disk = 2 * 600 * cells;
+  return e;
+}
+
 TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>& targets, int tile) {
   TileText text;
   for (int j = 0; j < job.cells2; ++j) {

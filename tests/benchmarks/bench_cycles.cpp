@@ -84,6 +84,7 @@ int auto_run(const abu::Params& p, abu::ParamRef omega, const abu::SpecialPoint&
     // the fast configuration) and was stopped; not investigated.
     if (long_branch && ci == 2) continue;
     abu::CycleOptions o = options(configs[ci], 100000);
+    o.keep_profiles = profile;
     double from = 50.0;
     if (long_branch) {
       const char* tmax = std::getenv("ABU_BENCH_TMAX");

@@ -102,11 +102,11 @@ stop_after() {
 read code secs < <(stop_after TERM "$bin" sweep "$scene" --param omega --from 100 --to 2000 --steps 200000 --no-chart -o "$work/sig1")
 check "SIGTERM stops sweep: exit 143 within 3 s ($code, $secs s)" "[ $code -eq 143 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
 check "... no file, no temporary" "[ ! -e '$work/sig1/sweep_omega.csv' ] && no_temporaries '$work/sig1'"
-read code secs < <(stop_after INT "$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 --no-chart -o "$work/sig2")
+read code secs < <(stop_after INT "$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 50000 --no-chart -o "$work/sig2")
 check "SIGINT stops continue: exit 130 within 3 s ($code, $secs s)" "[ $code -eq 130 ] && [ \$(echo '$secs < 3' | bc) -eq 1 ]"
 # ... and it is the continuation that stops (the stop request seen at a branch point and
 # unwound), not the signal thread's fallback after 1 s.
-"$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 1000000 \
+"$bin" continue "$scene" --set omega=50 --param omega --to 2000 --ds 1e-5 --ds-min 1e-9 --ds-max 1e-5 --max-steps 50000 \
   --no-chart -o "$work/sig2b" 2>"$work/sig2b.err" &
 pid=$!
 sleep 0.7

@@ -47,7 +47,22 @@ struct EquilibriaOptions {
   ShaftSpectrumOptions shaft;         ///< flexible shaft: how many rightmost eigenvalues, which band
   std::vector<double> stuck_balls;    ///< LuGre: also the stuck state at these angles [rad] (empty: none)
   bool mode_shapes = false;           ///< the caller will draw mode shapes (refused where there are none)
+  /// What the caller will hold per state besides the analysis [bytes] (the CLI: its text),
+  /// counted in the memory estimate that refuses, before any work, what this machine cannot hold.
+  double output_bytes_per_state = 0;
 };
+
+/// What analyze_equilibria will list and hold, upper bounds: for n >= 3 balls the balanced
+/// set's grid points (2 G^(n-2), equilibria_n.hpp) at 10 kB each plus the caller's
+/// output_bytes_per_state, up to 3 * 2^n aligned states at 24 kB plus twice that, the dry-friction
+/// or coulomb-set grid at 16 bytes a point, and 60 MB. Measured against the whole process
+/// (/usr/bin/time, 3 to 12 equal and unequal balls, table and JSON text): 6.5 kB and 4 kB per
+/// balanced state, 17 kB per aligned state of twelve coulomb balls.
+struct EquilibriaEstimate {
+  double states = 0;  ///< balanced grid points + aligned bound
+  double memory = 0;  ///< [bytes]
+};
+EquilibriaEstimate equilibria_estimate(const Scene& scene, const EquilibriaOptions& options);
 
 /// A rigid rotor on an isotropic support with a smooth law: two balls (the fixed-size path).
 struct RigidStates2 {

@@ -68,6 +68,13 @@ struct ContinuationOptions {
 /// Checks the options up front; returns the rule broken, if any.
 std::optional<std::string> options_violation(const ContinuationOptions& o);
 
+/// What one branch traced both ways from its start holds at most [bytes]: max_steps + 1
+/// points each way of point_bytes, twice over for the vectors' growth.
+double branch_memory_bound(const ContinuationOptions& o, std::size_t point_bytes);
+/// Refuses (InputError naming --max-steps) branches whose bound, `branches` of them held at
+/// once, is more than this machine can hold (core/resources.hpp); returns that estimate.
+double require_branch_memory(const ContinuationOptions& o, std::size_t point_bytes, std::size_t branches);
+
 namespace arclength {
 
 /// The engine's own rules; the defaults are those of equilibrium branches.

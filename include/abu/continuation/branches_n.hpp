@@ -109,6 +109,9 @@ struct ContinuationRunN {
   BalancedSetSummary balanced_set;  ///< at the start value
   BalancedEnvelope envelope;
   std::vector<std::string> notes;
+  /// What one branch could hold [bytes], checked before tracing (arclength.hpp); the run holds
+  /// at most this times its branches.
+  double memory_estimate = 0;
 };
 
 /// Continues every aligned equilibrium and every balanced sample of `p` (n >= 3, at its

@@ -112,6 +112,7 @@ struct ContinuationRun {
   double from = 0, to = 0;
   std::vector<Branch> branches;
   std::vector<std::string> notes;  ///< e.g. start equilibria already covered by a branch
+  double memory_estimate = 0;  ///< what the branches could hold [bytes], checked before tracing (arclength.hpp)
 };
 
 /// Which equilibria start branches.

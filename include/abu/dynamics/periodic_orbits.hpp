@@ -68,6 +68,9 @@ struct CycleOptions {
   double first_amplitude = 2e-3;
   double max_period_factor = 50;  ///< the branch ends where T > this * 2 pi / w_H (homoclinic approach)
   int samples_per_interval = 16;  ///< for the amplitude and the ball angle range
+  /// Each orbit's shooting points kept in CycleOrbit::profile (the start of an independent
+  /// recomputation); off, a branch holds ~1 kB an orbit whatever the mesh.
+  bool keep_profiles = false;
   /// A step on which a Floquet multiplier moves farther than this (in the complex plane,
   /// moduli clamped at 2) is retried shorter: a PD or NS crossing and its return within one
   /// step would leave the test functions' signs unchanged (model.md §17.5). 0: no check.
@@ -106,7 +109,8 @@ struct CycleOrbit {
   double liouville_error = 0;
   std::vector<double> state0;   ///< x(0) in SI (model.md (2.2)), the orbit's phase origin
   /// The shooting points: per point its phase theta_j in [0, 1) and x(theta_j T) in SI (the
-  /// start of an independent recomputation, tests/reference/cycle_orbit_reference.py).
+  /// start of an independent recomputation, tests/reference/cycle_orbit_reference.py); only
+  /// with CycleOptions::keep_profiles.
   std::vector<std::vector<double>> profile;
 };
 
@@ -146,6 +150,14 @@ struct CycleBranch {
   long extrapolated_matrices = 0;  ///< Newton matrices extrapolated, not integrated (extrapolate_newton_matrix)
   long remeshes = 0;               ///< meshes re-chosen along the branch (adapt_intervals)
 };
+
+/// What one cycle branch holds at most [bytes]: ~1.5 kB an orbit (its multipliers, ranges and
+/// state; with keep_profiles also 120 bytes a shooting point) for continuation.max_steps orbits,
+/// and the mesh's working matrices (transition, Newton and kept matrices: 32 kB an interval
+/// for the most intervals the branch may use; on the stiff route 1 kB a Radau step of every
+/// interval) plus 10 MB. Measured (/usr/bin/time, whole process): 10,000 intervals 237 MB
+/// (estimate 330 MB), the default coulomb branch 13 MB.
+double cycle_branch_memory_estimate(const CycleOptions& options);
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in
 /// `param` and follows it within [from, to] (either order).

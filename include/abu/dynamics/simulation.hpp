@@ -176,8 +176,9 @@ State<double, N> perturbed_equilibrium(const ParamsT<double, N>& p, const Coordi
 /// bound: per sample (t_end / every + 2 of them) the sample itself (the 2n + 4 values at
 /// capacity), a bristle or deflection value per ball, and twice its CSV row (3n + 9 columns
 /// at 24 characters; the text grows by doubling). Measured on 11 balls and 1e6 samples:
-/// 1.34 GB peak for an estimate of 2.3 GB (tests/cli/check_simulate.sh).
-double simulation_memory_estimate(const SimulationOptions& options, int balls);
+/// 1.34 GB peak for an estimate of 2.3 GB (tests/cli/check_simulate.sh). `with_text` false:
+/// a run whose samples are not written (a basin cell's).
+double simulation_memory_estimate(const SimulationOptions& options, int balls, bool with_text = true);
 
 /// Throws InputError for invalid options or start (t_end <= 0, every, rtol outside (0, 0.1),
 /// a state of the wrong length or not finite, samples that would not fit in the memory this

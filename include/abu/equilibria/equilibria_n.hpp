@@ -80,6 +80,12 @@ void find_equilibria(const ParamsN& p, const BalancedSampling& sampling, Equilib
 /// The balanced set exists (the polygon inequality, within input rounding).
 bool balanced_set_exists(const ParamsN& p);
 
+/// G, the values per free angle of the balanced set's grid for n balls: max(2, round(S^(1/(n-2))))
+/// (1 for two balls, whose set is two points).
+int balanced_grid_size(int n, const BalancedSampling& sampling);
+/// 2 G^(n-2), the grid points of both sheets: an upper bound on the balanced samples listed.
+double balanced_grid_points(int n, const BalancedSampling& sampling);
+
 /// An orthonormal basis of the balanced set's tangent space at s (q = 0), in
 /// configuration space: the null space of the 2 x n matrix [m_j l_j cos beta_j;
 /// m_j l_j sin beta_j] (model.md §13.4), embedded with zero rotor rows. n - 2 columns

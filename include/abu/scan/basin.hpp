@@ -169,6 +169,17 @@ std::string basin_manifest(const BasinJob& job);
 /// One tile = one column (i fixed, j = 0..cells2-1).
 TileText compute_basin_tile(const BasinJob& job, const std::vector<BasinTarget>& targets, int tile);
 
+/// What a basin holds and writes at most [bytes]: each worker's recorded run
+/// (simulation_memory_estimate of a cell's options) and the cells' text twice (600 bytes a cell
+/// covers twelve balls' 22 angles), plus 20 MB; on disk the text twice (the tiles, then the CSV).
+struct BasinEstimate {
+  double runs = 0;    ///< the workers' recorded runs
+  double cells = 0;   ///< the cells' text held
+  double memory = 0;  ///< runs + cells + 20 MB
+  double disk = 0;
+};
+BasinEstimate basin_estimate(const BasinJob& job, int threads);
+
 /// Runs `tiles` on options.threads threads, each finished tile to `sink` (as compute_tiles
 /// does for maps). Rethrows a worker's exception after all stopped.
 MapRunStats compute_basin_tiles(const BasinJob& job, const std::vector<BasinTarget>& targets,
