@@ -132,12 +132,14 @@ template std::vector<KappaSensitivity<any_balls>> kappa_sensitivities<AnalysisN,
 EquilibriaEstimate equilibria_estimate(const Scene& scene, const EquilibriaOptions& o) {
   const int n = int(scene.balls.size());
   const double balanced = n >= 3 ? balanced_grid_points(n, o.sampling) : 2.0;
-  const double aligned = 3.0 * std::ldexp(1.0, n);
+  const double aligned = std::ldexp(1.0, n);  // 2^(n-1) patterns, two roots each (model.md (13.3))
   const bool dry = scene.law == FrictionLaw::coulomb || scene.law == FrictionLaw::stribeck ||
                    scene.law == FrictionLaw::coulomb_set;
-  const double grid = dry && n >= 3 ? std::pow(std::floor(std::pow(double(o.stick.grid_budget), 1.0 / n)), n) : 0.0;
-  return {balanced + aligned, 60e6 + balanced * (10e3 + o.output_bytes_per_state) +
-                                  aligned * 2 * (12e3 + o.output_bytes_per_state) + 16 * grid};
+  // The stick set's grid (n >= 3): G = max(floor(B^(1/n)), 4) per angle, a label and |q| a point.
+  const double G = std::max(std::floor(std::pow(double(o.stick.grid_budget), 1.0 / n) + 1e-9), 4.0);
+  const double grid = dry && n >= 3 ? 16 * std::pow(G, n) : 0.0;
+  const double states = balanced * (10e3 + o.output_bytes_per_state) + aligned * 2 * (12e3 + o.output_bytes_per_state);
+  return {balanced + aligned, 60e6 + states + grid, grid};
 }
 
 EquilibriaReport analyze_equilibria(const Scene& scene, const EquilibriaOptions& o) {

@@ -2,6 +2,7 @@
 // analysis on a plain grid of one parameter, as a long CSV and a gnuplot chart.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "abu/input/ranges.hpp"
 #include "abu/output/report_lugre.hpp"
 #include "abu/output/report.hpp"
+#include "abu/analysis/equilibria.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
 #include "composed_commands.hpp"
@@ -97,6 +99,32 @@ SweepGrid sweep_grid(const Scene& scene, const SweepOptions& o) {
     }
   }
   return result;
+}
+
+// Any sweep but the two-ball one (which has its own, tighter sweep_memory_estimate) holds an
+// analysis of every value to the end: `values` times what `equilibria` holds for the scene
+// without the stick set's grid (analysis/equilibria.hpp, with ~2 kB of CSV text a state; the
+// ball count's largest value for --param n), refused up front beyond the machine
+// (docs/robustness.md).
+void check_sweep_memory(const Scene& scene, const SweepOptions& o) {
+  double values = double(o.steps) + 1;
+  Scene largest = scene;
+  if (o.param == "n") {
+    values = std::abs(o.to - o.from) + 1;
+    const double n = std::clamp(std::max(o.from, o.to), 2.0, double(max_balls));
+    largest.balls.resize(std::size_t(n), scene.balls.back());
+  }
+  EquilibriaOptions request;
+  request.sampling = o.sampling;
+  request.stick = stick_resolution(o.stick);
+  request.output_bytes_per_state = 2e3;
+  const EquilibriaEstimate per_value = equilibria_estimate(largest, request);
+  const double memory = 60e6 + values * (per_value.memory - 60e6 - per_value.grid);
+  if (memory > 1e8) fmt::print(stderr, "sweep: memory: at most about {}\n", gigabytes(memory));
+  require_memory(memory, "--steps", "the sweep",
+                 fmt::format("{:.0f} values of up to {:.0f} states each, their analyses and text", values,
+                             per_value.states),
+                 "use fewer steps or a smaller --set-samples");
 }
 
 // A LuGre scene (model.md §12.8): per value the z = 0 equilibria with both one-sided
@@ -240,6 +268,7 @@ Action add_sweep_command(CLI::App& app) {
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
+    if (scene.law == FrictionLaw::lugre || stick) check_sweep_memory(scene, *o);
     if (scene.law == FrictionLaw::lugre) return sweep_lugre(scene, *o);
     if (stick) {
       SweepGrid grid = sweep_grid(scene, *o);
@@ -250,7 +279,10 @@ Action add_sweep_command(CLI::App& app) {
     const int n_balls = int(scene.balls.size());
     if (scene.support && o->param == "n")
       throw InputError("--param", 0, "n", "the ball count is not a sweep parameter with an anisotropic support");
-    if (!scene.support && (o->param == "n" || n_balls != 2)) return sweep_any_balls(scene, *o);
+    if (!scene.support && (o->param == "n" || n_balls != 2)) {
+      check_sweep_memory(scene, *o);
+      return sweep_any_balls(scene, *o);
+    }
     const auto ref = std::optional<ParamRef>(checked_param(*o, n_balls));
     {
       Scene probe = scene;

@@ -37,6 +37,11 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then  # under the sanitizers the shadow memory is
   /usr/bin/time -f %M -o eq12.kb "$bin" equilibria ring12.toml --set-samples 3000 --format table -o eq12.txt 2>eq12.err
   peak_below "equilibria, 12 coulomb balls, table" eq12.err eq12.kb
 
+  # sweep of 11 balls (every value's analysis held to the end): 21 values of ~2,500 states.
+  /usr/bin/time -f %M -o sw11.kb "$bin" sweep "$src/data/scenes/ring11.toml" --param omega --from 100 --to 2000 \
+    --steps 20 --no-chart -o sw11 2>sw11.err
+  peak_below "sweep of 11 balls, 21 values" sw11.err sw11.kb
+
   # continue with cycles: 1,000 shooting intervals held along 40 orbits.
   /usr/bin/time -f %M -o cyc.kb "$bin" continue "$src/tests/scenes/cycles/viscous_ref.toml" --param omega --to 50 \
     --from-equilibrium balanced --cycles --cycle-steps 40 --cycle-intervals 1000 --no-chart -o cyc 2>cyc.err

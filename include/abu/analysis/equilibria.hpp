@@ -54,13 +54,15 @@ struct EquilibriaOptions {
 
 /// What analyze_equilibria will list and hold, upper bounds: for n >= 3 balls the balanced
 /// set's grid points (2 G^(n-2), equilibria_n.hpp) at 10 kB each plus the caller's
-/// output_bytes_per_state, up to 3 * 2^n aligned states at 24 kB plus twice that, the dry-friction
-/// or coulomb-set grid at 16 bytes a point, and 60 MB. Measured against the whole process
-/// (/usr/bin/time, 3 to 12 equal and unequal balls, table and JSON text): 6.5 kB and 4 kB per
-/// balanced state, 17 kB per aligned state of twelve coulomb balls.
+/// output_bytes_per_state, up to 2^n aligned states (model.md (13.3)) at 24 kB plus twice that,
+/// the dry-friction or coulomb-set grid (max(floor(B^(1/n)), 4)^n points) at 16 bytes a point,
+/// and 60 MB. Measured against the whole process (/usr/bin/time, 3 to 12 equal and unequal
+/// balls, table and JSON text): 4 to 8 kB per balanced state; twelve coulomb balls 271 MB,
+/// 201 MB of it the 4^12-point grid.
 struct EquilibriaEstimate {
   double states = 0;  ///< balanced grid points + aligned bound
-  double memory = 0;  ///< [bytes]
+  double memory = 0;  ///< [bytes], grid included
+  double grid = 0;    ///< of which the stick set's grid (a sweep does not build it)
 };
 EquilibriaEstimate equilibria_estimate(const Scene& scene, const EquilibriaOptions& options);
 
