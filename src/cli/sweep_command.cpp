@@ -19,6 +19,7 @@
 #include "abu/input/ranges.hpp"
 #include "abu/output/report_lugre.hpp"
 #include "abu/output/report.hpp"
+#include "abu/output/sweep_stream.hpp"
 #include "abu/analysis/equilibria.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -101,12 +102,13 @@ SweepGrid sweep_grid(const Scene& scene, const SweepOptions& o) {
   return result;
 }
 
-// Any sweep but the two-ball one (which has its own, tighter sweep_memory_estimate) holds an
-// analysis of every value to the end: `values` times what `equilibria` holds for the scene
-// without the stick set's grid (analysis/equilibria.hpp, with ~2 kB of CSV text a state; the
-// ball count's largest value for --param n), refused up front beyond the machine
-// (docs/robustness.md).
-void check_sweep_memory(const Scene& scene, const SweepOptions& o) {
+// What a sweep other than the two-ball one holds, estimated before the work and refused
+// beyond the machine (docs/robustness.md): with `streamed` (sweep_any_balls, output/
+// sweep_stream.hpp) one value's analysis as `equilibria` holds it without the stick set's grid,
+// and per value its kept text (4 kB) and, for omega, its Campbell samples (16 kB a state,
+// measured 12.6 kB for 11 balls); otherwise (LuGre, coulomb-set) every value's analysis with
+// ~2 kB of CSV a state. For --param n at the largest ball count.
+void check_sweep_memory(const Scene& scene, const SweepOptions& o, bool streamed) {
   double values = double(o.steps) + 1;
   Scene largest = scene;
   if (o.param == "n") {
@@ -119,11 +121,13 @@ void check_sweep_memory(const Scene& scene, const SweepOptions& o) {
   request.stick = stick_resolution(o.stick);
   request.output_bytes_per_state = 2e3;
   const EquilibriaEstimate per_value = equilibria_estimate(largest, request);
-  const double memory = 60e6 + values * (per_value.memory - 60e6 - per_value.grid);
+  const double analysis = per_value.memory - 60e6 - per_value.grid;
+  const double kept = 4e3 + (o.param == "omega" ? 16e3 * per_value.states : 0.0);
+  const double memory = streamed ? 60e6 + analysis + values * kept : 60e6 + values * analysis;
   if (memory > 1e8) fmt::print(stderr, "sweep: memory: at most about {}\n", gigabytes(memory));
   require_memory(memory, "--steps", "the sweep",
-                 fmt::format("{:.0f} values of up to {:.0f} states each, their analyses and text", values,
-                             per_value.states),
+                 fmt::format("{:.0f} values of up to {:.0f} states each, {}", values, per_value.states,
+                             streamed ? "what each keeps (its Campbell samples for omega)" : "their analyses and text"),
                  "use fewer steps or a smaller --set-samples");
 }
 
@@ -160,39 +164,36 @@ int sweep_lugre(const Scene& scene, const SweepOptions& o) {
 // summary per value (capacity, balanced set, fraction stable, aligned equilibria, best
 // stable |q|) and its chart.
 int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
-  SweepResultN result;
-  SweepGrid grid = sweep_grid(scene, o);
-  result.name = grid.name;
-  result.unit = grid.unit;
-  result.values = grid.values;
-  const std::vector<Scene>& scenes = grid.scenes;
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
+  const SweepGrid grid = sweep_grid(scene, o);
+  int n_max = 2;
+  for (const auto& s : grid.scenes) n_max = std::max(n_max, int(s.balls.size()));
+  // Each value's analysis is written and dropped as it comes (output/sweep_stream.hpp).
+  SweepStream stream(grid.name, grid.unit, grid.values.size(), n_max, grid.name == "omega");
+  for (std::size_t i = 0; i < grid.scenes.size(); ++i) {
     throw_if_stopped("sweep");
-    result.points.push_back(analyze(params_of<any_balls>(scenes[i]), o.sampling));
-    fmt::print(stderr, "{}", analysis_warnings(result.points.back(), fmt::format("{}={}", result.name, result.values[i])));
+    const ParamsN p = params_of<any_balls>(grid.scenes[i]);
+    const AnalysisN analysis = analyze(p, o.sampling);
+    fmt::print(stderr, "{}", analysis_warnings(analysis, fmt::format("{}={}", grid.name, grid.values[i])));
+    stream.add(grid.values[i], analysis, p);
   }
-  const ParamsN first = params_of<any_balls>(scenes.front());
+  const ParamsN first = params_of<any_balls>(grid.scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(o.output_dir);
-  const auto [csv_path, summary_path, png_path] = sweep_paths(dir, result.name);
+  const auto [csv_path, summary_path, png_path] = sweep_paths(dir, grid.name);
   OutputTransaction out;
-  std::vector<ParamsN> params;
-  for (const auto& s : scenes) params.push_back(params_of<any_balls>(s));
   stage_views(out,
-              {dir, result.name, result.unit, result.values.front(), result.values.back(),
-               campbell_samples(result, params), stability_ranges(result), header,
-               fmt::format("{}: Campbell diagram (fixed frame)", scene.file), o.chart},
+              {dir, grid.name, grid.unit, grid.values.front(), grid.values.back(), stream.campbell(), stream.ranges(),
+               header, fmt::format("{}: Campbell diagram (fixed frame)", scene.file), o.chart},
               first, scene, o.scene);
-  out.stage(csv_path, sweep_csv(result, header));
-  const auto staged_summary = out.stage(summary_path, sweep_summary_csv(result, header));
+  const auto staged_summary = stream.stage(out, csv_path, summary_path, header).second;
   if (o.chart) {
     run_gnuplot(plots_dir() / "sweep_summary.gp",
                 {{"csv", staged_summary.string()},
                  {"png", out.reserve(png_path).string()},
-                 {"param", result.name},
-                 {"unit", result.unit},
+                 {"param", grid.name},
+                 {"unit", grid.unit},
                  {"logx", o.logarithmic ? "1" : "0"},
-                 {"title", fmt::format("{}: sweep of {}", scene.file, result.name)},
+                 {"title", fmt::format("{}: sweep of {}", scene.file, grid.name)},
                  {"subtitle", chart_subtitle(scene, o.scene.overrides)}});
   }
   out.commit();
@@ -268,7 +269,7 @@ Action add_sweep_command(CLI::App& app) {
     if (o->from > o->to)
       fmt::print(stderr, "stability-scan: note: --from {} > --to {}: the sweep runs downward (rows in decreasing {})\n",
                  o->from, o->to, o->param);
-    if (scene.law == FrictionLaw::lugre || stick) check_sweep_memory(scene, *o);
+    if (scene.law == FrictionLaw::lugre || stick) check_sweep_memory(scene, *o, false);
     if (scene.law == FrictionLaw::lugre) return sweep_lugre(scene, *o);
     if (stick) {
       SweepGrid grid = sweep_grid(scene, *o);
@@ -280,7 +281,7 @@ Action add_sweep_command(CLI::App& app) {
     if (scene.support && o->param == "n")
       throw InputError("--param", 0, "n", "the ball count is not a sweep parameter with an anisotropic support");
     if (!scene.support && (o->param == "n" || n_balls != 2)) {
-      check_sweep_memory(scene, *o);
+      check_sweep_memory(scene, *o, true);
       return sweep_any_balls(scene, *o);
     }
     const auto ref = std::optional<ParamRef>(checked_param(*o, n_balls));

@@ -365,43 +365,59 @@ std::string sweep_csv(const SweepResult& s, std::string_view header) {
   return out;
 }
 
-std::string sweep_csv(const SweepResultN& s, std::string_view header) {
-  int n_max = 2;
-  for (const auto& a : s.points)
-    for (const auto& e : a.equilibria.points()) n_max = std::max(n_max, e.n_balls());
+std::string sweep_head(const std::string& name, const std::string& unit, std::size_t values, std::string_view header) {
   std::string out(header);
-  out += fmt::format("# sweep of {} [{}] over {} values; step = index of the value\n", s.name, s.unit, s.values.size());
+  out += fmt::format("# sweep of {} [{}] over {} values; step = index of the value\n", name, unit, values);
   out += equilibrium_columns_doc();
   out += "#   q_abs = |q| [m]; n_unstable = eigenvalues right of their error band; columns of balls or eigenvalues a "
          "row does not have are empty\n";
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const std::string set_line = balanced_set_comment(s.points[i]);
-    if (!set_line.empty()) out += fmt::format("# at {}={}: {}", s.name, s.values[i], set_line.substr(2));
-    for (const auto& line : describe_degeneracy(s.points[i].equilibria.degeneracy))
-      out += fmt::format("# at {}={}: degenerate: {}\n", s.name, s.values[i], line);
-  }
-  out += fmt::format("step,{},family,pattern,member,q1,q2{},q_abs,residual,spectral_abscissa,stable,n_unstable,"
+  return out;
+}
+
+std::string sweep_value_comments(const std::string& name, double value, const AnalysisN& a) {
+  std::string out;
+  const std::string set_line = balanced_set_comment(a);
+  if (!set_line.empty()) out += fmt::format("# at {}={}: {}", name, value, set_line.substr(2));
+  for (const auto& line : describe_degeneracy(a.equilibria.degeneracy))
+    out += fmt::format("# at {}={}: degenerate: {}\n", name, value, line);
+  return out;
+}
+
+std::string sweep_columns(const std::string& name, int n_max) {
+  return fmt::format("step,{},family,pattern,member,q1,q2{},q_abs,residual,spectral_abscissa,stable,n_unstable,"
                      "n_structural_zero{}\n",
-                     s.name, beta_header(n_max), eigenvalue_header(2 * n_max + 4));
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const auto& a = s.points[i];
-    const auto points = a.equilibria.points();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const auto& e = points[k];
-      const auto& sp = a.spectra[k];
-      out += fmt::format("{},{},{},{},{},{},{}{}{}", i, num(s.values[i], s.name), to_string(e.family), pattern_of(e),
-                         e.member, num(double(e.position(0)), "q1"), num(double(e.position(1)), "q2"), beta_cells(e),
-                         std::string(std::size_t(n_max - e.n_balls()), ','));
-      out += fmt::format(",{},{},{},{},{},{}{}{}\n", num(q_abs(e), "|q|"), num(e.residual, "residual"),
-                         num(sp.abscissa, "spectral abscissa"), sp.stability == Stability::stable ? 1 : 0,
-                         sp.n_unstable, sp.n_structural, eigenvalue_cells(sp),
-                         std::string(std::size_t(2 * (2 * n_max + 4 - sp.count)), ','));
-    }
+                     name, beta_header(n_max), eigenvalue_header(2 * n_max + 4));
+}
+
+std::string sweep_value_rows(std::size_t step, const std::string& name, double value, const AnalysisN& a, int n_max) {
+  std::string out;
+  const auto points = a.equilibria.points();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto& e = points[k];
+    const auto& sp = a.spectra[k];
+    out += fmt::format("{},{},{},{},{},{},{}{}{}", step, num(value, name), to_string(e.family), pattern_of(e), e.member,
+                       num(double(e.position(0)), "q1"), num(double(e.position(1)), "q2"), beta_cells(e),
+                       std::string(std::size_t(n_max - e.n_balls()), ','));
+    out += fmt::format(",{},{},{},{},{},{}{}{}\n", num(q_abs(e), "|q|"), num(e.residual, "residual"),
+                       num(sp.abscissa, "spectral abscissa"), sp.stability == Stability::stable ? 1 : 0,
+                       sp.n_unstable, sp.n_structural, eigenvalue_cells(sp),
+                       std::string(std::size_t(2 * (2 * n_max + 4 - sp.count)), ','));
   }
   return out;
 }
 
-std::string sweep_summary_csv(const SweepResultN& s, std::string_view header) {
+std::string sweep_csv(const SweepResultN& s, std::string_view header) {
+  int n_max = 2;
+  for (const auto& a : s.points)
+    for (const auto& e : a.equilibria.points()) n_max = std::max(n_max, e.n_balls());
+  std::string out = sweep_head(s.name, s.unit, s.values.size(), header);
+  for (std::size_t i = 0; i < s.points.size(); ++i) out += sweep_value_comments(s.name, s.values[i], s.points[i]);
+  out += sweep_columns(s.name, n_max);
+  for (std::size_t i = 0; i < s.points.size(); ++i) out += sweep_value_rows(i, s.name, s.values[i], s.points[i], n_max);
+  return out;
+}
+
+std::string sweep_summary_head(const std::string& name, const std::string& unit, std::string_view header) {
   std::string out(header);
   out += fmt::format("# per value of {} [{}]: balls = number of balls; capacity = sum m_i l_i [kg m] against U [kg m];\n"
                      "#   balanced_exists = the balanced set exists (polygon inequality, model.md §13.4); "
@@ -409,37 +425,41 @@ std::string sweep_summary_csv(const SweepResultN& s, std::string_view header) {
                      "#   normal_abscissa_max [1/s] = the least stable sample's normal spectral abscissa;\n"
                      "#   aligned = isolated equilibria with q != 0 (model.md §13.2), aligned_stable = how many are "
                      "stable;\n#   best_* = the stable state of least |q| [m] (empty: no stable state at this value)\n",
-                     s.name, s.unit);
+                     name, unit);
   out += fmt::format("step,{},balls,capacity,U,balanced_exists,balanced_samples,fraction_stable,normal_abscissa_max,aligned,"
                      "aligned_stable,best_family,best_pattern,best_q_abs\n",
-                     s.name);
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const auto& a = s.points[i];
-    const auto points = a.equilibria.points();
-    const auto& info = a.equilibria.balanced_set;
-    const SetStatistics st = set_statistics(a);
-    int aligned = 0, aligned_stable = 0;
-    const EquilibriumN* best = nullptr;
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const bool stable = a.spectra[k].stability == Stability::stable;
-      if (!points[k].on_balanced_set && points[k].family != Family::balanced) {
-        ++aligned;
-        aligned_stable += stable;
-      }
-      if (stable && (!best || q_abs(points[k]) < q_abs(*best))) best = &points[k];
+                     name);
+  return out;
+}
+
+std::string sweep_summary_row(std::size_t step, const std::string& name, double value, const AnalysisN& a) {
+  const auto points = a.equilibria.points();
+  const auto& info = a.equilibria.balanced_set;
+  const SetStatistics st = set_statistics(a);
+  int aligned = 0, aligned_stable = 0;
+  const EquilibriumN* best = nullptr;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const bool stable = a.spectra[k].stability == Stability::stable;
+    if (!points[k].on_balanced_set && points[k].family != Family::balanced) {
+      ++aligned;
+      aligned_stable += stable;
     }
-    const int n = points.empty() ? 0 : points.front().n_balls();
-    out += fmt::format("{},{},{},", i, num(s.values[i], s.name), n);
-    out += fmt::format("{},{},{},{},{},{},{},{},", num(a.capacity, "capacity"), num(a.unbalance, "U"),
-                       info.exists ? 1 : 0, info.samples,
-                       st.samples ? num(double(st.stable) / st.samples, "fraction") : std::string(),
-                       st.samples ? num(st.max_abscissa, "abscissa") : std::string(), aligned, aligned_stable);
-    if (best) {
-      out += fmt::format("{},{},{}\n", to_string(best->family), pattern_of(*best), num(q_abs(*best), "|q|"));
-    } else {
-      out += ",,\n";
-    }
+    if (stable && (!best || q_abs(points[k]) < q_abs(*best))) best = &points[k];
   }
+  const int n = points.empty() ? 0 : points.front().n_balls();
+  std::string out = fmt::format("{},{},{},", step, num(value, name), n);
+  out += fmt::format("{},{},{},{},{},{},{},{},", num(a.capacity, "capacity"), num(a.unbalance, "U"),
+                     info.exists ? 1 : 0, info.samples,
+                     st.samples ? num(double(st.stable) / st.samples, "fraction") : std::string(),
+                     st.samples ? num(st.max_abscissa, "abscissa") : std::string(), aligned, aligned_stable);
+  out += best ? fmt::format("{},{},{}\n", to_string(best->family), pattern_of(*best), num(q_abs(*best), "|q|"))
+              : std::string(",,\n");
+  return out;
+}
+
+std::string sweep_summary_csv(const SweepResultN& s, std::string_view header) {
+  std::string out = sweep_summary_head(s.name, s.unit, header);
+  for (std::size_t i = 0; i < s.points.size(); ++i) out += sweep_summary_row(i, s.name, s.values[i], s.points[i]);
   return out;
 }
 

@@ -50,15 +50,21 @@ std::vector<CampbellSample> campbell_samples(const SweepResult& s, const Params&
   return out;
 }
 
+void append_campbell_samples(std::vector<CampbellSample>& out, int step, const ParamsN& p, const AnalysisN& a) {
+  const auto points = a.equilibria.points();
+  for (std::size_t k = 0; k < points.size(); ++k) out.push_back(sample_of(step, p, points[k], a.spectra[k]));
+}
+
+void sort_campbell_series(std::vector<CampbellSample>& samples) {
+  // Contiguous series: stable sort by the series label keeps the values in order.
+  std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.series < b.series; });
+}
+
 std::vector<CampbellSample> campbell_samples(const SweepResultN& s, const std::vector<ParamsN>& params) {
   std::vector<CampbellSample> out;
   if (s.name != "omega") return out;
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const auto points = s.points[i].equilibria.points();
-    for (std::size_t k = 0; k < points.size(); ++k) out.push_back(sample_of(int(i), params[i], points[k], s.points[i].spectra[k]));
-  }
-  // Contiguous series: stable sort by the series label keeps the values in order.
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.series < b.series; });
+  for (std::size_t i = 0; i < s.points.size(); ++i) append_campbell_samples(out, int(i), params[i], s.points[i]);
+  sort_campbell_series(out);
   return out;
 }
 

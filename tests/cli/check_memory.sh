@@ -41,6 +41,12 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then  # under the sanitizers the shadow memory is
   /usr/bin/time -f %M -o sw11.kb "$bin" sweep "$src/data/scenes/ring11.toml" --param omega --from 100 --to 2000 \
     --steps 20 --no-chart -o sw11 2>sw11.err
   peak_below "sweep of 11 balls, 21 values" sw11.err sw11.kb
+  # ... over mu, 101 values: each value's analysis written and dropped as it comes (held, as
+  # before, it was ~45 MB a value).
+  /usr/bin/time -f %M -o swmu.kb "$bin" sweep "$src/data/scenes/ring11.toml" --param mu --from 1e-4 --to 1e-2 \
+    --steps 100 --no-chart -o swmu 2>swmu.err
+  peak_below "sweep of 11 balls over mu, 101 values (streamed)" swmu.err swmu.kb
+  check "... 101 values written" "[ \$(grep -v '^#' swmu/summary_mu.csv | tail -n +2 | wc -l) -eq 101 ]"
 
   # continue with cycles: 1,000 shooting intervals held along 40 orbits.
   /usr/bin/time -f %M -o cyc.kb "$bin" continue "$src/tests/scenes/cycles/viscous_ref.toml" --param omega --to 50 \

@@ -74,6 +74,15 @@ std::string sweep_csv(const SweepResultN& s, std::string_view header);
 ///  aligned,aligned_stable,best_family,best_pattern,best_q_abs` (best: the stable state of least
 /// |q|, empty when nothing is stable).
 std::string sweep_summary_csv(const SweepResultN& s, std::string_view header);
+/// The same two files in pieces, for a sweep written as its values come (output/sweep_stream.hpp):
+/// sweep_csv = sweep_head + every value's comments + sweep_columns + every value's rows;
+/// sweep_summary_csv = sweep_summary_head + every value's row.
+std::string sweep_head(const std::string& name, const std::string& unit, std::size_t values, std::string_view header);
+std::string sweep_value_comments(const std::string& name, double value, const AnalysisN& a);
+std::string sweep_columns(const std::string& name, int n_max);
+std::string sweep_value_rows(std::size_t step, const std::string& name, double value, const AnalysisN& a, int n_max);
+std::string sweep_summary_head(const std::string& name, const std::string& unit, std::string_view header);
+std::string sweep_summary_row(std::size_t step, const std::string& name, double value, const AnalysisN& a);
 
 /// Continuation: one row per branch point,
 /// `branch,point,label,<param>,q1,q2,beta1,beta2,q_abs,family,stable,n_unstable,re1,im1,...,re8,im8`

@@ -98,6 +98,10 @@ struct CampbellSample {
 /// sweep's other parameters, `params[i]` the parameters of value i.
 std::vector<CampbellSample> campbell_samples(const SweepResult& s, const Params& base);
 std::vector<CampbellSample> campbell_samples(const SweepResultN& s, const std::vector<ParamsN>& params);
+/// The same a value at a time: value `step`'s samples appended, then the series made
+/// contiguous once every value is in.
+void append_campbell_samples(std::vector<CampbellSample>& out, int step, const ParamsN& p, const AnalysisN& a);
+void sort_campbell_series(std::vector<CampbellSample>& samples);
 /// The samples of a continuation in omega (two balls; empty for another parameter).
 std::vector<CampbellSample> campbell_samples(const ContinuationRun& run, const Params& p);
 

@@ -1,0 +1,53 @@
+// An n-ball sweep written as its values come: each value's CSV rows go to a spill file and
+// its analysis is dropped, so that a sweep holds a few kB a value (its comments, summary row,
+// Campbell samples and stability flags) instead of every analysis (docs/robustness.md
+// "Memory and disk"). The files are byte for byte sweep_csv's and sweep_summary_csv's.
+//
+//   abu::SweepStream stream("omega", "rad/s", values.size(), n_max, /*campbell=*/true);
+//   for (i ...) stream.add(values[i], abu::analyze(p_i), p_i);
+//   auto [csv, summary] = stream.stage(out, "out/sweep_omega.csv", "out/summary_omega.csv", header);
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "abu/output/files.hpp"
+#include "abu/output/report_views.hpp"
+
+namespace abu {
+
+class SweepStream {
+ public:
+  /// `values` the sweep's length (its CSV says it first), `n_max` the largest ball count (the
+  /// CSV's columns), `campbell` whether to keep the Campbell samples (an omega sweep).
+  SweepStream(std::string name, std::string unit, std::size_t values, int n_max, bool campbell);
+  /// The next value's analysis, written and dropped.
+  void add(double value, const AnalysisN& a, const ParamsN& p);
+  /// Stages the long CSV (head, every value's comments, columns, the spilled rows) and the
+  /// summary; returns their staged paths.
+  std::pair<std::filesystem::path, std::filesystem::path> stage(OutputTransaction& out,
+                                                                const std::filesystem::path& csv,
+                                                                const std::filesystem::path& summary,
+                                                                std::string_view header);
+  /// The Campbell samples, series contiguous (empty unless `campbell`).
+  std::vector<CampbellSample> campbell();
+  StabilityRanges ranges() const;
+  const std::vector<double>& values() const { return values_; }
+
+ private:
+  std::string name_, unit_;
+  std::size_t count_;
+  int n_max_;
+  bool campbell_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> rows_;  // the spill file (tmpfile, gone when closed)
+  std::string comments_, summary_rows_;
+  std::vector<double> values_;
+  std::vector<bool> balanced_stable_, some_stable_;
+  std::vector<CampbellSample> samples_;
+};
+
+}  // namespace abu
