@@ -66,6 +66,10 @@ std::vector<std::string> notes(const EquilibriumT<N>& e, const SpectrumT<N>& sp)
   if (!sp.converged) out.push_back("an eigenvalue refinement did not converge; its error estimate is the QR bound");
   if (sp.stability == Stability::marginal)
     out.push_back(fmt::format("marginal: {} eigenvalue(s) within the error band of the imaginary axis", sp.n_marginal));
+  if (sp.certified_count > 0)
+    out.push_back(fmt::format("{} eigenvalue(s) stayed within their error bands: the unstable count ({}) and the "
+                              "abscissa are the characteristic polynomial's, certified (Routh, model.md §8)",
+                              sp.certified_count, sp.n_unstable));
   if (sp.ill_conditioned) {
     double worst = 0;
     for (int k = 0; k < sp.count; ++k)

@@ -6,11 +6,16 @@
 #include "abu/equilibria/ball_permutations.hpp"
 #include "abu/linear/balanced_reduced.hpp"
 #include "abu/linear/lugre_spectrum.hpp"
+#include "abu/linear/spectrum_counts.hpp"
 
 namespace abu {
 
 Spectrum equilibrium_spectrum(const Params& p, const Equilibrium& e, SpectrumMethod method) {
-  return compute_spectrum(linearize(p.cast<long double>(), e.state()), method, e.structural_zeros);
+  const auto lin = linearize(p.cast<long double>(), e.state());
+  Spectrum sp = compute_spectrum(lin, method, e.structural_zeros);
+  // Eigenvalues left inside their bands: the certified count decides where it can.
+  if (!e.singular()) certify_counts(sp, lin);
+  return sp;
 }
 
 SpectrumN equilibrium_spectrum(const ParamsN& p, const EquilibriumN& e, SpectrumMethod method) {

@@ -71,4 +71,13 @@ cell "$work/soft.toml" 2000 0.001584893192461115 1e14 together 2 8.2158971531224
 # Near resonance (omega = 236.7 rad/s, omega_n = 250): the creep pair 2.94e-15 +- 6.3e-16i
 # is decided by the Routh count (the refinement leaves three eigenvalues unplaced).
 cell "$scene" 236.7088607594937 0.02323791629995619 4e13 balanced 1 2.940396224844571e-15
+
+# The same cells through `equilibria` (and so `sweep`, the same analysis): there too the
+# refinement of balanced 1 left three eigenvalues inside bands of 1e3 1/s and the count said
+# 1 unstable where the 80-digit reference has the creep pair 6.83e-16 +- 1.46e-16i (2); the
+# certified Routh count now decides (linear/spectrum_counts.hpp), both mirror states alike.
+"$bin" equilibria "$scene" --set kappa=4e13 --set mu=0.1 --set omega=236.70886075949366 --format json \
+  >"$work/eq.json" 2>/dev/null
+check "equilibria at kappa=4e13, omega=236.7, mu=0.1: both balanced states 2 unstable, abscissa 6.8329e-16" \
+  "/usr/bin/python3 -c \"import json, sys; e = json.load(open('$work/eq.json'))['equilibria']; b = [x for x in e if x['family'] == 'balanced']; sys.exit(0 if len(b) == 2 and all(x['n_unstable'] == 2 and abs(x['spectral_abscissa'] / 6.83286813616452318e-16 - 1) < 1e-9 for x in b) else 1)\""
 finish

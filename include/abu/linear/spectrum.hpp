@@ -85,6 +85,9 @@ struct SpectrumT {
   /// are rounded to double: the inputs themselves do not determine it to 8 digits.
   bool ill_conditioned = false;
   bool converged = true;  ///< every Newton refinement converged (refined method)
+  /// > 0: that many eigenvalues stayed inside their error bands, and n_unstable, stability
+  /// and abscissa are the characteristic polynomial's certified ones (spectrum_counts.hpp).
+  int certified_count = 0;
   /// converged (every eigenvalue refined to its tolerance), not converged (some kept
   /// their QR value: `converged` is false), or a numerical issue (a non-finite matrix, a
   /// QR or GSL's balancing failed: the values are not to be trusted), with the reason.
