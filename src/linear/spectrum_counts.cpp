@@ -6,7 +6,11 @@ namespace abu {
 
 bool certify_counts(Spectrum& sp, const Linearization<long double, 2>& lin) {
   if (sp.n_marginal == 0 || sp.n_structural > 0) return false;
-  const Polynomial p = to_double(characteristic_polynomial(lin));
+  return certify_counts(sp, to_double(characteristic_polynomial(lin)));
+}
+
+bool certify_counts(Spectrum& sp, const Polynomial& p) {
+  if (sp.n_marginal == 0 || sp.n_structural > 0) return false;
   const RouthCount rc = routh_count(p);
   if (!rc.decided || rc.n_unstable < sp.n_unstable || rc.n_unstable > sp.n_unstable + sp.n_marginal) return false;
   // The rightmost root, polished from each eigenvalue in turn and from 0, until one is

@@ -1,4 +1,5 @@
 #include "abu/scan/map.hpp"
+#include "abu/linear/spectrum_counts.hpp"
 
 #include <fmt/format.h>
 
@@ -79,24 +80,14 @@ namespace {
 // bounds) and an abscissa certified as rightmost decide instead; else the verdict stays
 // undecided, and says so.
 void second_opinion(const Spectrum& sp, const Polynomial& p, MapEquilibrium& m) {
-  const RouthCount rc = routh_count(p);
-  if (!rc.decided || rc.n_unstable < sp.n_unstable || rc.n_unstable > sp.n_unstable + sp.n_marginal) {
+  Spectrum decided = sp;
+  if (!certify_counts(decided, p)) {
     m.n_undecided = std::int8_t(sp.n_marginal);
     return;
   }
-  // The rightmost root, polished from each eigenvalue in turn (the unplaced ones too) and
-  // from 0, until one is certified (no root right of it).
-  for (int i = 0; i <= sp.count; ++i) {
-    std::complex<double> rightmost = i < sp.count ? sp.eigenvalues[std::size_t(i)] : std::complex<double>{};
-    if (i < sp.count && sp.structural[std::size_t(i)]) continue;
-    if (certified_abscissa(p, rightmost) && (rightmost.real() > 0) == (rc.n_unstable > 0)) {
-      m.n_unstable = std::int8_t(rc.n_unstable);
-      m.stable = rc.n_unstable == 0;
-      m.abscissa = rightmost.real();
-      return;
-    }
-  }
-  m.n_undecided = std::int8_t(sp.n_marginal);
+  m.n_unstable = std::int8_t(decided.n_unstable);
+  m.stable = decided.stability == Stability::stable;
+  m.abscissa = decided.abscissa;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // map's full method does the same per cell.
 #pragma once
 
+#include "abu/linear/characteristic.hpp"
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
 
@@ -16,5 +17,7 @@ namespace abu {
 /// eigenvalues' bands (n_unstable <= count <= n_unstable + n_marginal); sp.certified_count
 /// says how many eigenvalues were left inside their bands. Returns whether it decided. Not for a singular equilibrium (structural zeros).
 bool certify_counts(Spectrum& sp, const Linearization<long double, 2>& lin);
+/// The same from the polynomial itself (a map cell's, combined from its friction split).
+bool certify_counts(Spectrum& sp, const Polynomial& p);
 
 }  // namespace abu
