@@ -155,9 +155,11 @@ std::string summary_csv_header(const MapJob& job) {
              "#   best_family, best_member, best_q_abs [m] = the stable equilibrium with the least residual "
              "vibration |q| (empty if none is stable);\n"
              "#   degenerate = bit flags: 1 U = 0 (circle of balanced states), 2 balanced merges with together, "
-             "4 balanced merges with opposite, 8 K = C = 0, 16 together double root, 32 opposite double root\n"
+             "4 balanced merges with opposite, 8 K = C = 0, 16 together double root, 32 opposite double root;\n"
+             "#   undecided = equilibria whose verdict neither the refined eigenvalues nor the certified Routh count "
+             "could decide (long CSV n_undecided > 0; counted not stable: n_stable is then a lower bound)\n"
              "ix,iy,{0},{1},balanced,together,opposite,balanced_stable,n_stable,best_family,best_member,best_q_abs,"
-             "degenerate\n",
+             "degenerate,undecided\n",
              x, y, unit(job.x.param.quantity), unit(job.y.param.quantity));
 }
 
@@ -253,11 +255,12 @@ AxisText::AxisText(const Axis& a, int first, int last) : first_(first) {
 void write_cell(const MapJob& job, int ix, int iy, std::string_view x, std::string_view y, const MapCell& cell,
                 TileBuffers& out) {
   std::array<int, 3> members{};
-  int balanced_stable = -1, n_stable = 0;
+  int balanced_stable = -1, n_stable = 0, n_undecided = 0;
   for (int k = 0; k < cell.count; ++k) {
     const MapEquilibrium& e = cell.equilibria[std::size_t(k)];
     ++members[std::size_t(e.family)];
     n_stable += e.stable;
+    n_undecided += e.n_undecided > 0;
     if (e.family == Family::balanced) balanced_stable = std::max(balanced_stable, int(e.stable));
     check_finite(e.abscissa, job, ix, iy, "a spectral abscissa");
     check_finite(e.q_abs, job, ix, iy, "|q|");
@@ -284,7 +287,7 @@ void write_cell(const MapJob& job, int ix, int iy, std::string_view x, std::stri
   } else {
     fmt::format_to(fmt::appender(summary), FMT_COMPILE(",,"));
   }
-  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{}\n"), cell.degeneracy);
+  fmt::format_to(fmt::appender(summary), FMT_COMPILE(",{},{}\n"), cell.degeneracy, n_undecided);
   append_facts(out.grid, facts);
 }
 

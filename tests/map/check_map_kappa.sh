@@ -43,6 +43,12 @@ compare() {
     "[ $n -gt 8000 ] && [ $differ -eq 0 ] && [ $undecided -le $((n / 1000)) ]"
   check "$name: an undecided row is never called stable" \
     "! awk -F, '(\$3 > 0 && \$1 != 0) || (\$6 > 0 && \$4 != 0)' '$work/$name.pairs' | grep -q ."
+  # The summary counts them per cell (its last column), as the long rows say.
+  local in_summary in_long
+  in_summary=$(rows "$(ls "$work/$name-full"/summary_*.csv)" | tail -n +2 | awk -F, '{s += $NF} END {print s + 0}')
+  in_long=$(rows "$long" | tail -n +2 | awk -F, '$13 > 0' | wc -l)
+  check "$name: the summary's undecided column sums to the long rows' ($in_summary, $in_long)" \
+    "[ $in_summary -eq $in_long ]"
 }
 compare kappa-axis "$work/soft.toml" omega:20:2000:40 kappa:1e6:1e14:36:log
 compare omega-mu-1e13 "$scene" omega:50:2000:40 mu:1e-4:0.1:36:log --set kappa=1e13
