@@ -296,23 +296,30 @@ Action add_sweep_command(CLI::App& app) {
     if (scene.support)  // Floquet multipliers per value and their crossings (model.md §10.11)
       return sweep_anisotropic(scene, o->scene, *ref, values, o->logarithmic, o->chart, o->output_dir, o->sampling);
     const Params base = params_of<2>(scene);
-    require_memory(sweep_memory_estimate(values.size()), "--steps", "the sweep",
-                   fmt::format("{} values, their analyses and text", values.size()), "use fewer steps");
-    const SweepResult result = sweep(base, *ref, values);
-    for (std::size_t i = 0; i < values.size(); ++i)
-      fmt::print(stderr, "{}", analysis_warnings(result.points[i], fmt::format("{}={}", o->param, values[i])));
+    require_memory(sweep_memory_estimate(values.size(), ref->quantity == Quantity::omega), "--steps", "the sweep",
+                   fmt::format("{} values: what each keeps{}", values.size(),
+                               ref->quantity == Quantity::omega ? " (its Campbell samples)" : ""),
+                   "use fewer steps");
+    // Each value's rows are written and its analysis dropped as it comes (output/sweep_stream.hpp).
+    TwoBallSweepStream stream(*ref, values.size(), base);
+    Params p = base;
+    for (const double v : values) {
+      throw_if_stopped("sweep");
+      set(p, *ref, v);
+      const Analysis a = analyze(p);
+      fmt::print(stderr, "{}", analysis_warnings(a, fmt::format("{}={}", o->param, v)));
+      stream.add(v, a);
+    }
 
     const std::string name = to_string(*ref);
     const std::filesystem::path dir(o->output_dir);
     const auto csv_path = dir / fmt::format("sweep_{}.csv", name);
     const auto png_path = dir / fmt::format("sweep_{}.png", name);
     OutputTransaction out;
-    const std::string csv = sweep_csv(result, provenance_header(command_line(), scene.file, base));
-    const auto staged_csv = out.stage(csv_path, csv);
+    const auto staged_csv = stream.stage(out, csv_path, provenance_header(command_line(), scene.file, base));
     stage_views(out,
-                {dir, name, std::string(unit(ref->quantity)), values.front(), values.back(),
-                 campbell_samples(result, base), stability_ranges(result),
-                 provenance_header(command_line(), scene.file, base),
+                {dir, name, std::string(unit(ref->quantity)), values.front(), values.back(), stream.campbell(),
+                 stream.ranges(), provenance_header(command_line(), scene.file, base),
                  fmt::format("{}: Campbell diagram (fixed frame)", scene.file), o->chart},
                 base, scene, o->scene);
     if (o->chart) {
@@ -328,9 +335,7 @@ Action add_sweep_command(CLI::App& app) {
                    {"omega_n", format_omega_n(scene)}});
     }
     out.commit();
-    std::size_t rows = 0;
-    for (const auto& a : result.points) rows += a.equilibria.points().size();
-    fmt::print(stderr, "wrote {} ({} rows){}\n", csv_path.string(), rows,
+    fmt::print(stderr, "wrote {} ({} rows){}\n", csv_path.string(), stream.rows(),
                o->chart ? fmt::format(" and {}", png_path.string()) : std::string());
     return exit_ok;
   };

@@ -328,44 +328,54 @@ std::string equilibria_table(const A& a, const ParamsT<double, N>& p) {
 std::string equilibria_table(const Analysis& a, const Params& p) { return equilibria_table<Analysis, 2>(a, p); }
 std::string equilibria_table(const AnalysisN& a, const ParamsN& p) { return equilibria_table<AnalysisN, any_balls>(a, p); }
 
-std::string sweep_csv(const SweepResult& s, std::string_view header) {
-  const std::string name = to_string(s.param);
+std::string sweep_head(ParamRef param, std::size_t values, std::string_view header) {
   std::string out(header);
-  out += fmt::format("# sweep of {} [{}] over {} values; step = index of the value\n", name,
-                     unit(s.param.quantity), s.values.size());
+  out += fmt::format("# sweep of {} [{}] over {} values; step = index of the value\n", to_string(param),
+                     unit(param.quantity), values);
   out += equilibrium_columns_doc();
   out += "#   q_abs = |q| [m]; n_unstable = eigenvalues right of their error band\n";
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const auto& a = s.points[i];
-    for (const auto& line : describe_degeneracy(a.equilibria.degeneracy))
-      out += fmt::format("# at {}={}: degenerate: {}\n", name, s.values[i], line);
-    const auto points = a.equilibria.points();
-    for (std::size_t k = 0; k < points.size(); ++k)
-      for (const auto& n : notes(points[k], a.spectra[k]))
-        out += fmt::format("# at {}={}: {}: {}\n", name, s.values[i], state_label(points[k]), n);
-  }
-  out += fmt::format("step,{},family,pattern,member,q1,q2{},q_abs,residual,spectral_abscissa,stable,n_unstable,"
+  return out;
+}
+
+std::string sweep_value_comments(ParamRef param, double value, const Analysis& a) {
+  const std::string name = to_string(param);
+  std::string out;
+  for (const auto& line : describe_degeneracy(a.equilibria.degeneracy))
+    out += fmt::format("# at {}={}: degenerate: {}\n", name, value, line);
+  const auto points = a.equilibria.points();
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (const auto& n : notes(points[k], a.spectra[k]))
+      out += fmt::format("# at {}={}: {}: {}\n", name, value, state_label(points[k]), n);
+  return out;
+}
+
+std::string sweep_columns(ParamRef param) {
+  return fmt::format("step,{},family,pattern,member,q1,q2{},q_abs,residual,spectral_abscissa,stable,n_unstable,"
                      "n_structural_zero{}\n",
-                     name, beta_header(2), eigenvalue_header(Spectrum::capacity));
-  for (auto family : {Family::balanced, Family::together, Family::opposite}) {
-    for (int member = 1; member <= 2; ++member) {
+                     to_string(param), beta_header(2), eigenvalue_header(Spectrum::capacity));
+}
+
+std::string sweep_row(std::size_t step, ParamRef param, double value, const Equilibrium& e, const Spectrum& sp) {
+  return fmt::format("{},{},{},{},{},{},{}{},{},{},{},{},{},{}{}\n", step, num(value, to_string(param)),
+                     to_string(e.family), pattern_of(e), e.member, num(double(e.position(0)), "q1"),
+                     num(double(e.position(1)), "q2"), beta_cells(e), num(q_abs(e), "|q|"), num(e.residual, "residual"),
+                     num(sp.abscissa, "spectral abscissa"), sp.stability == Stability::stable ? 1 : 0, sp.n_unstable,
+                     sp.n_structural, eigenvalue_cells(sp));
+}
+
+std::string sweep_csv(const SweepResult& s, std::string_view header) {
+  std::string out = sweep_head(s.param, s.values.size(), header);
+  for (std::size_t i = 0; i < s.points.size(); ++i) out += sweep_value_comments(s.param, s.values[i], s.points[i]);
+  out += sweep_columns(s.param);
+  // By family and member, then value: each equilibrium's rows contiguous (a chart's line).
+  for (auto family : {Family::balanced, Family::together, Family::opposite})
+    for (int member = 1; member <= 2; ++member)
       for (std::size_t i = 0; i < s.points.size(); ++i) {
-        const auto& a = s.points[i];
-        const auto points = a.equilibria.points();
-        for (std::size_t k = 0; k < points.size(); ++k) {
-          const auto& e = points[k];
-          if (e.family != family || e.member != member) continue;
-          const auto& sp = a.spectra[k];
-          out += fmt::format("{},{},{},{},{},{},{}{},{},{},{},{},{},{}{}\n", i, num(s.values[i], name),
-                             to_string(family), pattern_of(e), member, num(double(e.position(0)), "q1"),
-                             num(double(e.position(1)), "q2"), beta_cells(e), num(q_abs(e), "|q|"),
-                             num(e.residual, "residual"), num(sp.abscissa, "spectral abscissa"),
-                             sp.stability == Stability::stable ? 1 : 0, sp.n_unstable, sp.n_structural,
-                             eigenvalue_cells(sp));
-        }
+        const auto points = s.points[i].equilibria.points();
+        for (std::size_t k = 0; k < points.size(); ++k)
+          if (points[k].family == family && points[k].member == member)
+            out += sweep_row(i, s.param, s.values[i], points[k], s.points[i].spectra[k]);
       }
-    }
-  }
   return out;
 }
 

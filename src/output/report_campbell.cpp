@@ -50,6 +50,10 @@ std::vector<CampbellSample> campbell_samples(const SweepResult& s, const Params&
   return out;
 }
 
+CampbellSample campbell_sample(int step, const Params& p, const Equilibrium& e, const Spectrum& sp) {
+  return sample_of(step, p, e, sp);
+}
+
 void append_campbell_samples(std::vector<CampbellSample>& out, int step, const ParamsN& p, const AnalysisN& a) {
   const auto points = a.equilibria.points();
   for (std::size_t k = 0; k < points.size(); ++k) out.push_back(sample_of(step, p, points[k], a.spectra[k]));

@@ -7,6 +7,15 @@
 
 namespace abu {
 
+namespace {
+void copy_into(std::FILE* from, std::ofstream& to) {
+  std::rewind(from);
+  char buffer[1 << 16];
+  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, from)) > 0;) to.write(buffer, long(got));
+  if (std::ferror(from)) throw std::runtime_error("sweep: reading back a temporary file of its rows failed");
+}
+}  // namespace
+
 SweepStream::SweepStream(std::string name, std::string unit, std::size_t values, int n_max, bool campbell)
     : name_(std::move(name)),
       unit_(std::move(unit)),
@@ -46,10 +55,8 @@ std::pair<std::filesystem::path, std::filesystem::path> SweepStream::stage(Outpu
   {
     std::ofstream file(staged_csv, std::ios::binary | std::ios::trunc);
     file << sweep_head(name_, unit_, count_, header) << comments_ << sweep_columns(name_, n_max_);
-    std::rewind(rows_.get());
-    char buffer[1 << 16];
-    for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, rows_.get())) > 0;) file.write(buffer, long(got));
-    if (std::ferror(rows_.get()) || !file.flush())
+    copy_into(rows_.get(), file);
+    if (!file.flush())
       throw std::runtime_error(fmt::format("sweep: writing {} failed", staged_csv.string()));
   }
   const std::filesystem::path staged_summary = out.stage(summary, sweep_summary_head(name_, unit_, header) + summary_rows_);
@@ -62,6 +69,67 @@ std::vector<CampbellSample> SweepStream::campbell() {
 }
 
 StabilityRanges SweepStream::ranges() const {
+  std::vector<bool> none(some_stable_.size());
+  for (std::size_t i = 0; i < none.size(); ++i) none[i] = !some_stable_[i];
+  return {grid_ranges(values_, balanced_stable_), grid_ranges(values_, none), grid_ranges(values_, some_stable_)};
+}
+
+TwoBallSweepStream::TwoBallSweepStream(ParamRef param, std::size_t values, const Params& base)
+    : param_(param), count_(values), base_(base), samples_(6) {
+  for (int k = 0; k < 6; ++k) {
+    spills_.emplace_back(std::tmpfile(), &std::fclose);
+    if (!spills_.back()) throw std::runtime_error("sweep: cannot create a temporary file for its rows");
+  }
+}
+
+void TwoBallSweepStream::add(double value, const Analysis& a) {
+  const std::size_t step = values_.size();
+  comments_ += sweep_value_comments(param_, value, a);
+  Params p = base_;
+  set(p, param_, value);
+  bool balanced = false, some = false;
+  const auto points = a.equilibria.points();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Equilibrium& e = points[k];
+    const Spectrum& sp = a.spectra[k];
+    // The spill of its family and member (sweep_csv's order): balanced 1, 2, together 1, 2, ...
+    const std::size_t which = 2 * std::size_t(e.family) + std::size_t(e.member - 1);
+    if (which >= spills_.size()) throw std::logic_error("sweep: an equilibrium outside the three families' two members");
+    const std::string row = sweep_row(step, param_, value, e, sp);
+    if (std::fwrite(row.data(), 1, row.size(), spills_[which].get()) != row.size())
+      throw std::runtime_error(fmt::format("sweep: writing the rows of {}={} to a temporary file failed",
+                                           to_string(param_), value));
+    ++rows_;
+    if (param_.quantity == Quantity::omega) samples_[which].push_back(campbell_sample(int(step), p, e, sp));
+    if (sp.stability != Stability::stable) continue;
+    some = true;
+    if (e.family == Family::balanced || e.on_balanced_set) balanced = true;
+  }
+  balanced_stable_.push_back(balanced);
+  some_stable_.push_back(some);
+  values_.push_back(value);
+}
+
+std::filesystem::path TwoBallSweepStream::stage(OutputTransaction& out, const std::filesystem::path& csv,
+                                                std::string_view header) {
+  const std::filesystem::path staged = out.reserve_data(csv);
+  std::ofstream file(staged, std::ios::binary | std::ios::trunc);
+  file << sweep_head(param_, count_, header) << comments_ << sweep_columns(param_);
+  for (const File& spill : spills_) copy_into(spill.get(), file);
+  if (!file.flush()) throw std::runtime_error(fmt::format("sweep: writing {} failed", staged.string()));
+  return staged;
+}
+
+std::vector<CampbellSample> TwoBallSweepStream::campbell() {
+  std::vector<CampbellSample> all;
+  for (auto& v : samples_) {
+    all.insert(all.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+    v.clear();
+  }
+  return all;
+}
+
+StabilityRanges TwoBallSweepStream::ranges() const {
   std::vector<bool> none(some_stable_.size());
   for (std::size_t i = 0; i < none.size(); ++i) none[i] = !some_stable_[i];
   return {grid_ranges(values_, balanced_stable_), grid_ranges(values_, none), grid_ranges(values_, some_stable_)};

@@ -102,8 +102,8 @@ std::vector<double> grid_values(double from, double to, int steps, bool logarith
   return values;
 }
 
-double sweep_memory_estimate(std::size_t values) {
-  return 20e6 + double(values) * (2.0 * double(sizeof(Analysis)) + 2 * 12.5e3);
+double sweep_memory_estimate(std::size_t values, bool omega) {
+  return 20e6 + double(values) * (omega ? 2.0 * double(sizeof(Analysis)) + 2 * 12.5e3 : 2e3);
 }
 
 SweepResult sweep(const Params& base, ParamRef param, const std::vector<double>& values) {

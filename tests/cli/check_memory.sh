@@ -48,6 +48,12 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then  # under the sanitizers the shadow memory is
   peak_below "sweep of 11 balls over mu, 101 values (streamed)" swmu.err swmu.kb
   check "... 101 values written" "[ \$(grep -v '^#' swmu/summary_mu.csv | tail -n +2 | wc -l) -eq 101 ]"
 
+  # two balls over mu, 20,001 values (streamed: held, it was ~28 kB a value, 560 MB).
+  /usr/bin/time -f %M -o sw2.kb "$bin" sweep "$src/data/scenes/default.toml" --param mu --from 1e-4 --to 1e-1 \
+    --steps 20000 --log --no-chart -o sw2 2>sw2.err
+  check "sweep of two balls over mu, 20,001 values: peak $(($(tail -1 sw2.kb) / 1000)) MB below 60 MB (20 MB + 2 kB a value)" \
+    "[ $(tail -1 sw2.kb) -lt 60000 ] && [ \$(grep -v '^#' sw2/sweep_mu.csv | tail -n +2 | wc -l) -eq 120006 ]"
+
   # continue with cycles: 1,000 shooting intervals held along 40 orbits.
   /usr/bin/time -f %M -o cyc.kb "$bin" continue "$src/tests/scenes/cycles/viscous_ref.toml" --param omega --to 50 \
     --from-equilibrium balanced --cycles --cycle-steps 40 --cycle-intervals 1000 --no-chart -o cyc 2>cyc.err

@@ -57,6 +57,13 @@ std::string equilibria_table(const AnalysisN& a, const ParamsN& p);
 /// `step,<param>,family,pattern,member,q1,q2,beta1,beta2,q_abs,residual,spectral_abscissa,stable,n_unstable,
 /// n_structural_zero,re1,...,im8`.
 std::string sweep_csv(const SweepResult& s, std::string_view header);
+/// The same in pieces, for a sweep written as its values come (output/sweep_stream.hpp):
+/// sweep_head + every value's comments + sweep_columns + every row, ordered by family and
+/// member, then value.
+std::string sweep_head(ParamRef param, std::size_t values, std::string_view header);
+std::string sweep_value_comments(ParamRef param, double value, const Analysis& a);
+std::string sweep_columns(ParamRef param);
+std::string sweep_row(std::size_t step, ParamRef param, double value, const Equilibrium& e, const Spectrum& sp);
 
 /// A sweep of any ball count (also over the ball count itself, `n`): the analysis at each
 /// value. `values[i]` is the swept value, `points[i]` its analysis.

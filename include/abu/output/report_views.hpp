@@ -102,6 +102,8 @@ std::vector<CampbellSample> campbell_samples(const SweepResultN& s, const std::v
 /// contiguous once every value is in.
 void append_campbell_samples(std::vector<CampbellSample>& out, int step, const ParamsN& p, const AnalysisN& a);
 void sort_campbell_series(std::vector<CampbellSample>& samples);
+/// One two-ball equilibrium's sample at sweep step `step` (p: that value's parameters).
+CampbellSample campbell_sample(int step, const Params& p, const Equilibrium& e, const Spectrum& sp);
 /// The samples of a continuation in omega (two balls; empty for another parameter).
 std::vector<CampbellSample> campbell_samples(const ContinuationRun& run, const Params& p);
 

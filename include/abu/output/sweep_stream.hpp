@@ -50,4 +50,30 @@ class SweepStream {
   std::vector<CampbellSample> samples_;
 };
 
+/// The two-ball sweep the same way (sweep_csv's bytes): its rows, ordered by family and
+/// member before value, go to one spill file per family and member; a value keeps its
+/// comments, stability flags and, for omega, its Campbell samples.
+class TwoBallSweepStream {
+ public:
+  TwoBallSweepStream(ParamRef param, std::size_t values, const Params& base);
+  void add(double value, const Analysis& a);
+  /// Stages the long CSV; returns its staged path.
+  std::filesystem::path stage(OutputTransaction& out, const std::filesystem::path& csv, std::string_view header);
+  std::vector<CampbellSample> campbell();
+  StabilityRanges ranges() const;
+  std::size_t rows() const { return rows_; }
+
+ private:
+  using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+  ParamRef param_;
+  std::size_t count_;
+  Params base_;
+  std::vector<File> spills_;  // balanced 1, 2, together 1, 2, opposite 1, 2
+  std::vector<std::vector<CampbellSample>> samples_;  // the same order
+  std::string comments_;
+  std::vector<double> values_;
+  std::vector<bool> balanced_stable_, some_stable_;
+  std::size_t rows_ = 0;
+};
+
 }  // namespace abu

@@ -59,10 +59,11 @@ struct SweepResult {
 /// The analysis at every value of one parameter, the others as in `base`.
 SweepResult sweep(const Params& base, ParamRef param, const std::vector<double>& values);
 
-/// What a two-ball sweep of `values` values and its CSV and Campbell text hold [bytes], an
-/// upper bound: twice an Analysis (its own size and what it holds) and twice the ~12.5 kB of
-/// text a value writes (the text grows by doubling), plus 20 MB. Measured 28 kB a value
-/// (5,000 and 40,000 values of the default scene, /usr/bin/time) against 37 kB.
-double sweep_memory_estimate(std::size_t values);
+/// What a two-ball sweep of `values` values holds [bytes], an upper bound, its rows streamed
+/// (output/sweep_stream.hpp): over omega, what a value keeps for the Campbell view (six
+/// equilibria's samples and their text), bounded by twice an Analysis and 25 kB; over another
+/// parameter 2 kB (its comments and stability flags); plus 20 MB. Measured (/usr/bin/time,
+/// default scene): 5,001 values over omega 110 MB (22 kB a value); 100,001 over mu 12 MB.
+double sweep_memory_estimate(std::size_t values, bool omega);
 
 }  // namespace abu
