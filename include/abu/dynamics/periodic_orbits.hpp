@@ -156,7 +156,7 @@ struct CycleBranch {
 /// and the mesh's working matrices (transition, Newton and kept matrices: 32 kB an interval
 /// for the most intervals the branch may use; on the stiff route 1 kB a Radau step of every
 /// interval) plus 10 MB. Measured (/usr/bin/time, whole process): 10,000 intervals 237 MB
-/// (estimate 330 MB), the default coulomb branch 13 MB.
+/// (estimate 347 MB), the default coulomb branch 13 MB.
 double cycle_branch_memory_estimate(const CycleOptions& options);
 
 /// Starts the cycle branch at a Hopf point (label HB) of a two-ball continuation in
