@@ -37,20 +37,23 @@ std::vector<Range> runs(const std::vector<double>& values, const std::vector<boo
   return out;
 }
 
+template <class A>
+StableAt stable_flags(const A& a) {
+  StableAt at;
+  const auto points = a.equilibria.points();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (a.spectra[k].stability != Stability::stable) continue;
+    at.some = true;
+    if (points[k].family == Family::balanced || points[k].on_balanced_set) at.balanced = true;
+  }
+  return at;
+}
+
 template <class S>
 StabilityRanges sweep_ranges(const S& s) {
-  std::vector<bool> balanced(s.values.size()), some(s.values.size());
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const auto points = s.points[i].equilibria.points();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      if (s.points[i].spectra[k].stability != Stability::stable) continue;
-      some[i] = true;
-      if (points[k].family == Family::balanced || points[k].on_balanced_set) balanced[i] = true;
-    }
-  }
-  std::vector<bool> none(some.size());
-  for (std::size_t i = 0; i < some.size(); ++i) none[i] = !some[i];
-  return {runs(s.values, balanced), runs(s.values, none), runs(s.values, some)};
+  std::vector<StableAt> flags;
+  for (const auto& a : s.points) flags.push_back(stable_flags(a));
+  return stability_ranges(s.values, flags);
 }
 
 // Union of intervals (from <= to), merged where they touch or overlap.
@@ -148,6 +151,19 @@ void branch_segments(const Branch& b, bool balanced_only, double lo, double hi, 
 
 std::vector<Range> grid_ranges(const std::vector<double>& values, const std::vector<bool>& flag) {
   return runs(values, flag);
+}
+
+StableAt stable_at(const Analysis& a) { return stable_flags(a); }
+StableAt stable_at(const AnalysisN& a) { return stable_flags(a); }
+
+StabilityRanges stability_ranges(const std::vector<double>& values, const std::vector<StableAt>& flags) {
+  std::vector<bool> balanced(values.size()), none(values.size()), some(values.size());
+  for (std::size_t i = 0; i < flags.size() && i < values.size(); ++i) {
+    balanced[i] = flags[i].balanced;
+    some[i] = flags[i].some;
+    none[i] = !flags[i].some;
+  }
+  return {runs(values, balanced), runs(values, none), runs(values, some)};
 }
 
 StabilityRanges stability_ranges(const SweepResult& s) { return sweep_ranges(s); }

@@ -14,6 +14,11 @@ void copy_into(std::FILE* from, std::ofstream& to) {
   for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, from)) > 0;) to.write(buffer, long(got));
   if (std::ferror(from)) throw std::runtime_error("sweep: reading back a temporary file of its rows failed");
 }
+
+void spill(std::FILE* to, const std::string& rows, const std::string& name, double value) {
+  if (std::fwrite(rows.data(), 1, rows.size(), to) != rows.size())
+    throw std::runtime_error(fmt::format("sweep: writing the rows of {}={} to a temporary file failed", name, value));
+}
 }  // namespace
 
 SweepStream::SweepStream(std::string name, std::string unit, std::size_t values, int n_max, bool campbell)
@@ -28,21 +33,10 @@ SweepStream::SweepStream(std::string name, std::string unit, std::size_t values,
 
 void SweepStream::add(double value, const AnalysisN& a, const ParamsN& p) {
   const std::size_t step = values_.size();
-  const std::string rows = sweep_value_rows(step, name_, value, a, n_max_);
-  if (std::fwrite(rows.data(), 1, rows.size(), rows_.get()) != rows.size())
-    throw std::runtime_error(fmt::format("sweep: writing the rows of {}={} to a temporary file failed", name_, value));
+  spill(rows_.get(), sweep_value_rows(step, name_, value, a, n_max_), name_, value);
   comments_ += sweep_value_comments(name_, value, a);
   summary_rows_ += sweep_summary_row(step, name_, value, a);
-  // Stability flags as stability_ranges takes them from a whole sweep (report_ranges.cpp).
-  bool balanced = false, some = false;
-  const auto points = a.equilibria.points();
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    if (a.spectra[k].stability != Stability::stable) continue;
-    some = true;
-    if (points[k].family == Family::balanced || points[k].on_balanced_set) balanced = true;
-  }
-  balanced_stable_.push_back(balanced);
-  some_stable_.push_back(some);
+  stable_.push_back(stable_at(a));
   if (campbell_) append_campbell_samples(samples_, int(step), p, a);
   values_.push_back(value);
 }
@@ -68,11 +62,7 @@ std::vector<CampbellSample> SweepStream::campbell() {
   return samples_;
 }
 
-StabilityRanges SweepStream::ranges() const {
-  std::vector<bool> none(some_stable_.size());
-  for (std::size_t i = 0; i < none.size(); ++i) none[i] = !some_stable_[i];
-  return {grid_ranges(values_, balanced_stable_), grid_ranges(values_, none), grid_ranges(values_, some_stable_)};
-}
+StabilityRanges SweepStream::ranges() const { return stability_ranges(values_, stable_); }
 
 TwoBallSweepStream::TwoBallSweepStream(ParamRef param, std::size_t values, const Params& base)
     : param_(param), count_(values), base_(base), samples_(6) {
@@ -87,7 +77,6 @@ void TwoBallSweepStream::add(double value, const Analysis& a) {
   comments_ += sweep_value_comments(param_, value, a);
   Params p = base_;
   set(p, param_, value);
-  bool balanced = false, some = false;
   const auto points = a.equilibria.points();
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Equilibrium& e = points[k];
@@ -95,18 +84,11 @@ void TwoBallSweepStream::add(double value, const Analysis& a) {
     // The spill of its family and member (sweep_csv's order): balanced 1, 2, together 1, 2, ...
     const std::size_t which = 2 * std::size_t(e.family) + std::size_t(e.member - 1);
     if (which >= spills_.size()) throw std::logic_error("sweep: an equilibrium outside the three families' two members");
-    const std::string row = sweep_row(step, param_, value, e, sp);
-    if (std::fwrite(row.data(), 1, row.size(), spills_[which].get()) != row.size())
-      throw std::runtime_error(fmt::format("sweep: writing the rows of {}={} to a temporary file failed",
-                                           to_string(param_), value));
+    spill(spills_[which].get(), sweep_row(step, param_, value, e, sp), to_string(param_), value);
     ++rows_;
     if (param_.quantity == Quantity::omega) samples_[which].push_back(campbell_sample(int(step), p, e, sp));
-    if (sp.stability != Stability::stable) continue;
-    some = true;
-    if (e.family == Family::balanced || e.on_balanced_set) balanced = true;
   }
-  balanced_stable_.push_back(balanced);
-  some_stable_.push_back(some);
+  stable_.push_back(stable_at(a));
   values_.push_back(value);
 }
 
@@ -129,10 +111,6 @@ std::vector<CampbellSample> TwoBallSweepStream::campbell() {
   return all;
 }
 
-StabilityRanges TwoBallSweepStream::ranges() const {
-  std::vector<bool> none(some_stable_.size());
-  for (std::size_t i = 0; i < none.size(); ++i) none[i] = !some_stable_[i];
-  return {grid_ranges(values_, balanced_stable_), grid_ranges(values_, none), grid_ranges(values_, some_stable_)};
-}
+StabilityRanges TwoBallSweepStream::ranges() const { return stability_ranges(values_, stable_); }
 
 }  // namespace abu

@@ -137,6 +137,15 @@ struct StabilityRanges {
   std::vector<Range> nothing_stable;   ///< where no state is stable
   std::vector<Range> some_stable;      ///< where some state is stable
 };
+/// What stability_ranges collects at one value of a sweep: whether a balanced state is
+/// stable, whether any state is.
+struct StableAt {
+  bool balanced = false, some = false;
+};
+StableAt stable_at(const Analysis& a);
+StableAt stable_at(const AnalysisN& a);
+/// The ranges from those flags, one per value (a sweep written as it comes).
+StabilityRanges stability_ranges(const std::vector<double>& values, const std::vector<StableAt>& flags);
 StabilityRanges stability_ranges(const SweepResult& s);
 StabilityRanges stability_ranges(const SweepResultN& s);
 StabilityRanges stability_ranges(const ContinuationRun& run);

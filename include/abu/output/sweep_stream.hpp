@@ -46,7 +46,7 @@ class SweepStream {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> rows_;  // the spill file (tmpfile, gone when closed)
   std::string comments_, summary_rows_;
   std::vector<double> values_;
-  std::vector<bool> balanced_stable_, some_stable_;
+  std::vector<StableAt> stable_;
   std::vector<CampbellSample> samples_;
 };
 
@@ -72,7 +72,7 @@ class TwoBallSweepStream {
   std::vector<std::vector<CampbellSample>> samples_;  // the same order
   std::string comments_;
   std::vector<double> values_;
-  std::vector<bool> balanced_stable_, some_stable_;
+  std::vector<StableAt> stable_;
   std::size_t rows_ = 0;
 };
 
