@@ -74,6 +74,7 @@ constexpr CommandParts kCommandParts[] = {
     {"basin",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .shaft_unround = true, .shaft_anisotropic = true}},
+    {"outcomes", {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
 };
 }  // namespace
 

@@ -242,7 +242,7 @@ int run_command(int argc, char** argv) {
   app.set_version_flag("--version", std::string("stability-scan ") + ABU_VERSION);
   std::vector<std::pair<CLI::App*, Action>> commands;
   for (auto add : {add_equilibria_command, add_sweep_command, add_continue_command, add_map_command,
-                    add_simulate_command, add_basin_command}) {
+                    add_simulate_command, add_basin_command, add_outcomes_command}) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
   }

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""`stability-scan outcomes` (docs/model.md §21), checked on the real binary.
+
+    check_outcomes.py BINARY SOURCE_DIR [statistics]
+
+Contract (default): the same bytes on 1 and 2 threads; every row's bare rotor against (16.5.1)
+computed here; the JSON's medians, 90th percentiles and their order-statistic intervals
+recomputed from the CSV with scipy's binomial distribution, the proportions with Wilson's
+formula; no NaN or inf; the other machines run; bad input exits 2 with nothing written.
+
+statistics (slow): the probability that a run-up of the default scene ends below the bare
+rotor's vibration, estimated by the study at 64, 256 and 1024 independent points and at 1024
+Sobol points, lies inside each stated 95 % interval around a second algorithm's value (`basin`
+on a 64 x 64 grid of start angles, the fraction of cells ending below it), and the interval
+narrows as 1/sqrt(N) (64 -> 1024: a factor 4, accepted within [3.2, 4.8]).
+"""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from scipy.stats import binom
+
+BIN, SRC = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+MODE = sys.argv[3] if len(sys.argv) > 3 else "contract"
+DEFAULT = os.path.join(SRC, "data/scenes/default.toml")
+RAMP = "50:900:400"
+fails = 0
+
+
+def check(name, ok):
+    global fails
+    print(("ok   " if ok else "FAIL ") + name)
+    fails += 0 if ok else 1
+
+
+def run(*args, cwd=None):
+    return subprocess.run([BIN, "outcomes", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def rows_of(path):
+    lines = [line for line in open(path) if not line.startswith("#")]
+    r = list(csv.DictReader(lines))
+    return r
+
+
+def bare_rotor(w, M=0.12 + 2 * 3.3e-5, k=7500.0, c=2.0, U=6e-7):
+    return U * w * w / abs(complex(k - M * w * w, c * w))
+
+
+def ranks(n, p, conf=0.95):
+    """1-based (l, u) as docs/model.md §21.3 defines them, from scipy's binomial cdf."""
+    tail = (1 - conf) / 2
+    low = max([l for l in range(1, n + 1) if binom.cdf(l - 1, n, p) <= tail], default=0)
+    high = min([u for u in range(1, n + 1) if binom.sf(u - 1, n, p) <= tail], default=n + 1)
+    return low, high
+
+
+def wilson(k, n, z=1.959963984540054):
+    c = (k + z * z / 2) / (n + z * z)
+    h = z / (n + z * z) * math.sqrt(k * (n - k) / n + z * z / 4)
+    return (0.0 if k == 0 else max(0.0, c - h)), (1.0 if k == n else min(1.0, c + h))
+
+
+def contract(work):
+    outs = {}
+    for threads in (1, 2):
+        out = os.path.join(work, f"t{threads}")
+        r = run(DEFAULT, "--ramp", RAMP, "--samples", "40", "--uncertain", "U=4e-7:8e-7", "--threads", str(threads),
+                "-o", out, "--no-chart")
+        check(f"threads {threads}: exit 0", r.returncode == 0)
+        check(f"threads {threads}: the verdict leads the summary", "verdict:" in r.stderr.splitlines()[1])
+        outs[threads] = out
+    strip = lambda text: "".join(l for l in text.splitlines(True) if not l.startswith("# command:") and '"command"' not in l)
+    for name in ("outcomes.csv", "outcomes.json"):
+        a, b = (open(os.path.join(outs[t], name)).read() for t in (1, 2))
+        check(f"{name}: 1 and 2 threads the same bytes (but the command line)", strip(a) == strip(b))
+    text = open(os.path.join(outs[1], "outcomes.csv")).read().lower()
+    check("no nan or inf in the CSV", "nan" not in text and "inf" not in text)
+    rows = rows_of(os.path.join(outs[1], "outcomes.csv"))
+    check("40 rows", len(rows) == 40)
+    worst = 0
+    for r in rows:
+        U = float(r["U"])
+        worst = max(worst, abs(float(r["bare_rotor_q"]) / bare_rotor(900.0, U=U) - 1))
+    check(f"bare rotor (16.5.1) per row, its own U: {worst:.2e} <= 1e-12", worst <= 1e-12)
+    check("U drawn inside its range", all(4e-7 <= float(r["U"]) <= 8e-7 for r in rows))
+    check("residual <= peak in every row", all(float(r["residual_q"]) <= float(r["peak_q"]) for r in rows))
+    s = json.load(open(os.path.join(outs[1], "outcomes.json")))
+    res = sorted(float(r["residual_q"]) for r in rows)
+    n = len(res)
+    for key, p in (("median", 0.5), ("p90", 0.9)):
+        q = s["residual_q"][key]
+        l, u = ranks(n, p)
+        check(f"residual {key}: x_(ceil(p n))", q["value"] == res[math.ceil(p * n) - 1])
+        check(f"residual {key}: interval x_({l}), x_({u})",
+              q["low"] == (res[l - 1] if l >= 1 else None) and q["high"] == (res[u - 1] if u <= n else None))
+    check("worst = the largest residual", s["residual_q"]["worst"] == res[-1])
+    below = sum(float(r["residual_q"]) <= float(r["bare_rotor_q"]) for r in rows)
+    lo, hi = wilson(below, n)
+    b = s["below_limit"]
+    check(f"below the bare rotor: {below} of {n}, Wilson [{lo:.4f}, {hi:.4f}]",
+          b["events"] == below and abs(b["low"] - lo) < 1e-12 and abs(b["high"] - hi) < 1e-12)
+    stuck = sum(r["stuck_off_balance"] == "1" for r in rows)
+    check("stuck away from balance = the rows' flags", s["stuck_off_balance"]["events"] == stuck)
+
+    # Other machines: an anisotropic support, an unround race, coulomb-set balls, three balls.
+    for scene, extra in (("tests/scenes/anisotropic/ref_coulomb.toml", []),
+                         ("tests/scenes/unround/oval_offset_viscous.toml", []),
+                         ("tests/scenes/composed/oval_anisotropic.toml", []),
+                         ("tests/scenes/stickslip/runup.toml", []),
+                         ("data/scenes/ring11.toml", ["--set", "omega=900"])):
+        path = os.path.join(SRC, scene)
+        if not os.path.exists(path):
+            check(f"{scene} exists", False)
+            continue
+        out = os.path.join(work, os.path.basename(scene))
+        r = run(path, *extra, "--samples", "4", "--t-end", "0.3", "-o", out, "--no-chart")
+        body = open(os.path.join(out, "outcomes.csv")).read().lower() if r.returncode == 0 else ""
+        check(f"{scene}: exit 0, 4 rows, no nan ({r.stderr.strip().splitlines()[-1][:120] if r.stderr else ''})",
+              r.returncode == 0 and len(rows_of(os.path.join(out, "outcomes.csv"))) == 4 and "nan" not in body)
+
+    # Bad input: exit 2, the option named, nothing written.
+    for args, word in ((["--uncertain", "mu=0.003:0.001"], "--uncertain"), (["--uncertain", "omega=1:2"], "profile"),
+                       (["--uncertain", "zeta=1:2"], "zeta"), (["--samples", "0"], "--samples"),
+                       (["--uncertain", "mu"], "NAME=LOW:HIGH"), (["--confidence", "1.5"], "--confidence")):
+        out = os.path.join(work, "bad")
+        r = run(DEFAULT, *args, "-o", out)
+        check(f"{' '.join(args)}: exit 2 naming {word}, nothing written",
+              r.returncode == 2 and word in r.stderr and not os.path.exists(out))
+    r = run(os.path.join(SRC, "data/scenes/shaft.toml"), "-o", os.path.join(work, "bad"))
+    check("a shaft: exit 2 naming what answers it", r.returncode == 2 and "basin" in r.stderr)
+
+
+def statistics(work):
+    grid = os.path.join(work, "grid")
+    r = subprocess.run([BIN, "basin", DEFAULT, "--grid", "64", "--ramp", RAMP, "--t-end", "4.125", "-o", grid, "--quiet",
+                        "--no-chart"], capture_output=True, text=True)
+    check("basin 64 x 64: exit 0", r.returncode == 0)
+    cells = rows_of(os.path.join(grid, "basin.csv"))
+    p_ref = sum(float(c["q_abs_end"]) <= bare_rotor(900.0) for c in cells) / len(cells)
+    print(f"     second algorithm: {len(cells)} grid cells, P(residual <= bare rotor) = {p_ref:.4f}")
+    widths = {}
+    for design, n in (("random", 64), ("random", 256), ("random", 1024), ("sobol", 1024)):
+        out = os.path.join(work, f"{design}{n}")
+        r = run(DEFAULT, "--ramp", RAMP, "--samples", str(n), "--design", design, "-o", out, "--quiet", "--no-chart")
+        b = json.load(open(os.path.join(out, "outcomes.json")))["below_limit"]
+        check(f"{design} {n}: {b['value']:.4f} in [{b['low']:.4f}, {b['high']:.4f}] holds {p_ref:.4f}",
+              r.returncode == 0 and b["low"] <= p_ref <= b["high"])
+        widths[(design, n)] = b["high"] - b["low"]
+    ratio = widths[("random", 64)] / widths[("random", 1024)]
+    check(f"interval 64 -> 1024 narrows by {ratio:.2f} (1/sqrt(N): 4)", 3.2 <= ratio <= 4.8)
+    ratio = widths[("random", 256)] / widths[("random", 1024)]
+    check(f"interval 256 -> 1024 narrows by {ratio:.2f} (1/sqrt(N): 2)", 1.6 <= ratio <= 2.4)
+
+
+with tempfile.TemporaryDirectory() as work:
+    (statistics if MODE == "statistics" else contract)(work)
+print(f"{fails} failure(s)")
+sys.exit(1 if fails else 0)
