@@ -6,7 +6,7 @@ set -euo pipefail
 # python3-gmpy2: mpmath's GMP backend (mpmath uses it when it can import gmpy2), the same
 # digits with about 20 % less CPU in the mpmath references (docs/developers.md, CI).
 packages=(cmake g++ make ninja-build pkg-config libeigen3-dev libgsl-dev libarpack2-dev libfmt-dev catch2 libcli11-dev
-          libtomlplusplus-dev gnuplot-nox python3 python3-mpmath python3-gmpy2
+          libtomlplusplus-dev libnlopt-cxx-dev gnuplot-nox python3 python3-mpmath python3-gmpy2
           python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest python3-sympy "$@")
 missing=()
 for p in "${packages[@]}"; do

@@ -323,7 +323,15 @@ TEST_CASE("speed profiles: ramps, files, crossings and bad input", "[simulation]
   const auto down = SpeedProfile::parse_ramp("400:100:300");
   CHECK(down.omega_dot(0.1) == -300);
   CHECK_THROWS_AS(SpeedProfile::parse_ramp("100:-5:10"), InputError);
-  CHECK_THROWS_AS(SpeedProfile::parse_ramp("0:100:10"), InputError);
+  CHECK_THROWS_AS(SpeedProfile::parse_ramp("100:0:10"), InputError);  // a ramp ends at omega > 0
+  const auto from_rest = SpeedProfile::parse_ramp("0:100:10");          // and may start at rest
+  CHECK(from_rest.omega(0) == 0.0);
+  CHECK(from_rest.omega(5) == Approx(50));
+  CHECK(from_rest.end_of_change() == Approx(10));
+  // Typed in rpm (the factor 2 pi / 60 on every value): 600 rpm = 62.83 rad/s at 60 rpm/s.
+  const auto rpm = SpeedProfile::parse_ramp("0:600:60", "--ramp", 2 * M_PI / 60);
+  CHECK(rpm.omega(10) == Approx(20 * M_PI).epsilon(1e-14));
+  CHECK(rpm.omega_dot(1) == Approx(2 * M_PI).epsilon(1e-14));
   CHECK_THROWS_AS(SpeedProfile::parse_ramp("100:200:0"), InputError);
   CHECK_THROWS_AS(SpeedProfile::parse_ramp("100:200"), InputError);
   CHECK_THROWS_AS(SpeedProfile::parse_ramp("100:200:5:6"), InputError);

@@ -29,13 +29,14 @@ import numpy as _np
 
 from . import _abu
 from ._abu import InputError, NotSupportedError, NumericalError, Scene
+from .studies import design, outcomes
 
 __version__ = _abu.__version__
 
 __all__ = [
     "InputError", "NumericalError", "NotSupportedError", "Scene",
     "load_scene", "scene_from_dict", "scene_toml", "parameter_symbols",
-    "equilibria", "continue_branches", "map", "simulate",
+    "equilibria", "continue_branches", "map", "simulate", "outcomes", "design",
     "Equilibria", "MachineEquilibria", "Continuation", "Branch", "Table", "StabilityMap", "Simulation", "Result",
 ]
 

@@ -1,5 +1,6 @@
 // Shared by the two translation units of the compiled part of the Python module, abu._abu
-// (module.cpp: errors, scenes, equilibria, maps; runs.cpp: continuation, simulation).
+// (module.cpp: errors, scenes, equilibria, maps; runs.cpp: continuation, simulation;
+// studies.cpp: outcome and design studies).
 // These functions return plain dicts of numpy arrays and lists; python/abu/__init__.py
 // wraps them in the documented result classes. Long computations run with the GIL
 // released: results are computed into C++ values first and converted afterwards.
@@ -48,6 +49,8 @@ inline void require_parts(const Scene& scene, std::string_view call, Handles han
 
 /// Registers continue_branches and simulate (runs.cpp).
 void bind_runs(py::module_& m);
+/// Registers outcomes and design (studies.cpp).
+void bind_studies(py::module_& m);
 
 /// A new C-ordered array of the given shape, zero-filled.
 template <class T>

@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -17,6 +16,7 @@
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/input/option_values.hpp"
 #include "abu/input/race_scene.hpp"
+#include "abu/model/anisotropic_support.hpp"
 #include "abu/model/unround_race.hpp"
 
 namespace abu {
@@ -34,8 +34,7 @@ double total_mass(const Scene& s) {
 // The scene with sample k's uncertain inputs set (checked against the scene's rules).
 Scene scene_of_sample(const Scene& scene, const OutcomeOptions& o, const std::vector<double>& inputs) {
   Scene s = scene;
-  for (std::size_t u = 0; u < o.uncertain.size(); ++u)
-    set_checked(s, *parse_param(o.uncertain[u].name, int(s.balls.size())), inputs[u], "--uncertain");
+  for (std::size_t u = 0; u < o.uncertain.size(); ++u) set_study_input(s, o.uncertain[u].name, inputs[u], "--uncertain");
   return s;
 }
 
@@ -46,15 +45,16 @@ void check_uncertain(const Scene& scene, const OutcomeOptions& o) {
     const auto key = "--uncertain";
     if (u.name == "omega")
       throw InputError(key, 0, u.name, "the speed is the run's profile (--ramp, --speed-profile), not an uncertain input");
-    if (!parse_param(u.name, int(scene.balls.size())))
-      throw InputError(key, 0, u.name, "names no parameter of the scene (the --set names: U k c M_r mu m l r f ...)");
+    if (u.name != "unroundness" && !parse_param(u.name, int(scene.balls.size())))
+      throw InputError(key, 0, u.name,
+                       "names no parameter of the scene (the --set names: U k c M_r mu m l r f ..., or unroundness)");
     if (!(std::isfinite(u.low) && std::isfinite(u.high) && u.low <= u.high))
       throw InputError(key, 0, u.name, fmt::format("the range {}:{} must be finite with LOW <= HIGH", u.low, u.high));
     for (const auto& v : o.uncertain)
       if (&v != &u && v.name == u.name) throw InputError(key, 0, u.name, "is given twice");
     for (double x : {u.low, u.high}) {
       Scene s = scene;
-      set_checked(s, *parse_param(u.name, int(scene.balls.size())), x, key);
+      set_study_input(s, u.name, x, key);
     }
   }
 }
@@ -67,8 +67,7 @@ void take_run(OutcomeSample& s, const SimulationResult<N>& r) {
     s.reason = r.reason;
     return;
   }
-  for (const auto& x : r.samples)
-    if (x.t >= r.summary.window_from) s.residual = std::max(s.residual, std::hypot(x.x(0), x.x(1)));
+  s.residual = r.summary.residual_q_abs;
   s.peak = r.summary.max_q_abs;
   s.peak_run_up = r.summary.max_q_abs_run_up;
   s.stalled = r.summary.stalled;
@@ -145,6 +144,13 @@ FigureStatistics figure(const std::vector<double>& v, double confidence) {
 
 }  // namespace
 
+void set_study_input(Scene& scene, const std::string& name, double value, const std::string& origin) {
+  if (name == "unroundness") return scale_race(scene, value, origin);
+  const auto ref = parse_param(name, int(scene.balls.size()));
+  if (!ref) throw InputError(origin, 0, name, "names no parameter of the scene");
+  set_checked(scene, *ref, value, origin);
+}
+
 UncertainInput parse_uncertain(const std::string& text, const std::string& origin) {
   const auto eq = text.find('=');
   const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
@@ -160,25 +166,11 @@ UncertainInput parse_uncertain(const std::string& text, const std::string& origi
 }
 
 double steady_whirl_radius(const Scene& scene, double omega, std::complex<double> W) {
-  using C = std::complex<double>;
-  const double M = total_mass(scene);
-  Eigen::Matrix2d K = scene.rotor.stiffness * Eigen::Matrix2d::Identity();
-  Eigen::Matrix2d D = scene.rotor.damping * Eigen::Matrix2d::Identity();
-  if (scene.support) {
-    const auto& s = *scene.support;
-    K << s.k_x, s.k_xy, s.k_xy, s.k_y;
-    D << s.c_x, s.c_xy, s.c_xy, s.c_y;
-  }
-  const Eigen::Matrix2cd A = (K - M * omega * omega * Eigen::Matrix2d::Identity()).cast<C>() + C(0, omega) * D.cast<C>();
-  const Eigen::Vector2cd z = A.partialPivLu().solve(Eigen::Vector2cd(omega * omega * W, C(0, -1) * omega * omega * W));
-  // x(t) = Re(z e^{i omega t}) = a cos - b sin: its largest length is the root of the larger
-  // eigenvalue of [a b][a b]^T.
-  const Eigen::Vector2d a = z.real(), b = z.imag();
-  Eigen::Matrix2d G;
-  G << a.dot(a), a.dot(b), a.dot(b), b.dot(b);
-  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(G, Eigen::EigenvaluesOnly)
-                                     .eigenvalues()(1)));
+  return abu::steady_whirl_radius(total_mass(scene), scene.rotor.stiffness, scene.rotor.damping,
+                                  scene.support ? &*scene.support : nullptr, omega, W);
 }
+
+double default_outcome_end(const SpeedProfile& speed) { return speed.end_of_change() + 2.0; }
 
 double outcome_memory_estimate(const OutcomeOptions& o, int balls) {
   SimulationOptions sim = o.sim;

@@ -18,6 +18,8 @@
 
 #include "cli.hpp"
 #include "abu/analysis/basin_targets.hpp"
+#include "abu/analysis/outcomes.hpp"
+#include "abu/core/sampling.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/core/cancel.hpp"
@@ -137,12 +139,12 @@ Action add_basin_command(CLI::App& app) {
     if (!(b.settle_radius > 0 && b.settle_radius < 1)) throw InputError("--settle-radius", 0, "", "must lie in (0, 1)");
     if (!(b.sim.settle_tolerance > 0 && b.sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
-    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && (!o->ramp.empty() || !o->profile_file.empty()))
-      throw InputError(!o->ramp.empty() ? "--ramp" : "--speed-profile", 0, "units",
-                       "a speed profile is given in rad/s; --units applies to --set omega only (drop --units)");
+    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && !o->profile_file.empty())
+      throw InputError("--speed-profile", 0, "units",
+                       "a speed profile file is in rad/s; --units applies to --set omega and --ramp (drop --units)");
     const int n = int(scene.balls.size());
     BasinJob job;
-    job.speed = !o->ramp.empty()           ? SpeedProfile::parse_ramp(o->ramp)
+    job.speed = !o->ramp.empty()           ? ramp_input(o->scene, o->ramp)
                 : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
                 : scene.simulate && scene.simulate->speed ? *scene.simulate->speed
                                                           : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
@@ -268,6 +270,7 @@ Action add_basin_command(CLI::App& app) {
     std::vector<std::vector<double>> stuck_angles(static_cast<std::size_t>(n));
     long stuck_cells = 0, outside = 0;
     double worst_s = 0, worst_q = 0;
+    std::vector<double> residuals;  // |q| at each cell's end (model.md §21.1's residual, at the settle test's entry or t_end)
     {
       std::istringstream in(counts->rows);
       for (std::string row; std::getline(in, row);) {
@@ -278,6 +281,7 @@ Action add_basin_command(CLI::App& app) {
         ++count[{label_rank(f[4]), f[4], numbered ? std::stoi(f[5]) : 0}];
         classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
         early += f[6] != "0";
+        residuals.push_back(std::stod(f[9]));
         certified += f[6] == "1";
         ++cells;
         if (set_valued && f[std::size_t(14 + n)] != "-1") {
@@ -304,6 +308,16 @@ Action add_basin_command(CLI::App& app) {
       first = false;
     }
     json += "\n  }";
+    // The residual over the cells against the bare rotor (model.md §21.3's statistics; a rigid rotor's (16.5.1)).
+    const double bare = scene.shaft ? 0.0 : steady_whirl_radius(scene, job.final_omega(), scene.rotor.unbalance);
+    const QuantileEstimate r50 = quantile_estimate(residuals, 0.5), r90 = quantile_estimate(residuals, 0.9),
+                           r100 = quantile_estimate(residuals, 1.0);
+    const auto json_side = [](const std::optional<double>& v) { return v ? format_number(*v, "residual") : std::string("null"); };
+    json += fmt::format(",\n  \"residual_q\": {{\"median\": [{}, {}, {}], \"p90\": [{}, {}, {}], \"worst\": {}, "
+                        "\"bare_rotor\": {}}}",
+                        format_number(r50.value, "residual"), json_side(r50.low), json_side(r50.high),
+                        format_number(r90.value, "residual"), json_side(r90.low), json_side(r90.high),
+                        format_number(r100.value, "residual"), bare > 0 ? format_number(bare, "bare rotor") : "null");
     if (set_valued) {
       std::string sp;
       for (double x : spread) sp += fmt::format("{}{:.9f}", sp.empty() ? "" : ", ", x);
@@ -337,7 +351,14 @@ Action add_basin_command(CLI::App& app) {
                  stats.tiles, stats.seconds);
       for (const auto& [key, k] : count)
         fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.name(), k, 100.0 * double(k) / double(cells));
-      if (set_valued) {
+      const auto side = [](const std::optional<double>& v) { return v ? fmt::format("{:.4g}", *v * 1e6) : std::string("-"); };
+      fmt::print(stderr, "  |q| at the cells' ends: median {:.4g} µm [{}, {}], 90th percentile {:.4g} µm [{}, {}], worst "
+                         "{:.4g} µm{}\n",
+                 r50.value * 1e6, side(r50.low), side(r50.high), r90.value * 1e6, side(r90.low), side(r90.high),
+                 r100.value * 1e6, bare > 0 ? fmt::format(" (the bare rotor's {:.4g} µm, (16.5.1))", bare * 1e6) : "");
+      if (set_valued && stuck_cells == 0) {
+        fmt::print(stderr, "  no cell ends with every ball stuck (none inside the stick set)\n");
+      } else if (set_valued) {
         fmt::print(stderr, "  every ball stuck in {} of {} cells; end points outside the stick set: {}; max |s_i| = {:.6g}; "
                            "largest end |q| = {:.6g} m\n  spread of the end angles (shortest arc holding them):",
                    stuck_cells, cells, outside, worst_s, worst_q);

@@ -116,6 +116,10 @@ SpeedUnit SceneOptions::speed_unit() const { return speed_unit_from_string(units
 
 double omega_input(const SceneOptions& options, double typed) { return to_rad_per_s(typed, options.speed_unit()); }
 
+SpeedProfile ramp_input(const SceneOptions& options, const std::string& text) {
+  return SpeedProfile::parse_ramp(text, "--ramp", to_rad_per_s(1.0, options.speed_unit()));
+}
+
 namespace {
 // `--set omega=V` in the command's --units: rewritten to rad/s before the scene's rules
 // check it (a value that is not a number is left for apply_override to report).
@@ -242,7 +246,7 @@ int run_command(int argc, char** argv) {
   app.set_version_flag("--version", std::string("stability-scan ") + ABU_VERSION);
   std::vector<std::pair<CLI::App*, Action>> commands;
   for (auto add : {add_equilibria_command, add_sweep_command, add_continue_command, add_map_command,
-                    add_simulate_command, add_basin_command, add_outcomes_command}) {
+                    add_simulate_command, add_basin_command, add_outcomes_command, add_design_command}) {
     Action a = add(app);
     commands.emplace_back(app.get_subcommands({}).back(), a);
   }

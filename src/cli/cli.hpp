@@ -36,6 +36,8 @@ struct SceneOptions {
 
 /// A value of omega typed in the command's --units, in rad/s.
 double omega_input(const SceneOptions& options, double typed);
+/// --ramp OMEGA0:OMEGA1:ALPHA in the command's --units (rpm: rpm, rpm, rpm/s), in rad/s.
+SpeedProfile ramp_input(const SceneOptions& options, const std::string& text);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);

@@ -16,6 +16,7 @@ Action add_map_command(CLI::App& app);
 Action add_simulate_command(CLI::App& app);
 Action add_basin_command(CLI::App& app);
 Action add_outcomes_command(CLI::App& app);
+Action add_design_command(CLI::App& app);
 
 /// Adds SCENE and --set to a subcommand.
 struct SceneOptions;

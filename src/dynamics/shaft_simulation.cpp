@@ -368,6 +368,8 @@ ShaftSimulationResult simulate_shaft(const ShaftSystem& sys, const SpeedProfile&
     // omega_n of the rigid view is the stall test's estimate, not a critical speed of the shaft:
     // no passages through it are listed (model.md §18.16).
     run.summary.t_omega_n.clear();
+    // Nor is the rigid rotor's whirl a reference for a shaft (model.md §21.1: rigid rotors).
+    run.summary.bare_rotor_q_abs = run.summary.balls_held_q_abs = 0;
   }
   return r;
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "abu/dynamics/simulation.hpp"
+#include "abu/model/anisotropic_support.hpp"
 
 namespace abu {
 
@@ -71,6 +72,22 @@ std::optional<std::vector<double>> nearest_balanced_angles(const ParamsT<double,
   return std::nullopt;
 }
 
+// The residual over the final window and its two references (model.md §21.1).
+template <int N>
+void residual_figures(const ParamsT<double, N>& p, const std::vector<TrajectorySample<N>>& samples, std::size_t w0,
+                      const SimulationOptions& o, SimulationSummary& s) {
+  for (std::size_t k = w0; k < samples.size(); ++k)
+    s.residual_q_abs = std::max(s.residual_q_abs, std::hypot(samples[k].x(0), samples[k].x(1)));
+  const double w = samples.back().omega;
+  std::complex<double> held = p.rotor.unbalance;
+  for (int i = 0; i < ball_count(p); ++i)
+    held += p.balls[std::size_t(i)].mass * p.balls[std::size_t(i)].race_radius * std::polar(1.0, samples.front().x(2 + i));
+  const AnisotropicSupport* support = o.support && !o.support->isotropic() ? o.support : nullptr;
+  s.bare_rotor_q_abs = steady_whirl_radius(p.total_mass(), p.rotor.stiffness, p.rotor.damping, support, w,
+                                           std::complex<double>(p.rotor.unbalance));
+  s.balls_held_q_abs = steady_whirl_radius(p.total_mass(), p.rotor.stiffness, p.rotor.damping, support, w, held);
+}
+
 template <int N>
 SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& speed,
                             const std::vector<TrajectorySample<N>>& samples, const SimulationOptions& o) {
@@ -100,6 +117,7 @@ SimulationSummary summarize(const ParamsT<double, N>& p, const SpeedProfile& spe
   const double span = s.t_end - s.window_from;
   const double w_bar = span > 0 ? (speed.angle(s.t_end) - speed.angle(s.window_from)) / span : last.omega;
   s.omega_mean_window = w_bar;
+  residual_figures(p, samples, w0, o, s);
 
   // Stall (model.md §15.3): ball i slips against the rotor by more than 5 % of the spin speed
   // on average while its mean fixed-frame speed lies within 15 % of omega_n.

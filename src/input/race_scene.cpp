@@ -220,3 +220,21 @@ void check_race(const Scene& scene) {
 
 }  // namespace scene_reading
 }  // namespace abu
+
+namespace abu {
+
+void scale_race(Scene& scene, double factor, const std::string& origin) {
+  if (scene.race.round())
+    throw InputError(origin, 0, "unroundness",
+                     scene.file + " has a round race: give its largest runout in [race] (model.md §11.1) to scale it");
+  if (!(factor >= 0 && factor <= 1))
+    throw InputError(origin, 0, "unroundness",
+                     fmt::format("the factor scales the scene's [race] (its largest runout) within [0, 1], got {}", factor));
+  const auto scale = [factor](RaceHarmonicsInput& in) {
+    for (auto& h : in.harmonics) h.amplitude *= factor;
+  };
+  if (scene.race.all) scale(*scene.race.all);
+  for (auto& b : scene.race.per_ball) scale(b.second);
+}
+
+}  // namespace abu

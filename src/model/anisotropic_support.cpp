@@ -2,7 +2,9 @@
 // Jacobian at a balanced state.
 #include "abu/model/anisotropic_support.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -95,6 +97,24 @@ PeriodicJacobian balanced_periodic_jacobian(const ParamsN& p, const AnisotropicS
   for (Eigen::MatrixXd* M : {&J.mean, &J.cos2, &J.sin2})
     *M = J.scale.cwiseInverse().asDiagonal() * (*M) * J.scale.asDiagonal();
   return J;
+}
+
+double steady_whirl_radius(double mass, double k, double c, const AnisotropicSupport* support, double omega,
+                           std::complex<double> W) {
+  using C = std::complex<double>;
+  Eigen::Matrix2d K = k * Eigen::Matrix2d::Identity(), D = c * Eigen::Matrix2d::Identity();
+  if (support) {
+    K << support->k_x, support->k_xy, support->k_xy, support->k_y;
+    D << support->c_x, support->c_xy, support->c_xy, support->c_y;
+  }
+  const Eigen::Matrix2cd A =
+      (K - mass * omega * omega * Eigen::Matrix2d::Identity()).cast<C>() + C(0, omega) * D.cast<C>();
+  const Eigen::Vector2cd z = A.partialPivLu().solve(Eigen::Vector2cd(omega * omega * W, C(0, -1) * omega * omega * W));
+  // x(t) = a cos - b sin: its largest length is the root of the larger eigenvalue of [a b][a b]^T.
+  const Eigen::Vector2d a = z.real(), b = z.imag();
+  Eigen::Matrix2d G;
+  G << a.dot(a), a.dot(b), a.dot(b), b.dot(b);
+  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(G, Eigen::EigenvaluesOnly).eigenvalues()(1)));
 }
 
 std::string describe_support(const AnisotropicSupport& s) {

@@ -33,9 +33,10 @@ SpeedProfile SpeedProfile::constant(double omega, const std::string& origin, con
 }
 
 SpeedProfile SpeedProfile::ramp(double omega0, double omega1, double alpha, const std::string& origin) {
-  if (!(std::isfinite(omega0) && omega0 > 0 && std::isfinite(omega1) && omega1 > 0))
+  if (!(std::isfinite(omega0) && omega0 >= 0 && std::isfinite(omega1) && omega1 > 0))
     throw InputError(origin, 0, "OMEGA0:OMEGA1:ALPHA",
-                     fmt::format("a ramp must stay at omega > 0 rad/s (got {} -> {})", omega0, omega1));
+                     fmt::format("a ramp starts at omega >= 0 (0: from rest) and ends at omega > 0 rad/s (got {} -> {})",
+                                 omega0, omega1));
   if (!(std::isfinite(alpha) && alpha > 0))
     throw InputError(origin, 0, "OMEGA0:OMEGA1:ALPHA",
                      fmt::format("the angular acceleration ALPHA must be > 0 rad/s^2 (got {})", alpha));
@@ -46,7 +47,7 @@ SpeedProfile SpeedProfile::ramp(double omega0, double omega1, double alpha, cons
   return p;
 }
 
-SpeedProfile SpeedProfile::parse_ramp(std::string_view text, const std::string& origin) {
+SpeedProfile SpeedProfile::parse_ramp(std::string_view text, const std::string& origin, double to_rad_per_s) {
   double v[3];
   std::size_t start = 0;
   for (int k = 0; k < 3; ++k) {
@@ -56,7 +57,7 @@ SpeedProfile SpeedProfile::parse_ramp(std::string_view text, const std::string& 
       throw InputError(origin, 0, std::string(text), "expected OMEGA0:OMEGA1:ALPHA, three finite reals (rad/s, rad/s, rad/s^2)");
     start = colon + 1;
   }
-  return ramp(v[0], v[1], v[2], origin);
+  return ramp(v[0] * to_rad_per_s, v[1] * to_rad_per_s, v[2] * to_rad_per_s, origin);
 }
 
 SpeedProfile SpeedProfile::piecewise_linear(std::vector<Point> points, const std::string& origin) {

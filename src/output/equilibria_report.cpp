@@ -33,9 +33,9 @@ std::string rigid_text(const States& s, std::string_view format, const OutputCon
   const auto& a = s.analysis;
   const auto& p = s.params;
   if (format == "csv") {
-    const std::string header = provenance_header(c.command_line, c.scene_file, p) +
-                               answer_lines(point_answer(a, p), c.unit, "# ") + creep_lines(a, s.kappa, "# ") +
-                               dry_friction_lines(s.dry, "# ");
+    const std::string header =
+        provenance_header(c.command_line, c.scene_file, p) +
+        dry_first(s.dry, answer_lines(point_answer(a, p), c.unit, "# ") + creep_lines(a, s.kappa, "# "), "# ");
     if constexpr (std::is_same_v<States, RigidStates2>) {
       return equilibria_csv(a, header);
     } else {
@@ -106,7 +106,7 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
               std::string json = unround_json(s.result, s.params, s.race, c.command_line, c.scene_file);
               return json.insert(2, dry_friction_json(s.dry));  // a member after the opening "{\n"
             }
-            return unround_table(s.result, s.params, s.race, c.scene_file) + dry_friction_lines(s.dry, "");
+            return dry_first(s.dry, unround_table(s.result, s.params, s.race, c.scene_file), "");
           },
           [&](const AnisotropicStates& s) { return anisotropic_text(s, format, c); },
           [&](const UnroundAnisotropicStates& s) { return unround_anisotropic_text(s, format, c); },
@@ -119,7 +119,7 @@ std::string equilibria_text(const EquilibriaReport& r, std::string_view format, 
               std::string json = shaft_states_json(s, c.command_line, c.scene_file);
               return json.insert(2, dry_friction_json(s.dry));  // a member after the opening "{\n"
             }
-            return shaft_states_table(s, c.scene_file) + dry_friction_lines(s.dry, "");
+            return dry_first(s.dry, shaft_states_table(s, c.scene_file), "");
           },
       },
       r.states);

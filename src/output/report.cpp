@@ -497,17 +497,17 @@ std::string analysis_warnings(const AnalysisN& a, std::string_view where) {
   return analysis_warnings<AnalysisN>(a, where);
 }
 
-// The table ends, for the smooth coulomb and stribeck laws, with the dry-friction verdict
+// For the smooth coulomb and stribeck laws the dry-friction verdict comes first
 // (report_stick_set.hpp, model.md §14.10).
 std::string equilibria_report(const Analysis& a, const Params& p, SpeedUnit unit,
                               const std::vector<KappaSensitivity<2>>& kappa, const DryFrictionVerdict& dry) {
-  return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
-         creep_lines(a, kappa, "") + dry_friction_lines(dry, "");
+  return dry_first(dry, answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) +
+                            modes_table(a, p, unit) + creep_lines(a, kappa, ""), "");
 }
 std::string equilibria_report(const AnalysisN& a, const ParamsN& p, SpeedUnit unit,
                               const std::vector<KappaSensitivity<any_balls>>& kappa, const DryFrictionVerdict& dry) {
-  return answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) + modes_table(a, p, unit) +
-         creep_lines(a, kappa, "") + dry_friction_lines(dry, "");
+  return dry_first(dry, answer_lines(point_answer(a, p), unit, "") + "\n" + equilibria_table(a, p) +
+                            modes_table(a, p, unit) + creep_lines(a, kappa, ""), "");
 }
 
 }  // namespace abu

@@ -32,6 +32,18 @@ std::vector<double> end_angles(const SimulationResult<N>& r, int n) {
   return beta;
 }
 
+// What the run leaves against the two references (model.md §21.1), in µm.
+std::string residual_line(const SimulationSummary& s) {
+  std::string out = fmt::format("  residual |q| over the final window: {:.4g} µm", s.residual_q_abs * 1e6);
+  if (s.bare_rotor_q_abs > 0)
+    out += fmt::format(", {:.3g} times the bare rotor's {:.4g} µm (16.5.1)", s.residual_q_abs / s.bare_rotor_q_abs,
+                       s.bare_rotor_q_abs * 1e6);
+  if (s.balls_held_q_abs > 0)
+    out += fmt::format(", {:.3g} times the {:.4g} µm with the balls held at their start",
+                       s.residual_q_abs / s.balls_held_q_abs, s.balls_held_q_abs * 1e6);
+  return out + "\n";
+}
+
 }  // namespace
 
 std::string with_columns(std::string_view csv, std::string_view comment, std::string_view names,
@@ -158,6 +170,10 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
   out += fmt::format("  \"max_q_abs\": {},\n  \"t_max_q_abs\": {},\n", format_number(s.max_q_abs, "max_q_abs"),
                      format_number(s.t_max_q_abs, "t_max_q_abs"));
   out += fmt::format("  \"max_q_abs_run_up\": {},\n", optional_number(s.max_q_abs_run_up, "max_q_abs_run_up"));
+  out += fmt::format("  \"residual_q_abs\": {},\n  \"bare_rotor_q_abs\": {},\n  \"balls_held_q_abs\": {},\n",
+                     format_number(s.residual_q_abs, "residual"),
+                     s.bare_rotor_q_abs > 0 ? format_number(s.bare_rotor_q_abs, "bare rotor") : "null",
+                     s.balls_held_q_abs > 0 ? format_number(s.balls_held_q_abs, "balls held") : "null");
   out += fmt::format("  \"settle_time\": {},\n", optional_number(s.settle_time, "settle_time"));
   out += fmt::format("  \"stalled\": {},\n  \"stalled_balls\": {},\n", s.stalled ? "true" : "false", balls);
   out += fmt::format("  \"ball_speed_fixed\": {},\n  \"omega_mean_window\": {},\n  \"window_from\": {},\n",
@@ -197,6 +213,7 @@ std::string simulation_text(const SimulationResult<N>& r, const SpeedProfile& sp
                        "model.md §15.1), integrated as 0\n",
                        r.start_below_resolution);
   out += fmt::format("  outcome: {}{} — {}\n", to_string(s.outcome), s.pattern.empty() ? "" : " " + s.pattern, s.note);
+  out += residual_line(s);
   if (s.settle_time) out += fmt::format("  settle time: {:.6g} s\n", *s.settle_time);
   out += fmt::format("  largest |q|: {:.6g} m at t = {:.6g} s\n", s.max_q_abs, s.t_max_q_abs);
   for (double t : s.t_omega_n) out += fmt::format("  passes omega_n = {:.6g} rad/s at t = {:.6g} s\n", s.omega_n, t);

@@ -244,6 +244,15 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
   return out;
 }
 
+std::string dry_first(const DryFrictionVerdict& d, const std::string& smooth, std::string_view prefix) {
+  if (!d.applies) return smooth;
+  return dry_friction_lines(d, prefix) +
+         fmt::format("{}the smooth law's verdict (model.md §4, §14.10), as if the balls crept where dry balls "
+                     "stick:\n",
+                     prefix) +
+         smooth;
+}
+
 std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view prefix) {
   if (!d.applies) return {};
   std::string out = fmt::format("{}dry friction as it is (coulomb-set with {}, model.md {}): ", prefix, d.which,
@@ -273,7 +282,7 @@ std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view pre
                        prefix, d.shaft->worst_node, d.shaft->deflection_ratio[std::size_t(d.shaft->worst_node)],
                        s.balanced_exists ? fmt::format("{:.6g}", d.shaft->worst_deflection) : std::string("not defined"),
                        d.shaft->worst_deflection_any);
-  out += fmt::format("{}  the smooth law's stability above is that of its arctan regularization: its creep modes "
+  out += fmt::format("{}  the smooth law's stability is that of its arctan regularization: its creep modes "
                      "(lambda ~ 1/kappa) are the balls creeping through this set, not settling\n",
                      prefix);
   return out;

@@ -123,6 +123,59 @@ def contract(work):
         check(f"{scene}: exit 0, 4 rows, no nan ({r.stderr.strip().splitlines()[-1][:120] if r.stderr else ''})",
               r.returncode == 0 and len(rows_of(os.path.join(out, "outcomes.csv"))) == 4 and "nan" not in body)
 
+    # The runout as an uncertain input: a factor 0 is the round race (its scene without [race]).
+    oval = os.path.join(SRC, "tests/scenes/unround/oval_offset_viscous.toml")
+    text = open(oval).read()
+    open(os.path.join(work, "round.toml"), "w").write(text[:text.index("[race]")])
+    res = []
+    for scene, extra in ((oval, ["--uncertain", "unroundness=0:0"]), (os.path.join(work, "round.toml"), [])):
+        o = os.path.join(work, "unr" + str(len(res)))
+        r = run(scene, *extra, "--samples", "4", "--t-end", "0.5", "-o", o, "--no-chart", "--quiet")
+        res.append([x["residual_q"] for x in rows_of(os.path.join(o, "outcomes.csv"))] if r.returncode == 0 else r.stderr)
+    check("unroundness 0: the round race's runs", res[0] == res[1] and len(res[0]) == 4)
+    o = os.path.join(work, "unr_range")
+    r = run(oval, "--uncertain", "unroundness=0:1", "--samples", "4", "--t-end", "0.5", "-o", o, "--no-chart", "--quiet")
+    check("unroundness over [0, 1]: exit 0", r.returncode == 0)
+    r = run(DEFAULT, "--uncertain", "unroundness=0:1", "-o", os.path.join(work, "bad"))
+    check("unroundness on a round race: exit 2 naming the [race]", r.returncode == 2 and "[race]" in r.stderr)
+
+    # `simulate` and `basin` report the same figures (model.md §21.1).
+    first = rows[0]
+    j = os.path.join(work, "sim.json")
+    r = subprocess.run([BIN, "simulate", DEFAULT, "--ramp", RAMP, "--t-end", "4.125", "--set", f"U={first['U']}",
+                        "--balls", f"{first['beta1_0']},{first['beta2_0']}", "--summary", j, "-o",
+                        os.path.join(work, "sim"), "--no-chart", "--quiet"], capture_output=True, text=True)
+    sim = json.load(open(j)) if r.returncode == 0 else {}
+    check("simulate from run 0's start: the same residual bit for bit",
+          sim.get("residual_q_abs") == float(first["residual_q"]))
+    check("simulate: the bare rotor (16.5.1) and the balls held as the study's row",
+          sim.get("bare_rotor_q_abs") == float(first["bare_rotor_q"]) and
+          sim.get("balls_held_q_abs") == float(first["balls_fixed_q"]))
+    # A ramp from rest typed in rpm is the same run as in rad/s.
+    outs = []
+    for units, ramp in (("rad/s", "0:1000:1000"), ("rpm", f"0:{1000 * 30 / math.pi!r}:{1000 * 30 / math.pi!r}")):
+        o = os.path.join(work, "rpm" + units.replace("/", ""))
+        r = subprocess.run([BIN, "simulate", DEFAULT, "--units", units, "--ramp", ramp, "--t-end", "0.5", "--balls",
+                            "1,2", "-o", o, "--no-chart", "--quiet"], capture_output=True, text=True)
+        outs.append(rows_of(os.path.join(o, "simulation.csv")) if r.returncode == 0 else [])
+    # The rpm values convert to 1000 rad/s within an ulp: the rows agree to 1e-9 of each column's scale.
+    worst = 1.0 if len(outs[0]) != len(outs[1]) or not outs[0] else 0.0
+    for key in ("t", "omega", "q1", "q2", "beta1", "beta2"):
+        a = [float(x[key]) for x in outs[0]]
+        d = [float(x[key]) for x in outs[1]] if not worst else a
+        scale = max(abs(v) for v in a) or 1.0
+        worst = max([worst] + [abs(u - v) / scale for u, v in zip(a, d)])
+    check(f"a ramp from rest in rpm: the rad/s run's rows ({worst:.1e} <= 1e-9 of the scale)",
+          worst <= 1e-9 and len(outs[0]) > 100)
+    b = os.path.join(work, "basin")
+    r = subprocess.run([BIN, "basin", DEFAULT, "--grid", "5", "--ramp", RAMP, "--t-end", "4.125", "-o", b, "--no-chart",
+                        "--quiet"], capture_output=True, text=True)
+    cells = sorted(float(c["q_abs_end"]) for c in rows_of(os.path.join(b, "basin.csv")))
+    res = json.load(open(os.path.join(b, "basin.json")))["residual_q"] if r.returncode == 0 else {}
+    check("basin: the median and worst |q| at the cells' ends, the bare rotor",
+          res.get("median", [None])[0] == cells[math.ceil(0.5 * len(cells)) - 1] and res.get("worst") == cells[-1]
+          and abs(res.get("bare_rotor", 0) / bare_rotor(900.0) - 1) < 1e-12)
+
     # Bad input: exit 2, the option named, nothing written.
     for args, word in ((["--uncertain", "mu=0.003:0.001"], "--uncertain"), (["--uncertain", "omega=1:2"], "profile"),
                        (["--uncertain", "zeta=1:2"], "zeta"), (["--samples", "0"], "--samples"),

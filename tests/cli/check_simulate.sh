@@ -109,7 +109,7 @@ printf '0,100\n0.5,-20\n' >"$work/negative.csv"
 bad "negative t-end"              "$scene" --balls 2,4 --t-end -1
 bad "zero t-end"                  "$scene" --balls 2,4 --t-end 0
 bad "ramp through omega <= 0"     "$scene" --balls 2,4 --ramp 100:-5:10
-bad "ramp from omega = 0"         "$scene" --balls 2,4 --ramp 0:100:10
+bad "ramp down to omega = 0"      "$scene" --balls 2,4 --ramp 100:0:10
 bad "ramp with zero acceleration" "$scene" --balls 2,4 --ramp 100:200:0
 bad "malformed ramp"              "$scene" --balls 2,4 --ramp 100:200
 bad "state of the wrong length"   "$scene" --from-state 0,0,1,2,0,0,0

@@ -26,11 +26,16 @@
 namespace abu {
 
 /// An input known only within a range: uniform on [low, high] (docs/model.md §21.2). `name` is a
-/// `--set` symbol (U, k, c, M_r, mu, m, f, mu2, ...); omega is the speed profile's.
+/// `--set` symbol (U, k, c, M_r, mu, m, f, mu2, ...) or `unroundness` (the factor in [0, 1] on the
+/// scene's [race]: its runout); omega is the speed profile's.
 struct UncertainInput {
   std::string name;
   double low = 0, high = 0;
 };
+
+/// Sets a study's input on the scene: a `--set` symbol by the scene's rules (set_checked), or
+/// `unroundness` (scale_race). Throws InputError naming `origin`.
+void set_study_input(Scene& scene, const std::string& name, double value, const std::string& origin);
 
 /// Parses "NAME=LOW:HIGH" (the --uncertain option and the [uncertain] table's form). Throws
 /// InputError naming `origin`.
@@ -99,6 +104,9 @@ struct OutcomeStudy {
 
 /// What a study holds at most [bytes]: each worker's recorded run and every sample's figures.
 double outcome_memory_estimate(const OutcomeOptions& o, int balls);
+
+/// A run's default end: the profile's speed change, then two seconds of hold (docs/model.md §21.1).
+double default_outcome_end(const SpeedProfile& speed);
 
 /// Runs the study (docs/model.md §21). Throws InputError for bad options (samples < 1, an
 /// uncertain input that names no parameter of the scene, low > high, a range the scene's rules

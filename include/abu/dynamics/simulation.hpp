@@ -119,6 +119,10 @@ struct SimulationSummary {
   double omega_n = 0;               ///< sqrt(k / M) [rad/s]
   std::vector<double> t_omega_n;    ///< times at which omega(t) = omega_n
   std::optional<double> max_q_abs_run_up;  ///< largest |q| while omega' != 0, located as max_q_abs [m]
+  /// What the run leaves (model.md §21.1): the largest |q| over the final window [m]; the same
+  /// rotor's whirl at the last speed under U alone (16.5.1, (21.1) on an anisotropic support) and
+  /// with the balls held at their start angles [m].
+  double residual_q_abs = 0, bare_rotor_q_abs = 0, balls_held_q_abs = 0;
   bool speed_changing_at_end = false;
   /// Unround race (model.md §15.7): the equilibrium of §11.4 the run ended at (1-based in the
   /// list `equilibria` prints, sorted by |q|), its |q| [m] and the scaled distance to it.

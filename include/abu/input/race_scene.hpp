@@ -46,4 +46,9 @@ struct RaceSpec {
 /// if a ball's path breaks a rule of path_violation, e.g. after --set l=... .
 RaceShape race_shape(const Scene& scene);
 
+/// Multiplies every amplitude of the scene's [race] by `factor` in [0, 1] (the `unroundness` of a
+/// study, model.md §21.2: the scene's race is the largest runout). Throws InputError(origin, 0,
+/// "unroundness", rule) for a round race or a factor outside [0, 1].
+void scale_race(Scene& scene, double factor, const std::string& origin);
+
 }  // namespace abu

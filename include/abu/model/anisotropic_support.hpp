@@ -10,6 +10,7 @@
 //   abu::PeriodicJacobian J = abu::balanced_periodic_jacobian(p, s, position);
 #pragma once
 
+#include <complex>
 #include <optional>
 #include <string>
 
@@ -39,6 +40,13 @@ struct AnisotropicSupport {
 /// K_f and C_f (fixed frame) with k_bar, |kappa|, c_bar, |gamma|, on one line (no newline):
 /// what reports and map manifests print of the support.
 std::string describe_support(const AnisotropicSupport& s);
+
+/// The steady whirl radius of the rigid rotor (mass M, the balls included) at speed omega under a
+/// rotating imbalance W [kg m, complex, rotor frame] [m]: the largest |x(t)| of the fixed-frame
+/// response (K - M omega^2 I + i omega C) z = omega^2 W (1, -i), x = Re(z e^{i omega t})
+/// (model.md (21.1)); `support` null or isotropic: omega^2 |W| / |k - M omega^2 + i c omega| (16.5.1).
+double steady_whirl_radius(double mass, double k, double c, const AnisotropicSupport* support, double omega,
+                           std::complex<double> W);
 
 /// The rule broken by K_f (not positive definite) or C_f (not positive semidefinite),
 /// naming the matrix and the failing minor; nullopt if both hold.

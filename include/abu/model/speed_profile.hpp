@@ -26,10 +26,12 @@ class SpeedProfile {
   static SpeedProfile constant(double omega, const std::string& origin = "--set", const std::string& key = "omega");
   /// From omega0 at t = 0 to omega1 at |omega1 - omega0| / alpha, then held. alpha > 0
   /// is the magnitude of the angular acceleration [rad/s^2] (a run-down if omega1 <
-  /// omega0). Throws InputError unless omega0, omega1 > 0 and alpha > 0 (finite).
+  /// omega0). omega0 = 0 is a run-up from rest. Throws InputError unless omega0 >= 0,
+  /// omega1 > 0 and alpha > 0 (finite).
   static SpeedProfile ramp(double omega0, double omega1, double alpha, const std::string& origin = "--ramp");
-  /// Parses "OMEGA0:OMEGA1:ALPHA" (the --ramp option). Throws InputError.
-  static SpeedProfile parse_ramp(std::string_view text, const std::string& origin = "--ramp");
+  /// Parses "OMEGA0:OMEGA1:ALPHA" (the --ramp option), each value times `to_rad_per_s` (the
+  /// speeds typed in rpm or Hz, the acceleration in the same unit per second). Throws InputError.
+  static SpeedProfile parse_ramp(std::string_view text, const std::string& origin = "--ramp", double to_rad_per_s = 1.0);
   /// Points (t, omega), t strictly increasing from t = 0, every omega > 0; linear in
   /// between, held after the last. Throws InputError naming `origin` and the point.
   static SpeedProfile piecewise_linear(std::vector<Point> points, const std::string& origin);

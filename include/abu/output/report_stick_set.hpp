@@ -45,6 +45,10 @@ std::string stick_sweep_csv(std::string_view name, std::string_view unit, const 
 /// analysis/dry_friction.hpp), one line per sentence, each line starting with `prefix`. Empty
 /// for any other law; a set that is not defined (mu = 0, K = C = 0) is a line saying why.
 std::string dry_friction_lines(const DryFrictionVerdict& d, std::string_view prefix);
+/// Dry friction first (model.md §14.10): where the verdict applies, its lines, then `smooth` (the
+/// smooth law's statement and table) under a line saying what that verdict assumes; otherwise
+/// `smooth` alone.
+std::string dry_first(const DryFrictionVerdict& d, const std::string& smooth, std::string_view prefix);
 /// The same verdict as a JSON member, `"dry_friction": {...},\n` with the same figures
 /// (area [rad^n], area_fraction, whole_torus, components, balanced_in_set, worst_q_abs V [m]
 /// or null without a balanced point, worst_q_abs_any V_E [m], bare_rotor_q_abs [m], and why
