@@ -1,7 +1,8 @@
 # A design study's chart (`stability-scan design`, docs/model.md §22): left, the objective
 # against the total ball mass, every feasible design grey, the Pareto front joined, the
 # recommended design a star and the scene's own design a square; right, the objective against
-# the first design variable, feasible designs filled, infeasible ones open.
+# the first design variable, feasible designs filled, infeasible ones open, and for a residual
+# objective the bare rotor's |q| of each design (crosses).
 # Re-run by hand with
 #   gnuplot -e "csv='out/design/design.csv'; png='d.png'; variables=2; constraints=1; xname='m'; objective='x'" plots/design.gp
 # Columns (design.csv): design, origin, the variables, feasible, objective, g1.., ball_mass, ...
@@ -24,7 +25,8 @@ c_x = 3
 c_feasible = 3 + variables
 c_objective = c_feasible + 1
 c_mass = c_objective + constraints + 1
-c_pareto = c_mass + 11
+c_bare = c_mass + 11
+c_pareto = c_mass + 12
 c_recommended = c_pareto + 1
 scale = percent ? 100 : (micron ? 1e6 : 1)
 unit = percent ? ' [%]' : (micron ? ' [µm]' : '')
@@ -54,7 +56,9 @@ set autoscale x
 set format x '%g'
 if (xlog) { set logscale x }
 if (xname eq 'n') { set xtics 1; set offsets 0.5, 0.5, 0, 0 }
-plot csv every ::1 using (column(c_feasible) == 1 ? column(c_x) : 1/0):(column(c_objective) * scale) \
+plot csv every ::1 using (micron ? column(c_x) : 1/0):(column(c_bare) * scale) \
+       with points pt 2 ps 0.8 lc rgb '#444444' title 'bare rotor (16.5.1)', \
+     csv every ::1 using (column(c_feasible) == 1 ? column(c_x) : 1/0):(column(c_objective) * scale) \
        with points pt 7 ps 0.8 lc rgb '#1f77b4' title 'feasible', \
      csv every ::1 using (column(c_feasible) == 0 ? column(c_x) : 1/0):(column(c_objective) * scale) \
        with points pt 6 ps 0.8 lc rgb '#d62728' title 'infeasible', \

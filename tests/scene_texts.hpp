@@ -1,4 +1,5 @@
-// Texts and helpers of the scene tests (test_scene.cpp, test_scene_ring.cpp): the source tree
+// Texts and helpers of the scene tests (test_scene.cpp, test_scene_ring.cpp, test_outcomes.cpp,
+// test_design_study.cpp): the source tree
 // (ABU_SOURCE_DIR, which tests/CMakeLists.txt sets for these files), the default scene's text
 // with one line replaced, and the InputError a call throws.
 #pragma once
@@ -39,12 +40,30 @@ kappa = 1.0e3
 omega = 900.0
 )";
 
-inline std::string with_line(int n, const std::string& replacement) {
+// `text` with line n (1-based) replaced (possibly by several lines).
+inline std::string line_replaced(const char* text, int n, const std::string& replacement) {
   std::string out, line;
-  std::istringstream in(kBase);
+  std::istringstream in(text);
   for (int i = 1; std::getline(in, line); ++i) out += (i == n ? replacement : line) + "\n";
   return out;
 }
+
+// Lines [first, last] (1-based) of `text`.
+inline std::string lines_of(const char* text, int first, int last) {
+  std::string out, line;
+  std::istringstream in(text);
+  for (int i = 1; std::getline(in, line); ++i)
+    if (i >= first && i <= last) out += line + "\n";
+  return out;
+}
+
+// A three-ball ring of the default balls: kBase with its two [[ball]] tables (lines 7-14) as one
+// [balls] table; its line numbers (17 lines) are what the ring tests cite.
+inline const std::string kRing = lines_of(kBase, 1, 6) +
+                                 "[balls]\ncount = 3\nmass = 3.3e-5\nrace_radius = 0.018\nradius = 1.0e-3\n" +
+                                 lines_of(kBase, 15, 20);
+
+inline std::string with_line(int n, const std::string& replacement) { return line_replaced(kBase, n, replacement); }
 
 inline abu::InputError capture(const std::function<void()>& f) {
   try {

@@ -5,29 +5,15 @@
 #include "abu/analysis/design_study.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/input/scene.hpp"
+#include "scene_texts.hpp"
 
 using namespace abu;
 
 namespace {
 
-const char* kRing = R"(
-[rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[balls]
-count = 2
-total_mass = 6.6e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "coulomb"
-mu = 0.002
-kappa = 1.0e3
-[speed]
-omega = 900.0
-)";
+// The default balls as a ring of two that holds its total mass (scene_texts.hpp's kRing).
+const std::string kRing = abu::testing::line_replaced(
+    abu::testing::line_replaced(abu::testing::kRing.c_str(), 8, "count = 2").c_str(), 9, "total_mass = 6.6e-5");
 
 }  // namespace
 

@@ -15,33 +15,14 @@
 #include "abu/core/sampling.hpp"
 #include "abu/dynamics/simulation.hpp"
 #include "abu/input/scene.hpp"
+#include "scene_texts.hpp"
 
 using namespace abu;
 
 namespace {
 
-// The default scene's rotor with two coulomb balls (data/scenes/default.toml's values).
-const char* kDry = R"(
-[rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "coulomb"
-mu = 0.002
-kappa = 1.0e3
-[speed]
-omega = 900.0
-)";
+// The default scene (data/scenes/default.toml's values, scene_texts.hpp).
+const std::string kDry = abu::testing::kBase;
 
 // P(B = i), B ~ Binomial(n, p), summed in long double from lgamma: independent of GSL's cdf.
 long double pmf(int n, int i, double p) {

@@ -14,31 +14,14 @@
 using abu::testing::capture;
 using abu::testing::kBase;
 using abu::testing::kDefaultScene;
+using abu::testing::kRing;
 using abu::testing::kSourceDir;
 using abu::testing::with_line;
 
 namespace {
 
-// A three-ball ring; overrides are appended after line 17 (TOML lets [[balls.override]]
-// follow any table), so that the line numbers below stay those of this text.
-const char* const kRing = R"(rolling = true
-[rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 6.0e-7
-[balls]
-count = 3
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "coulomb"
-mu = 0.002
-kappa = 1.0e3
-[speed]
-omega = 900.0
-)";
+// kRing (scene_texts.hpp): overrides are appended after line 17 (TOML lets [[balls.override]]
+// follow any table), so that the line numbers below stay those of that text.
 
 // kRing with line n (1-based) replaced (possibly by several lines), then `tail` appended.
 std::string ring_with(int n, const std::string& replacement, const std::string& tail = "") {

@@ -13,6 +13,7 @@
 #include "abu/analysis/outcomes.hpp"
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/resources.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/format.hpp"
 #include "abu/output/gnuplot.hpp"
@@ -49,6 +50,10 @@ int run(const OutcomesCommand& o, const CLI::App& sub) {
   const SpeedProfile speed = speed_of(o.flags, o.scene, scene);
   OutcomeOptions options = outcome_options(o.flags, sub, scene, speed);
   options.progress = progress_line(o.flags);
+  // The CSV (a row of the start angles, the inputs and a dozen figures) and the JSON, before any run.
+  const double row = 200.0 + 25.0 * double(scene.balls.size() + options.uncertain.size());
+  require_disk(double(options.samples) * row + 1e5, o.output, "--samples", "the study's files",
+               fmt::format("{} rows", options.samples), "take fewer --samples or write elsewhere");
   const OutcomeStudy study = analyze_outcomes(scene, speed, options);
   if (options.progress) fmt::print(stderr, "\r{:80}\r", "");
   namespace fs = std::filesystem;

@@ -79,7 +79,7 @@ std::string design_csv(const DesignStudy& s, std::string_view header) {
   out += ",feasible,objective";
   for (std::size_t i = 0; i < o.constraints.size(); ++i) out += fmt::format(",g{}", i + 1);
   out += ",ball_mass,capacity,runs,balanced,below_limit,below_low,below_high,residual_median,residual_p90,"
-         "residual_worst,stalled,pareto,recommended,note\n";
+         "residual_worst,stalled,bare_rotor,pareto,recommended,note\n";
   for (std::size_t k = 0; k < s.points.size(); ++k) {
     const DesignPoint& d = s.points[k];
     out += fmt::format("{},{}", k, d.origin);
@@ -89,13 +89,13 @@ std::string design_csv(const DesignStudy& s, std::string_view header) {
     out += fmt::format(",{},{}", format_number(d.ball_mass), format_number(d.capacity));
     if (d.outcomes && d.outcomes->runs > 0) {
       const OutcomeSummary& r = *d.outcomes;
-      out += fmt::format(",{},{},{},{},{},{},{},{},{}", r.runs, format_number(r.balanced.value),
+      out += fmt::format(",{},{},{},{},{},{},{},{},{},{}", r.runs, format_number(r.balanced.value),
                          format_number(r.below_limit.value), format_number(r.below_limit.low),
                          format_number(r.below_limit.high), format_number(r.residual.median.value),
                          format_number(r.residual.p90.value), format_number(r.residual.worst.value),
-                         format_number(r.stalled.value));
+                         format_number(r.stalled.value), format_number(r.bare_rotor_median));
     } else {
-      out += ",0,,,,,,,,";
+      out += ",0,,,,,,,,,";
     }
     const bool front = std::find(s.pareto.begin(), s.pareto.end(), int(k)) != s.pareto.end();
     std::string note = d.note;

@@ -115,7 +115,9 @@ def contract(work):
             (DEFAULT, ["--vary", "n=2:4"], "[balls] ring"),
             (DEFAULT, ["--vary", "k=2000:12000", "--objective", "max:m"], "not one of the --vary"),
             (DEFAULT, ["--vary", "k=2000:12000", "--objective", "best"], "expected below"),
-            (ring, ["--vary", "n=2:13"], "integers in 2..12")):
+            (ring, ["--vary", "n=2:13"], "integers in 2..12"),
+            (DEFAULT, ["--vary", "k=1000:2000:1000", "--vary", "c=1:2:1000", "--vary", "M_r=0.1:0.2:1000"],
+             "the design study")):
         o = os.path.join(work, "bad")
         r = run("design", scene, *args, "-o", o)
         check(f"{' '.join(args)}: exit 2 naming '{word}', nothing written",

@@ -179,7 +179,8 @@ def contract(work):
     # Bad input: exit 2, the option named, nothing written.
     for args, word in ((["--uncertain", "mu=0.003:0.001"], "--uncertain"), (["--uncertain", "omega=1:2"], "profile"),
                        (["--uncertain", "zeta=1:2"], "zeta"), (["--samples", "0"], "--samples"),
-                       (["--uncertain", "mu"], "NAME=LOW:HIGH"), (["--confidence", "1.5"], "--confidence")):
+                       (["--uncertain", "mu"], "NAME=LOW:HIGH"), (["--confidence", "1.5"], "--confidence"),
+                       (["--samples", "2000000000"], "--samples")):
         out = os.path.join(work, "bad")
         r = run(DEFAULT, *args, "-o", out)
         check(f"{' '.join(args)}: exit 2 naming {word}, nothing written",

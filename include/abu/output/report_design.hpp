@@ -12,7 +12,8 @@ namespace abu {
 
 /// `header`, then `design,origin,<variables>,feasible,objective,<g_constraint...>,ball_mass,
 /// capacity,runs,balanced,below_limit,below_low,below_high,residual_median,residual_p90,
-/// residual_worst,stalled,pareto,recommended,note`; a figure a design does not have is empty.
+/// residual_worst,stalled,bare_rotor,pareto,recommended,note` (bare_rotor: the median over the
+/// runs of the bare rotor's |q|, (16.5.1)); a figure a design does not have is empty.
 std::string design_csv(const DesignStudy& s, std::string_view header);
 
 /// The study: variables, objective, constraints, every design's figures, the recommended one
