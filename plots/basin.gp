@@ -5,7 +5,7 @@
 # reached by the settle test its member, as ATTRACTOR/MEMBER (the two mirror balanced
 # states of two balls are balanced/1 and balanced/2). Each kind has its colours (balanced
 # greens; aligned, an unround race's equilibria and its orbits on an anisotropic support
-# red/orange/purple...; periodic blue, stuck grey, not_settled black).
+# red/orange/purple...; periodic blue, stuck grey shaded by the end |q|, not_settled black).
 # Columns by name: beta1_0, beta2_0, attractor, member. cells1, cells2: the grid; the cell
 # (i, j) starting at (2 pi i / cells1, 2 pi j / cells2) is drawn as the square from there.
 if (!exists("csv")) csv = 'out/basin/basin.csv'
@@ -53,5 +53,14 @@ set ytics ('0' 0, 'pi/2' pi / 2, 'pi' pi, '3pi/2' 3 * pi / 2, '2pi' 2 * pi)
 h1 = pi / cells1
 h2 = pi / cells2
 class(a, m) = m eq '' ? a : a . '/' . m
-plot csv using (column('beta1_0') + h1):(column('beta2_0') + h2):(idx(class(strcol('attractor'), strcol('member')), 1)) \
-     with image pixels notitle
+# Stuck cells (dry friction) shaded by their end |q|: light grey small, dark large, up to
+# stuck_max [m] (the largest stuck cell's, given by the command; named in the title), so that a
+# dry basin is not one uniform square.
+if (!exists("stuck_max")) stuck_max = 0
+stuck_max = stuck_max + 0.0
+level(q) = int(215 - 150 * (stuck_max > 0 ? q / stuck_max : 0))
+grey(q) = level(q) * 65536 + level(q) * 256 + level(q)
+if (stuck_max > 0) { set title title . sprintf("\nstuck cells shaded by their end |q|: light small, dark up to %.3g µm", stuck_max * 1e6) noenhanced }
+cells_layer = "csv using (column('beta1_0') + h1):(column('beta2_0') + h2):(idx(class(strcol('attractor'), strcol('member')), 1)) with image pixels notitle"
+stuck_layer = "csv using (strcol('attractor') eq 'stuck' ? column('beta1_0') + h1 : 1/0):(column('beta2_0') + h2):(h1):(h2):(grey(column('q_abs_end'))) with boxxyerror fs solid noborder lc rgb variable notitle"
+if (stuck_max > 0) { eval('plot ' . cells_layer . ', ' . stuck_layer) } else { eval('plot ' . cells_layer) }

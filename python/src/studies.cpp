@@ -35,14 +35,16 @@ struct RunOptions {
   int threads = 1;
 };
 
-OutcomeOptions options_of(const RunOptions& r, const SpeedProfile& speed) {
+OutcomeOptions options_of(const Scene& scene, const RunOptions& r, const SpeedProfile& speed) {
   OutcomeOptions o;
   o.samples = r.samples;
   o.seed = r.seed;
   const auto design = sample_design_from_string(r.design);
   if (!design) throw InputError("design", 0, r.design, "expected 'sobol' or 'random'");
   o.design = *design;
-  for (const auto& u : r.uncertain) o.uncertain.push_back(parse_uncertain(u, "uncertain"));
+  std::vector<UncertainInput> given;
+  for (const auto& u : r.uncertain) given.push_back(parse_uncertain(u, "uncertain"));
+  o.uncertain = study_inputs(scene, given);  // the scene's [uncertain], the call's replacing an entry
   o.residual_limit = r.limit;
   o.confidence = r.confidence;
   o.threads = r.threads;
@@ -57,7 +59,7 @@ OutcomeOptions options_of(const RunOptions& r, const SpeedProfile& speed) {
 
 py::dict outcomes(const Scene& scene, const std::optional<std::vector<double>>& ramp, const RunOptions& r) {
   const SpeedProfile speed = speed_of(scene, ramp);
-  const OutcomeOptions o = options_of(r, speed);
+  const OutcomeOptions o = options_of(scene, r, speed);
   OutcomeStudy study;
   {
     py::gil_scoped_release release;
@@ -101,7 +103,7 @@ py::dict design(const Scene& scene, const std::vector<std::string>& vary, const 
                 const std::optional<std::vector<double>>& ramp, const RunOptions& r) {
   const SpeedProfile speed = speed_of(scene, ramp);
   DesignOptions o;
-  o.outcomes = options_of(r, speed);
+  o.outcomes = options_of(scene, r, speed);
   for (const auto& v : vary) o.variables.push_back(parse_design_variable(v, "vary"));
   o.objective = parse_design_objective(objective, "objective");
   for (const auto& c : constraints) o.constraints.push_back(parse_design_constraint(c, "constraint"));

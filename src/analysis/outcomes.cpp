@@ -39,22 +39,26 @@ Scene scene_of_sample(const Scene& scene, const OutcomeOptions& o, const std::ve
 }
 
 // Refuses an input the study cannot vary, before any run: an unknown name, omega, a reversed
-// or non-finite range, a range the scene's rules refuse at either end.
+// or non-finite range, a range the scene's rules refuse at either end; each at where it was given.
 void check_uncertain(const Scene& scene, const OutcomeOptions& o) {
   for (const auto& u : o.uncertain) {
-    const auto key = "--uncertain";
+    const std::string key = u.line > 0 ? "uncertain." + u.name : u.name;
     if (u.name == "omega")
-      throw InputError(key, 0, u.name, "the speed is the run's profile (--ramp, --speed-profile), not an uncertain input");
+      throw InputError(u.origin, u.line, key, "the speed is the run's profile (--ramp, --speed-profile), not an uncertain input");
     if (u.name != "unroundness" && !parse_param(u.name, int(scene.balls.size())))
-      throw InputError(key, 0, u.name,
+      throw InputError(u.origin, u.line, key,
                        "names no parameter of the scene (the --set names: U k c M_r mu m l r f ..., or unroundness)");
     if (!(std::isfinite(u.low) && std::isfinite(u.high) && u.low <= u.high))
-      throw InputError(key, 0, u.name, fmt::format("the range {}:{} must be finite with LOW <= HIGH", u.low, u.high));
+      throw InputError(u.origin, u.line, key, fmt::format("the range {}:{} must be finite with LOW <= HIGH", u.low, u.high));
     for (const auto& v : o.uncertain)
-      if (&v != &u && v.name == u.name) throw InputError(key, 0, u.name, "is given twice");
+      if (&v != &u && v.name == u.name) throw InputError(u.origin, u.line, key, "is given twice");
     for (double x : {u.low, u.high}) {
       Scene s = scene;
-      set_study_input(s, u.name, x, key);
+      try {
+        set_study_input(s, u.name, x, u.origin);
+      } catch (const InputError& e) {  // at where the range was given: the option or the scene's line
+        throw InputError(u.origin, u.line, key, fmt::format("{} (the range's end {})", e.rule(), x));
+      }
     }
   }
 }
@@ -144,6 +148,16 @@ FigureStatistics figure(const std::vector<double>& v, double confidence) {
 
 }  // namespace
 
+std::vector<UncertainInput> study_inputs(const Scene& scene, const std::vector<UncertainInput>& given) {
+  std::vector<UncertainInput> out;
+  for (const auto& u : scene.uncertain) {
+    const bool replaced = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.name == u.name; });
+    if (!replaced) out.push_back({u.name, u.low, u.high, scene.file, u.line});
+  }
+  out.insert(out.end(), given.begin(), given.end());
+  return out;
+}
+
 void set_study_input(Scene& scene, const std::string& name, double value, const std::string& origin) {
   if (name == "unroundness") return scale_race(scene, value, origin);
   const auto ref = parse_param(name, int(scene.balls.size()));
@@ -158,6 +172,7 @@ UncertainInput parse_uncertain(const std::string& text, const std::string& origi
     throw InputError(origin, 0, text, "expected NAME=LOW:HIGH, e.g. mu=0.001:0.003");
   UncertainInput u;
   u.name = text.substr(0, eq);
+  u.origin = origin;
   const auto bounds = parse_real_list(text.substr(eq + 1, colon - eq - 1) + "," + text.substr(colon + 1), origin);
   if (bounds.size() != 2) throw InputError(origin, 0, text, "expected NAME=LOW:HIGH, e.g. mu=0.001:0.003");
   u.low = bounds[0];

@@ -271,6 +271,7 @@ Action add_basin_command(CLI::App& app) {
     long stuck_cells = 0, outside = 0;
     double worst_s = 0, worst_q = 0;
     std::vector<double> residuals;  // |q| at each cell's end (model.md §21.1's residual, at the settle test's entry or t_end)
+    double stuck_max = 0;           // the largest of them among the stuck cells (the chart's shading)
     {
       std::istringstream in(counts->rows);
       for (std::string row; std::getline(in, row);) {
@@ -282,6 +283,7 @@ Action add_basin_command(CLI::App& app) {
         classes.insert({label_rank(f[4]), f[5].empty() ? f[4] : f[4] + "/" + f[5]});
         early += f[6] != "0";
         residuals.push_back(std::stod(f[9]));
+        if (f[4] == "stuck") stuck_max = std::max(stuck_max, residuals.back());
         certified += f[6] == "1";
         ++cells;
         if (set_valued && f[std::size_t(14 + n)] != "-1") {
@@ -343,6 +345,7 @@ Action add_basin_command(CLI::App& app) {
                                                  {"labels", labels},
                                                  {"cells1", std::to_string(job.cells1)},
                                                  {"cells2", std::to_string(job.cells2)},
+                                                 {"stuck_max", fmt::format("{}", stuck_max)},
                                                  {"title", fmt::format("{}: {}", escaped(scene.file), job.speed.describe())}}))
         chart.commit();
     }

@@ -65,7 +65,9 @@ OutcomeOptions outcome_options(const OutcomeFlags& f, const CLI::App& sub, const
   const bool scene_method = scene.simulate && scene.simulate->method && sub.count("--method") == 0;
   s.sim.method = *integration_method_from_string(scene_method ? *scene.simulate->method : f.method);
   s.design = *sample_design_from_string(f.design);
-  for (const auto& u : f.uncertain) s.uncertain.push_back(parse_uncertain(u));
+  std::vector<UncertainInput> given;
+  for (const auto& u : f.uncertain) given.push_back(parse_uncertain(u));
+  s.uncertain = study_inputs(scene, given);  // the scene's [uncertain], the flags replacing an entry
   s.interrupt = &stop_flag();
   return s;
 }

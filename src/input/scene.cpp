@@ -33,6 +33,7 @@
 #include "scene_reading.hpp"
 #include "shaft_reading.hpp"
 #include "simulate_table.hpp"
+#include "uncertain_table.hpp"
 #include "support_reading.hpp"
 #include "toml_guard.hpp"
 
@@ -233,7 +234,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   struct Part {
     const toml::table* table = nullptr;
     bool seen = false;
-  } rotor, friction, speed, ring, simulate, race;
+  } rotor, friction, speed, ring, simulate, race, uncertain;
   toml::source_position ring_pos{};
   const toml::array* ball_array = nullptr;
   bool balls_seen = false;
@@ -248,6 +249,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
                  : name == "balls"    ? &ring
                  : name == "simulate" ? &simulate
                  : name == "race"     ? &race
+                 : name == "uncertain" ? &uncertain
                                       : nullptr;
     if (name == "rolling") {
       rolling = read_bool(p, name, node, pos).value_or(true);
@@ -270,10 +272,10 @@ Scene parse_scene(std::string_view text, const std::string& file) {
       p.add(pos, name,
             unknown_name_rule(node.is_table() ? "unknown table" : "unknown key",
                               closest_name(name, {"rolling", "rotor", "ball", "balls", "friction", "speed", "simulate",
-                                                  "race", "shaft", "disc", "bearing"}),
+                                                  "race", "shaft", "disc", "bearing", "uncertain"}),
                               "the top level has",
                               "rolling, [rotor], [[ball]] or [balls], [friction], [speed], [simulate], [race], [shaft], "
-                              "[[disc]], [[bearing]]"));
+                              "[[disc]], [[bearing]], [uncertain]"));
     }
   }
   for (auto [part, name] : {std::pair{&rotor, "rotor"}, {&friction, "friction"}, {&speed, "speed"}})
@@ -435,6 +437,9 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   // --- [simulate]: run-up and integration settings (simulate_table.hpp).
   std::optional<SimulateSettings> simulate_settings;
   if (simulate.table) simulate_settings = read_simulate_table(p, *simulate.table, file, int(balls.size()));
+  // --- [uncertain]: inputs known within a range (uncertain_table.hpp, model.md §21.2).
+  std::vector<SceneUncertainty> uncertain_inputs;
+  if (uncertain.table) uncertain_inputs = read_uncertain_table(p, *uncertain.table, int(balls.size()));
 
   // --- [shaft], [[disc]], [[bearing]]: a flexible rotor (shaft_scene.hpp).
   std::optional<ShaftSpec> shaft_spec;
@@ -458,6 +463,7 @@ Scene parse_scene(std::string_view text, const std::string& file) {
   scene.law_line = law_line;
   scene.kappa = value(friction_slots, "kappa");
   scene.simulate = std::move(simulate_settings);
+  scene.uncertain = std::move(uncertain_inputs);
   scene.race = std::move(race_spec);
   if (shaft_spec) scene.shaft = std::make_shared<const ShaftSpec>(std::move(*shaft_spec));
   if (ring_in) {

@@ -123,6 +123,25 @@ def contract(work):
         check(f"{scene}: exit 0, 4 rows, no nan ({r.stderr.strip().splitlines()[-1][:120] if r.stderr else ''})",
               r.returncode == 0 and len(rows_of(os.path.join(out, "outcomes.csv"))) == 4 and "nan" not in body)
 
+    # The scene's [uncertain] table: the same study as --uncertain; the option replaces an entry.
+    declared = os.path.join(work, "declared.toml")
+    open(declared, "w").write(open(DEFAULT).read() + "\n[uncertain]\nU = [4e-7, 8e-7]\nmu = [0.5, 0.6]\n")
+    o = os.path.join(work, "declared")
+    r = run(declared, "--ramp", RAMP, "--samples", "40", "--uncertain", "mu=0.002:0.002", "-o", o, "--no-chart",
+            "--quiet")
+    a = [x["residual_q"] for x in rows_of(os.path.join(o, "outcomes.csv"))] if r.returncode == 0 else [r.stderr]
+    o2 = os.path.join(work, "declared_flags")
+    r = run(DEFAULT, "--ramp", RAMP, "--samples", "40", "--uncertain", "U=4e-7:8e-7", "--uncertain", "mu=0.002:0.002",
+            "-o", o2, "--no-chart", "--quiet")
+    b = [x["residual_q"] for x in rows_of(os.path.join(o2, "outcomes.csv"))] if r.returncode == 0 else []
+    check("[uncertain] in the scene = --uncertain (U drawn, mu replaced by the option)", a == b and len(a) == 40)
+    open(declared, "w").write(open(DEFAULT).read() + "\n[uncertain]\nr = [1e-3, 0.02]\n")
+    r = run(declared, "-o", os.path.join(work, "bad"))
+    line = len(open(DEFAULT).read().splitlines()) + 3  # a blank line, [uncertain], then r
+    check(f"[uncertain] r beyond the race radius: exit 2 at the scene's line {line} and key",
+          r.returncode == 2 and f"declared.toml:{line}:" in r.stderr and "uncertain.r" in r.stderr and
+          not os.path.exists(os.path.join(work, "bad")))
+
     # The runout as an uncertain input: a factor 0 is the round race (its scene without [race]).
     oval = os.path.join(SRC, "tests/scenes/unround/oval_offset_viscous.toml")
     text = open(oval).read()

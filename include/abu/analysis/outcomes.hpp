@@ -31,7 +31,13 @@ namespace abu {
 struct UncertainInput {
   std::string name;
   double low = 0, high = 0;
+  std::string origin = "--uncertain";  ///< where it was given, for messages: the option, or the scene file
+  int line = 0;                        ///< the scene file's line (0: the command line)
 };
+
+/// The study's uncertain inputs: the scene's [uncertain] entries, each replaced by a `given` one
+/// of the same name (the command line's), then the other given ones, in order.
+std::vector<UncertainInput> study_inputs(const Scene& scene, const std::vector<UncertainInput>& given);
 
 /// Sets a study's input on the scene: a `--set` symbol by the scene's rules (set_checked), or
 /// `unroundness` (scale_race). Throws InputError naming `origin`.

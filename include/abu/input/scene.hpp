@@ -15,6 +15,8 @@
 //              none: -   viscous: d   coulomb: mu kappa   stribeck: mu_c mu_s v_s kappa
 //              coulomb-set: mu (set-valued, model.md §14: only `equilibria` takes it)
 //   [speed]    omega = 900.0
+//   [uncertain] optional: NAME = [LOW, HIGH] per input known only within a range (a --set symbol
+//              or unroundness; not omega), for `outcomes` and `design` (model.md §21.2)
 //
 // A ball and its race as an engineer specifies them (docs/model.md §1.1), in a [[ball]]
 // table, [balls] or an override: `diameter` (r = diameter/2) with optional `density`
@@ -114,6 +116,15 @@ struct SimulateSettings {
   std::vector<double> from_state;     ///< start: the 2n + 4 values
 };
 
+/// One entry of the optional [uncertain] table, `NAME = [LOW, HIGH]`: an input known only within a
+/// range, drawn uniformly by `outcomes` and `design` (docs/model.md §21.2). NAME is a `--set` symbol
+/// or `unroundness`; the command line's --uncertain of the same NAME replaces it.
+struct SceneUncertainty {
+  std::string name;
+  double low = 0, high = 0;
+  int line = 0;  ///< in the scene file
+};
+
 /// A validated scene, for any number of balls (2..12).
 struct Scene {
   std::string file;  ///< the path as given, for messages
@@ -125,6 +136,7 @@ struct Scene {
   std::vector<BallT<double>> balls;  ///< friction coefficients already resolved per ball
   std::optional<BallRing> ring;      ///< set iff the file has a [balls] ring; `balls` is its expansion
   std::optional<SimulateSettings> simulate;  ///< set iff the file has a [simulate] table
+  std::vector<SceneUncertainty> uncertain;   ///< [uncertain], in file order
   RaceSpec race;                     ///< [race]: unround race harmonics (race_scene.hpp); round if absent
   /// Set iff [rotor] gives the fixed-frame matrices (docs/model.md §10); rotor.stiffness
   /// and rotor.damping are then their means.
