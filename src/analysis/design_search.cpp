@@ -136,7 +136,13 @@ struct Search {
   // The design at `values`, evaluated once (runs too when `run`).
   int at(const std::vector<double>& values, const std::string& origin, bool run) {
     if (const auto it = seen.find(values); it != seen.end()) return it->second;
-    DesignPoint d = machine_figures(scene, speed, o, values, origin);
+    return add(machine_figures(scene, speed, o, values, origin), run);
+  }
+
+  // A design whose machine figures `d` holds, kept once (its runs too when `run`).
+  int add(DesignPoint d, bool run) {
+    if (const auto it = seen.find(d.values); it != seen.end()) return it->second;
+    const std::vector<double> values = d.values;
     if (run && needs_runs(o)) {
       run_design(scene, speed, o, d);
       study.runs += o.outcomes.samples;
@@ -289,10 +295,10 @@ DesignStudy run_design_study(const Scene& scene, const SpeedProfile& speed, cons
   }
   s.at(scene_values(scene, speed, o), "scene", true);
   st.baseline = 0;
-  for (std::size_t k = 0; k < grid.size(); ++k) {
+  for (auto& d : figures) {  // the figures above, not computed again
     throw_if_stopped("design study");
-    const bool met = figures[k].note.empty();
-    s.at(grid[k], "grid", met);
+    const bool met = d.note.empty();
+    s.add(std::move(d), met);
   }
   if (o.optimize) {
     // From the best grid design of each discrete combination.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <mutex>
+#include <numbers>
 #include <thread>
 
 #include "abu/analysis/machine_parts.hpp"
@@ -22,8 +23,6 @@
 namespace abu {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 double total_mass(const Scene& s) {
   double m = s.rotor.mass;
@@ -66,6 +65,8 @@ void check_uncertain(const Scene& scene, const OutcomeOptions& o) {
 // The sample's figures from a recorded run (docs/model.md §21.1).
 template <int N>
 void take_run(OutcomeSample& s, const SimulationResult<N>& r) {
+  s.bare_rotor = r.summary.bare_rotor_q_abs;   // (16.5.1) / (21.1) at the run's last speed
+  s.balls_fixed = r.summary.balls_held_q_abs;  // the balls held at their start angles
   if (r.status == SimulationStatus::failed) {
     s.outcome = "failed";
     s.reason = r.reason;
@@ -118,12 +119,6 @@ void run_sample(const Scene& scene, const SpeedProfile& speed, const SimulationO
 // Runs sample s (its start and inputs set): the figures, or `failed` with the reason.
 void run_one(const Scene& scene, const SpeedProfile& speed, const OutcomeOptions& o, OutcomeSample& s) {
   const Scene at = scene_of_sample(scene, o, s.inputs);
-  const double w = speed.omega(o.sim.t_end);
-  std::complex<double> W = at.rotor.unbalance;
-  for (std::size_t i = 0; i < at.balls.size(); ++i)
-    W += at.balls[i].mass * at.balls[i].race_radius * std::polar(1.0, s.beta0[i]);
-  s.bare_rotor = steady_whirl_radius(at, w, at.rotor.unbalance);
-  s.balls_fixed = steady_whirl_radius(at, w, W);
   SimulationOptions sim = o.sim;
   sim.record = true;
   sim.interrupt = o.interrupt;
@@ -265,7 +260,7 @@ OutcomeStudy analyze_outcomes(const Scene& scene, const SpeedProfile& speed, con
     OutcomeSample& s = study.samples[std::size_t(k)];
     s.index = k;
     const double* x = u.data() + std::size_t(k) * std::size_t(dims);
-    for (int i = 0; i < n; ++i) s.beta0.push_back(kTwoPi * x[i]);
+    for (int i = 0; i < n; ++i) s.beta0.push_back(2 * std::numbers::pi * x[i]);
     for (std::size_t j = 0; j < o.uncertain.size(); ++j)
       s.inputs.push_back(o.uncertain[j].low + (o.uncertain[j].high - o.uncertain[j].low) * x[n + int(j)]);
   }

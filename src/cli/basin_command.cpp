@@ -20,6 +20,7 @@
 #include "abu/analysis/basin_targets.hpp"
 #include "abu/analysis/outcomes.hpp"
 #include "abu/core/sampling.hpp"
+#include "abu/output/report_outcomes.hpp"
 #include "abu/analysis/shaft_states.hpp"
 #include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/core/cancel.hpp"
@@ -139,15 +140,9 @@ Action add_basin_command(CLI::App& app) {
     if (!(b.settle_radius > 0 && b.settle_radius < 1)) throw InputError("--settle-radius", 0, "", "must lie in (0, 1)");
     if (!(b.sim.settle_tolerance > 0 && b.sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
-    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && !o->profile_file.empty())
-      throw InputError("--speed-profile", 0, "units",
-                       "a speed profile file is in rad/s; --units applies to --set omega and --ramp (drop --units)");
     const int n = int(scene.balls.size());
     BasinJob job;
-    job.speed = !o->ramp.empty()           ? ramp_input(o->scene, o->ramp)
-                : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
-                : scene.simulate && scene.simulate->speed ? *scene.simulate->speed
-                                                          : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+    job.speed = run_speed(o->scene, o->ramp, o->profile_file, scene);
     const auto [c1, c2] = parse_cell_grid(b.grid, "--grid");
     job.cells1 = c1;
     job.cells2 = c2;
@@ -314,11 +309,11 @@ Action add_basin_command(CLI::App& app) {
     const double bare = scene.shaft ? 0.0 : steady_whirl_radius(scene, job.final_omega(), scene.rotor.unbalance);
     const QuantileEstimate r50 = quantile_estimate(residuals, 0.5), r90 = quantile_estimate(residuals, 0.9),
                            r100 = quantile_estimate(residuals, 1.0);
-    const auto json_side = [](const std::optional<double>& v) { return v ? format_number(*v, "residual") : std::string("null"); };
     json += fmt::format(",\n  \"residual_q\": {{\"median\": [{}, {}, {}], \"p90\": [{}, {}, {}], \"worst\": {}, "
                         "\"bare_rotor\": {}}}",
-                        format_number(r50.value, "residual"), json_side(r50.low), json_side(r50.high),
-                        format_number(r90.value, "residual"), json_side(r90.low), json_side(r90.high),
+                        format_number(r50.value, "residual"), json_number_or_null(r50.low, "residual"),
+                        json_number_or_null(r50.high, "residual"), format_number(r90.value, "residual"),
+                        json_number_or_null(r90.low, "residual"), json_number_or_null(r90.high, "residual"),
                         format_number(r100.value, "residual"), bare > 0 ? format_number(bare, "bare rotor") : "null");
     if (set_valued) {
       std::string sp;
@@ -354,11 +349,8 @@ Action add_basin_command(CLI::App& app) {
                  stats.tiles, stats.seconds);
       for (const auto& [key, k] : count)
         fmt::print(stderr, "  {:<14} {:>6} cells  {:6.2f} %\n", key.name(), k, 100.0 * double(k) / double(cells));
-      const auto side = [](const std::optional<double>& v) { return v ? fmt::format("{:.4g}", *v * 1e6) : std::string("-"); };
-      fmt::print(stderr, "  |q| at the cells' ends: median {:.4g} µm [{}, {}], 90th percentile {:.4g} µm [{}, {}], worst "
-                         "{:.4g} µm{}\n",
-                 r50.value * 1e6, side(r50.low), side(r50.high), r90.value * 1e6, side(r90.low), side(r90.high),
-                 r100.value * 1e6, bare > 0 ? fmt::format(" (the bare rotor's {:.4g} µm, (16.5.1))", bare * 1e6) : "");
+      fmt::print(stderr, "  |q| at the cells' ends: median {}, 90th percentile {}, worst {:.4g} µm{}\n",
+                 interval_text(r50, 1e6, " µm"), interval_text(r90, 1e6, " µm"), r100.value * 1e6, bare > 0 ? fmt::format(" (the bare rotor's {:.4g} µm, (16.5.1))", bare * 1e6) : "");
       if (set_valued && stuck_cells == 0) {
         fmt::print(stderr, "  no cell ends with every ball stuck (none inside the stick set)\n");
       } else if (set_valued) {

@@ -116,8 +116,15 @@ SpeedUnit SceneOptions::speed_unit() const { return speed_unit_from_string(units
 
 double omega_input(const SceneOptions& options, double typed) { return to_rad_per_s(typed, options.speed_unit()); }
 
-SpeedProfile ramp_input(const SceneOptions& options, const std::string& text) {
-  return SpeedProfile::parse_ramp(text, "--ramp", to_rad_per_s(1.0, options.speed_unit()));
+SpeedProfile run_speed(const SceneOptions& options, const std::string& ramp, const std::string& profile_file,
+                       const Scene& scene) {
+  if (options.speed_unit() != SpeedUnit::rad_per_s && !profile_file.empty())
+    throw InputError("--speed-profile", 0, "units",
+                     "a speed profile file is in rad/s; --units applies to --set omega and --ramp (drop --units)");
+  if (!ramp.empty()) return SpeedProfile::parse_ramp(ramp, "--ramp", to_rad_per_s(1.0, options.speed_unit()));
+  if (!profile_file.empty()) return SpeedProfile::load(profile_file);
+  if (scene.simulate && scene.simulate->speed) return *scene.simulate->speed;
+  return SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
 }
 
 namespace {

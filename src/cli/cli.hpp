@@ -36,8 +36,11 @@ struct SceneOptions {
 
 /// A value of omega typed in the command's --units, in rad/s.
 double omega_input(const SceneOptions& options, double typed);
-/// --ramp OMEGA0:OMEGA1:ALPHA in the command's --units (rpm: rpm, rpm, rpm/s), in rad/s.
-SpeedProfile ramp_input(const SceneOptions& options, const std::string& text);
+/// A run's speed (simulate, basin, outcomes, design): --ramp OMEGA0:OMEGA1:ALPHA in the command's
+/// --units (rpm: rpm, rpm, rpm/s), else --speed-profile FILE (rad/s: refused with other --units),
+/// else the scene's [simulate] run-up, else its constant [speed].
+SpeedProfile run_speed(const SceneOptions& options, const std::string& ramp, const std::string& profile_file,
+                       const Scene& scene);
 
 /// Loads the scene and applies the overrides (throws InputError).
 Scene load(const SceneOptions& options);

@@ -43,13 +43,7 @@ void add_outcome_flags(CLI::App& sub, OutcomeFlags& f, int samples) {
 }
 
 SpeedProfile speed_of(const OutcomeFlags& f, const SceneOptions& scene_options, const Scene& scene) {
-  if (scene_options.speed_unit() != SpeedUnit::rad_per_s && !f.profile_file.empty())
-    throw InputError("--speed-profile", 0, "units",
-                     "a speed profile file is in rad/s; --units applies to --set omega and --ramp (drop --units)");
-  if (!f.ramp.empty()) return ramp_input(scene_options, f.ramp);
-  if (!f.profile_file.empty()) return SpeedProfile::load(f.profile_file);
-  if (scene.simulate && scene.simulate->speed) return *scene.simulate->speed;
-  return SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+  return run_speed(scene_options, f.ramp, f.profile_file, scene);
 }
 
 OutcomeOptions outcome_options(const OutcomeFlags& f, const CLI::App& sub, const Scene& scene, const SpeedProfile& speed) {

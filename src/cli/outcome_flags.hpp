@@ -24,7 +24,7 @@ struct OutcomeFlags {
 /// Declares the flags on `sub` (defaults as OutcomeOptions's; `samples` the command's own).
 void add_outcome_flags(CLI::App& sub, OutcomeFlags& f, int samples);
 
-/// The run's speed: --ramp, --speed-profile, the scene's [simulate] run-up, else its constant speed.
+/// The run's speed (run_speed of the flags' --ramp and --speed-profile).
 SpeedProfile speed_of(const OutcomeFlags& f, const SceneOptions& scene_options, const Scene& scene);
 
 /// The options from the flags and the scene's [simulate] keys where no flag is given; the end

@@ -261,17 +261,10 @@ Action add_simulate_command(CLI::App& app) {
           throw InputError("--summary", 0, o->summary,
                            fmt::format("is the run's own {} in -o {}: give the summary another name", own, o->output));
     }
-    // --units converts --set omega and --ramp; a profile file stays in rad/s (docs/views.md).
-    if (o->scene.speed_unit() != SpeedUnit::rad_per_s && !o->profile_file.empty())
-      throw InputError("--speed-profile", 0, "units",
-                       "a speed profile file is in rad/s; --units applies to --set omega and --ramp (drop --units)");
     if (!(o->sim.settle_tolerance > 0 && o->sim.settle_tolerance < 1))
       throw InputError("--settle-tol", 0, "", "must lie in (0, 1)");
-    const SpeedProfile speed = !o->ramp.empty()           ? ramp_input(o->scene, o->ramp)
-                               : !o->profile_file.empty() ? SpeedProfile::load(o->profile_file)
-                               : scene.simulate && scene.simulate->speed
-                                   ? *scene.simulate->speed
-                                   : SpeedProfile::constant(scene.omega, scene.file, "speed.omega");
+    // --units converts --set omega and --ramp; a profile file stays in rad/s (docs/views.md).
+    const SpeedProfile speed = run_speed(o->scene, o->ramp, o->profile_file, scene);
     // LuGre's 3n + 4 states run in the bounded any-ball storage (model.md §12.7).
     // An unround race and an anisotropic support run in the any-ball storage too (model.md §15.6, §20).
     if (scene.shaft) return run_shaft_simulation(scene, *o, speed);  // model.md §18.16

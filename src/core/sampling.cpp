@@ -23,6 +23,15 @@ std::optional<SampleDesign> sample_design_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+std::vector<double> sobol_points(int count, int dims) {
+  const std::unique_ptr<gsl_qrng, decltype(&gsl_qrng_free)> q(gsl_qrng_alloc(gsl_qrng_sobol, unsigned(dims)),
+                                                               &gsl_qrng_free);
+  if (!q) throw NumericalError(fmt::format("no Sobol sequence in {} dimensions (GSL)", dims));
+  std::vector<double> u(static_cast<std::size_t>(count) * static_cast<std::size_t>(dims));
+  for (int k = 0; k < count; ++k) gsl_qrng_get(q.get(), u.data() + std::size_t(k) * std::size_t(dims));
+  return u;
+}
+
 std::vector<double> sample_points(int count, int dims, SampleDesign design, unsigned long seed) {
   if (count < 1) throw InputError("--samples", 0, "", fmt::format("a study needs at least one sample, got {}", count));
   if (dims < 1) throw InputError("sample_points", 0, "", "a point needs at least one dimension");
@@ -33,8 +42,8 @@ std::vector<double> sample_points(int count, int dims, SampleDesign design, unsi
                                  kMaxSobolDimensions, dims));
   const std::unique_ptr<gsl_rng, decltype(&gsl_rng_free)> rng(gsl_rng_alloc(gsl_rng_mt19937), &gsl_rng_free);
   gsl_rng_set(rng.get(), seed);
-  std::vector<double> u(static_cast<std::size_t>(count) * static_cast<std::size_t>(dims));
   if (design == SampleDesign::random) {
+    std::vector<double> u(static_cast<std::size_t>(count) * static_cast<std::size_t>(dims));
     for (double& x : u) x = gsl_rng_uniform(rng.get());
     return u;
   }
@@ -42,11 +51,9 @@ std::vector<double> sample_points(int count, int dims, SampleDesign design, unsi
   // the sequence's low discrepancy, and the seed makes a study reproducible.
   std::vector<double> shift(static_cast<std::size_t>(dims));
   for (double& s : shift) s = gsl_rng_uniform(rng.get());
-  const std::unique_ptr<gsl_qrng, decltype(&gsl_qrng_free)> q(gsl_qrng_alloc(gsl_qrng_sobol, unsigned(dims)),
-                                                               &gsl_qrng_free);
+  std::vector<double> u = sobol_points(count, dims);
   for (int k = 0; k < count; ++k) {
     double* x = u.data() + std::size_t(k) * std::size_t(dims);
-    gsl_qrng_get(q.get(), x);
     for (int d = 0; d < dims; ++d) {
       x[d] += shift[std::size_t(d)];
       if (x[d] >= 1.0) x[d] -= 1.0;

@@ -38,4 +38,8 @@ std::string json_string(std::string_view s) {
   return out + "\"";
 }
 
+std::string json_number_or_null(const std::optional<double>& value, std::string_view what) {
+  return value ? format_number(*value, what) : std::string("null");
+}
+
 }  // namespace abu

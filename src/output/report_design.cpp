@@ -48,7 +48,7 @@ std::string json_values(const DesignPoint& d) {
   return "[" + out + "]";
 }
 
-std::string json_point(const DesignOptions& o, const DesignPoint& d) {
+std::string json_point(const DesignPoint& d) {
   std::string g;
   for (double x : d.constraints) g += fmt::format("{}{}", g.empty() ? "" : ", ", format_number(x, "constraint"));
   std::string runs = "null";
@@ -61,11 +61,10 @@ std::string json_point(const DesignOptions& o, const DesignPoint& d) {
                        format_number(s.residual.median.value), format_number(s.residual.p90.value),
                        format_number(s.residual.worst.value), format_number(s.stalled.value));
   }
-  (void)o;
   return fmt::format("{{\"origin\": {}, \"values\": {}, \"feasible\": {}, \"objective\": {}, \"constraints\": [{}], "
                      "\"ball_mass\": {}, \"capacity\": {}, \"outcomes\": {}, \"note\": {}}}",
                      json_string(d.origin), json_values(d), d.feasible ? "true" : "false",
-                     d.objective ? format_number(*d.objective, "objective") : "null", g,
+                     json_number_or_null(d.objective, "objective"), g,
                      format_number(d.ball_mass), format_number(d.capacity), runs, json_string(d.note));
 }
 
@@ -113,7 +112,7 @@ std::string design_json(const DesignStudy& s, std::string_view command_line, std
                         vars.empty() ? "" : ", ", json_string(v.name), format_number(v.low), format_number(v.high),
                         v.levels, v.log ? "true" : "false");
   for (const auto& c : o.constraints) cons += fmt::format("{}{}", cons.empty() ? "" : ", ", json_string(describe(c)));
-  for (const auto& d : s.points) points += fmt::format("{}\n    {}", points.empty() ? "" : ",", json_point(o, d));
+  for (const auto& d : s.points) points += fmt::format("{}\n    {}", points.empty() ? "" : ",", json_point(d));
   for (int k : s.pareto) front += fmt::format("{}{}", front.empty() ? "" : ", ", k);
   return fmt::format("{{\n  \"command\": {},\n  \"scene\": {},\n  \"status\": {},\n  \"reason\": {},\n  \"speed\": {},\n"
                      "  \"objective\": {},\n  \"variables\": [{}],\n  \"constraints\": [{}],\n  \"samples\": {},\n"

@@ -13,13 +13,9 @@ std::string opt(const std::optional<double>& v, std::string_view what) {
   return v ? format_number(*v, what) : std::string();
 }
 
-std::string json_opt(const std::optional<double>& v, std::string_view what) {
-  return v ? format_number(*v, what) : std::string("null");
-}
-
 std::string json_quantile(const QuantileEstimate& q, std::string_view what) {
   return fmt::format("{{\"p\": {}, \"value\": {}, \"low\": {}, \"high\": {}}}", q.probability,
-                     format_number(q.value, what), json_opt(q.low, what), json_opt(q.high, what));
+                     format_number(q.value, what), json_number_or_null(q.low, what), json_number_or_null(q.high, what));
 }
 
 std::string json_figure(const FigureStatistics& f, std::string_view what) {
@@ -33,16 +29,10 @@ std::string json_proportion(const ProportionEstimate& p) {
                      format_number(p.value), format_number(p.low), format_number(p.high));
 }
 
-// "12.3 µm [11.9, 12.8]" with `scale` applied (1e6 for µm), "-" for an unbounded side.
-std::string with_interval(const QuantileEstimate& q, double scale, std::string_view unit) {
-  const auto side = [&](const std::optional<double>& v) { return v ? fmt::format("{:.4g}", *v * scale) : std::string("-"); };
-  return fmt::format("{:.4g}{} [{}, {}]", q.value * scale, unit, side(q.low), side(q.high));
-}
-
 std::string figure_line(std::string_view what, const FigureStatistics& f, double scale, std::string_view unit) {
   if (f.count == 0) return fmt::format("  {}: no run has it\n", what);
   return fmt::format("  {}: median {}, 90th percentile {}, worst {:.4g}{} (of {} runs)\n", what,
-                     with_interval(f.median, scale, unit), with_interval(f.p90, scale, unit), f.worst.value * scale,
+                     interval_text(f.median, scale, unit), interval_text(f.p90, scale, unit), f.worst.value * scale,
                      unit, f.count);
 }
 
@@ -51,6 +41,11 @@ std::string percent(const ProportionEstimate& p) {
 }
 
 }  // namespace
+
+std::string interval_text(const QuantileEstimate& q, double scale, std::string_view unit) {
+  const auto side = [&](const std::optional<double>& v) { return v ? fmt::format("{:.4g}", *v * scale) : std::string("-"); };
+  return fmt::format("{:.4g}{} [{}, {}]", q.value * scale, unit, side(q.low), side(q.high));
+}
 
 std::string outcomes_csv(const OutcomeStudy& s, std::string_view header) {
   std::string out(header);

@@ -21,10 +21,6 @@ std::string number_list(const std::vector<double>& v, std::string_view what) {
   return out + "]";
 }
 
-std::string optional_number(const std::optional<double>& v, std::string_view what) {
-  return v ? format_number(*v, what) : std::string("null");
-}
-
 template <int N>
 std::vector<double> end_angles(const SimulationResult<N>& r, int n) {
   std::vector<double> beta(static_cast<std::size_t>(n));
@@ -169,12 +165,12 @@ std::string simulation_json(const SimulationResult<N>& r, const ParamsT<double, 
   if (r.bristle_count > 0) out += fmt::format("  \"bristle_end\": {},\n", number_list(r.bristle_end, "bristle_end"));
   out += fmt::format("  \"max_q_abs\": {},\n  \"t_max_q_abs\": {},\n", format_number(s.max_q_abs, "max_q_abs"),
                      format_number(s.t_max_q_abs, "t_max_q_abs"));
-  out += fmt::format("  \"max_q_abs_run_up\": {},\n", optional_number(s.max_q_abs_run_up, "max_q_abs_run_up"));
+  out += fmt::format("  \"max_q_abs_run_up\": {},\n", json_number_or_null(s.max_q_abs_run_up, "max_q_abs_run_up"));
   out += fmt::format("  \"residual_q_abs\": {},\n  \"bare_rotor_q_abs\": {},\n  \"balls_held_q_abs\": {},\n",
                      format_number(s.residual_q_abs, "residual"),
                      s.bare_rotor_q_abs > 0 ? format_number(s.bare_rotor_q_abs, "bare rotor") : "null",
                      s.balls_held_q_abs > 0 ? format_number(s.balls_held_q_abs, "balls held") : "null");
-  out += fmt::format("  \"settle_time\": {},\n", optional_number(s.settle_time, "settle_time"));
+  out += fmt::format("  \"settle_time\": {},\n", json_number_or_null(s.settle_time, "settle_time"));
   out += fmt::format("  \"stalled\": {},\n  \"stalled_balls\": {},\n", s.stalled ? "true" : "false", balls);
   out += fmt::format("  \"ball_speed_fixed\": {},\n  \"omega_mean_window\": {},\n  \"window_from\": {},\n",
                      number_list(s.ball_speed_fixed, "ball speed"), format_number(s.omega_mean_window, "omega"),

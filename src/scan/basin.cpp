@@ -2,7 +2,6 @@
 #include "abu/scan/basin.hpp"
 
 #include <fmt/format.h>
-#include <gsl/gsl_qrng.h>
 
 #include <algorithm>
 #include <array>
@@ -13,6 +12,7 @@
 
 #include "abu/core/cancel.hpp"
 #include "abu/core/errors.hpp"
+#include "abu/core/sampling.hpp"
 #include "abu/dynamics/shaft_simulation.hpp"
 #include "abu/dynamics/stick_slip.hpp"
 #include "abu/dynamics/unround_simulation.hpp"
@@ -327,16 +327,8 @@ void set_sobol_starts(BasinJob& job) {
   const int m = job.n_balls() - 2;
   job.others.clear();
   if (m < 1 || !job.fixed.empty()) return;
-  const std::unique_ptr<gsl_qrng, decltype(&gsl_qrng_free)> q(gsl_qrng_alloc(gsl_qrng_sobol, unsigned(m)),
-                                                               &gsl_qrng_free);
-  if (!q) throw NumericalError(fmt::format("basin: no Sobol sequence in {} dimensions (GSL)", m));
-  const std::size_t cells = std::size_t(job.cells1) * std::size_t(job.cells2);
-  job.others.resize(cells * std::size_t(m));
-  for (std::size_t k = 0; k < cells; ++k) {
-    double* u = job.others.data() + k * std::size_t(m);
-    gsl_qrng_get(q.get(), u);  // in (0, 1); GSL's first point is (1/2, ..., 1/2)
-    for (int d = 0; d < m; ++d) u[d] *= kTwoPi;
-  }
+  job.others = sobol_points(job.cells1 * job.cells2, m);  // in (0, 1); GSL's first point is (1/2, ..., 1/2)
+  for (double& u : job.others) u *= kTwoPi;
 }
 
 double shortest_arc(std::vector<double> angles) {

@@ -25,6 +25,10 @@ std::optional<SampleDesign> sample_design_from_string(std::string_view name);
 /// The most dimensions the Sobol design takes (GSL's gsl_qrng_sobol).
 inline constexpr int kMaxSobolDimensions = 40;
 
+/// The first `count` points of GSL's Sobol sequence in `dims` <= kMaxSobolDimensions dimensions
+/// (gsl_qrng_sobol, in order; its first point is (1/2, ..., 1/2)), row-major, unshifted.
+std::vector<double> sobol_points(int count, int dims);
+
 /// `count` points in [0, 1)^dims, row-major (point k at k * dims). The same arguments give the
 /// same points on every machine and thread count. Throws InputError for count < 1, dims < 1, or
 /// dims > kMaxSobolDimensions with the Sobol design.

@@ -23,6 +23,10 @@ std::string outcomes_csv(const OutcomeStudy& s, std::string_view header);
 /// sample cannot bound it) and proportion with Wilson's interval.
 std::string outcomes_json(const OutcomeStudy& s, std::string_view command_line, std::string_view scene_file);
 
+/// A quantile and its interval in words, `scale` applied (1e6 for µm): "12.3 µm [11.9, 12.8]", "-"
+/// for a side the sample does not bound.
+std::string interval_text(const QuantileEstimate& q, double scale, std::string_view unit);
+
 /// The answer in words: the verdict line, then the residual against the bare rotor and the
 /// balls held, the peak, how the runs ended, the settle time (µm, s).
 std::string outcomes_text(const OutcomeStudy& s);
