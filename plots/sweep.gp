@@ -14,6 +14,9 @@ if (!exists("logx")) logx = '0'
 if (!exists("title")) title = 'sweep'
 if (!exists("subtitle")) subtitle = ''
 if (!exists("omega_n")) omega_n = ''
+# dry='1': a coulomb / stribeck scene, whose rows carry what dry friction leaves (dry_* columns,
+# the same on every row of a value: `smooth unique` draws one point a value)
+if (!exists("dry")) dry = '0'
 
 set terminal pngcairo size 1200,950 enhanced font 'DejaVu Sans,10'
 set output png
@@ -102,7 +105,20 @@ set logscale y
 set mytics 10
 set ylabel '|q| [m] (rotor excursion = whirl radius; balanced: q = 0, not drawn)'
 set format y '10^{%T}'
-if (has_q) {
+if (dry eq '1') {
+set ylabel '|q| [m]: equilibria (smooth law); dry friction'
+plot \
+  csv using (column(param)):(column("dry_bare_rotor_q_abs")) smooth unique with lines lw 6 lc rgb '#c8c8c8' title 'rotor without balls', \
+  csv using (column(param)):(column("dry_worst_q_abs")) smooth unique with lines lw 3 lc rgb '#e07b00' title 'dry friction: worst residual V', \
+  last = -1, csv using (column(param)):(series('together', 1, 1, column("q_abs"))) with lines ls 3 title t(has_t1, 'together, stable'), \
+  last = -1, csv using (column(param)):(series('together', 1, 0, column("q_abs"))) with lines ls 4 title t(has_t0, 'together, unstable'), \
+  last = -1, csv using (column(param)):(series('together', 2, 1, column("q_abs"))) with lines ls 3 notitle, \
+  last = -1, csv using (column(param)):(series('together', 2, 0, column("q_abs"))) with lines ls 4 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 1, 1, column("q_abs"))) with lines ls 5 title t(has_o1, 'opposite, stable'), \
+  last = -1, csv using (column(param)):(series('opposite', 1, 0, column("q_abs"))) with lines ls 6 title t(has_o0, 'opposite, unstable'), \
+  last = -1, csv using (column(param)):(series('opposite', 2, 1, column("q_abs"))) with lines ls 5 notitle, \
+  last = -1, csv using (column(param)):(series('opposite', 2, 0, column("q_abs"))) with lines ls 6 notitle
+} else { if (has_q) {
 plot \
   last = -1, csv using (column(param)):(series('together', 1, 1, column("q_abs"))) with lines ls 3 title t(has_t1, 'together, stable'), \
   last = -1, csv using (column(param)):(series('together', 1, 0, column("q_abs"))) with lines ls 4 title t(has_t0, 'together, unstable'), \
@@ -118,7 +134,7 @@ plot \
   plot 1e-20 notitle
   unset label 2
   set yrange [*:*]
-}
+} }
 if (param eq 'omega') {
   unset x2tics
   unset x2label

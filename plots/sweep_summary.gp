@@ -11,6 +11,8 @@ if (!exists("unit")) unit = '-'
 if (!exists("logx")) logx = '0'
 if (!exists("title")) title = 'sweep summary'
 if (!exists("subtitle")) subtitle = ''
+# dry='1': a coulomb / stribeck scene, whose rows carry what dry friction leaves (dry_* columns)
+if (!exists("dry")) dry = '0'
 
 set terminal pngcairo size 1000,800 enhanced font 'DejaVu Sans,10'
 set output png
@@ -20,6 +22,7 @@ set datafile columnheaders
 set datafile missing ''
 
 if (logx eq '1') set logscale x
+if (param eq 'n') set xtics 1   # a ball count: whole numbers
 set xlabel (unit eq '-' ? param : sprintf('%s [%s]', param, unit)) noenhanced
 set grid
 set key outside right top
@@ -58,6 +61,14 @@ set format y '10^{%T}'
 set ylabel '|q| of the best stable state [m]'
 # A stable balanced state has |q| = 0: drawn on the floor of the axis (1e-12 m).
 positive(q) = (q > 0 ? q : NaN)
-plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title t(has_aligned, 'best stable: aligned'), \
-     csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title t(has_balanced, 'best stable: balanced (|q| = 0)')
+if (dry eq '1') {
+  set ylabel '|q| [m]: best stable state (smooth law); dry friction'
+  plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title t(has_aligned, 'best stable: aligned'), \
+       csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title t(has_balanced, 'best stable: balanced (|q| = 0)'), \
+       csv using (column(param)):(column("dry_bare_rotor_q_abs")) with lines lw 6 lc rgb '#c8c8c8' title 'rotor without balls', \
+       csv using (column(param)):(column("dry_worst_q_abs")) with linespoints lw 2.5 pt 13 lc rgb '#e07b00' title 'dry friction: worst residual V'
+} else {
+  plot csv using (column(param)):(strcol("best_family") ne 'balanced' ? positive(column("best_q_abs")) : NaN) with linespoints lw 2 pt 7 lc rgb '#d62728' title t(has_aligned, 'best stable: aligned'), \
+       csv using (column(param)):(strcol("best_family") eq 'balanced' ? 1e-12 : NaN) with points pt 9 ps 1.8 lc rgb '#1f77b4' title t(has_balanced, 'best stable: balanced (|q| = 0)')
+}
 unset multiplot

@@ -1,4 +1,4 @@
-// Texts and helpers of the scene tests (test_scene.cpp, test_scene_ring.cpp, test_outcomes.cpp,
+// Texts and helpers of the scene tests (test_scene.cpp, test_scene_ring.cpp, test_outcomes.cpp, test_chart_labels.cpp,
 // test_design_study.cpp): the source tree
 // (ABU_SOURCE_DIR, which tests/CMakeLists.txt sets for these files), the default scene's text
 // with one line replaced, and the InputError a call throws.

@@ -2,6 +2,8 @@
 // inputs, their figures, and the statistics of the sample.
 #include "abu/analysis/outcomes.hpp"
 
+#include "abu/core/parallel.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,7 +11,6 @@
 #include <complex>
 #include <mutex>
 #include <numbers>
-#include <thread>
 
 #include "abu/analysis/machine_parts.hpp"
 #include "abu/core/errors.hpp"
@@ -264,32 +265,18 @@ OutcomeStudy analyze_outcomes(const Scene& scene, const SpeedProfile& speed, con
     for (std::size_t j = 0; j < o.uncertain.size(); ++j)
       s.inputs.push_back(o.uncertain[j].low + (o.uncertain[j].high - o.uncertain[j].low) * x[n + int(j)]);
   }
-  std::atomic<int> next{0}, done{0};
+  std::atomic<int> done{0};
   std::mutex report;
-  std::exception_ptr error;
-  const auto work = [&] {
-    for (int k = next++; k < o.samples; k = next++) {
-      if (o.interrupt && o.interrupt->load()) return;
-      try {
-        run_one(scene, speed, o, study.samples[std::size_t(k)]);
-      } catch (...) {
-        const std::lock_guard lock(report);
-        if (!error) error = std::current_exception();
-        next = o.samples;
-        return;
-      }
-      const int d = ++done;
-      if (o.progress) {
-        const std::lock_guard lock(report);
-        o.progress(d, o.samples);
-      }
+  for_each_index(o.samples, o.threads, [&](int k) {
+    if (o.interrupt && o.interrupt->load()) return false;
+    run_one(scene, speed, o, study.samples[std::size_t(k)]);
+    const int d = ++done;
+    if (o.progress) {
+      const std::lock_guard lock(report);
+      o.progress(d, o.samples);
     }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < std::max(1, o.threads); ++t) workers.emplace_back(work);
-  work();
-  for (auto& t : workers) t.join();
-  if (error) std::rethrow_exception(error);
+    return true;
+  });
   for (const auto& s : study.samples) {
     if (!s.done) study.status.merge(Outcome::not_converged, fmt::format("interrupted: {} of {} runs done", done.load(), o.samples));
     if (s.done && s.outcome == "failed")

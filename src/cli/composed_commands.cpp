@@ -102,7 +102,7 @@ int sweep_composed(const Scene& scene, const SceneOptions& options, const Unroun
                  {"has_crossings", s.crossings.empty() ? "0" : "1"},
                  {"title", fmt::format("{}: sweep of {} (unround race on an anisotropic support: periodic orbits)",
                                        scene.file, name)},
-                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+                 {"subtitle", chart_subtitle(scene, options.overrides, {{name, values.front(), values.back(), unit_name}})}});
   out.commit();
   fmt::print(stderr, "{}", composed_sweep_text(s, name));
   std::size_t rows = 0;
@@ -145,7 +145,7 @@ int map_composed(const Scene& scene, const SceneOptions& options, const UnroundM
        {"states", "stable periodic orbits"},
        {"qlabel", "log_{10} max |q| over the period of the best stable orbit [m]"},
        {"title", fmt::format("{}: unround race on an anisotropic support, map (periodic orbits)", scene.file)},
-       {"subtitle", chart_subtitle(scene, options.overrides)}});
+       {"subtitle", chart_subtitle(scene, options.overrides, {{x.name, x.axis.from, x.axis.to, x.unit}, {y.name, y.axis.from, y.axis.to, y.unit, "y axis"}})}});
   return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
     return compute_composed_map_tiles(job, missing, run_options, sink);
   });

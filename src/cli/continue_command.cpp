@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <sstream>
+#include <thread>
 
 #include "cli.hpp"
 #include "abu/continuation/boundaries.hpp"
@@ -20,11 +21,13 @@
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
+#include "abu/output/report_dry_along.hpp"
 #include "abu/input/ranges.hpp"
 #include "abu/output/report.hpp"
 #include "commands.hpp"
 #include "unround_commands.hpp"
 #include "floquet_commands.hpp"
+#include "stick_options.hpp"
 #include "views.hpp"
 
 namespace abu::cli {
@@ -43,7 +46,27 @@ struct ContinueOptions {
   std::string output_dir = "out";
   bool cycles = false;  // follow the periodic orbits of every Hopf point (model.md §17)
   CycleOptions cycle;
+  DryRows dry = DryRows::automatic;  // coulomb / stribeck: the dry figures on every row (model.md §14.10)
 };
+
+// The dry figures of every row's value (coulomb / stribeck, as --dry asks), the values shared
+// among --threads.
+template <class P, class Run>
+DryAlong rows_dry_figures(const P& p, const Run& rows, const ContinueOptions& o) {
+  const int threads = o.numerics.threads > 0 ? o.numerics.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  return dry_figures_along(p, rows, {.rows = o.dry, .stick = {}, .threads = threads});
+}
+
+// What a continuation's charts vary: the parameter over the run (x axis), the second one from
+// the scene's value to --to2 (y axis).
+template <class Run>
+ChartAxis along(ParamRef param, const Run& run) {
+  return {to_string(param), run.from, run.to, std::string(unit(param.quantity))};
+}
+template <class P>
+ChartAxis across(const P& p, ParamRef param2, double to2) {
+  return {to_string(param2), double(get(p, param2)), to2, std::string(unit(param2.quantity)), "y axis"};
+}
 
 // True if setting `a` changes a value `b` also sets (m and m1, or m2 and m2): two axes or
 // continuation parameters that overlap are one parameter, refused (docs/robustness.md).
@@ -250,13 +273,18 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
   if (double(run.branches.size()) * run.memory_estimate > 1e8)
     fmt::print(stderr, "memory: at most about {} ({} branches)\n",
                gigabytes(double(run.branches.size()) * run.memory_estimate), run.branches.size());
-  fmt::print(stderr, "{}", continuation_warnings(run));
   const std::string name = to_string(param);
   const std::filesystem::path dir(o.output_dir);
+  // With a coulomb or stribeck law every row also carries what dry friction leaves (model.md §14.10).
+  const ContinuationRunN rows = with_special_rows(p, run);
+  const DryAlong dry = rows_dry_figures(p, rows, o);
+  fmt::print(stderr, "{}{}",
+             dry_along_lead(name, unit(param.quantity), dry, (dir / fmt::format("branch_{}.csv", name)).string()),
+             continuation_warnings(run));
   const std::string header = provenance_header(command_line(), scene.file, p);
   OutputTransaction out;
-  const auto branches =
-      out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
+  const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name),
+                                  branch_csv(rows, header, dry.computed() ? &dry.figures : nullptr, dry.which));
   const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
   const auto envelope = out.stage(dir / fmt::format("envelope_{}.csv", name), envelope_csv(run, header));
   if (o.chart)
@@ -268,13 +296,13 @@ int continue_any_balls(const Scene& scene, const ContinueOptions& o) {
                  {"param", name},
                  {"unit", std::string(unit(param.quantity))},
                  {"title", fmt::format("{}: {} balls, continuation in {}", scene.file, n_balls, name)},
-                 {"subtitle", chart_subtitle(scene, o.scene.overrides)},
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides, {along(param, run)})},
                  {"omega_n", format_omega_n(scene)}});
   if (ref2)
     stage_boundaries(out, continue_boundaries(p, run, *ref2, o.to2, o.numerics), dir, header, o.chart, "boundary_n.gp",
                      fmt::format("{}: {} balls, stability boundaries in ({}, {})", scene.file, n_balls, name,
                                  to_string(*ref2)),
-                     chart_subtitle(scene, o.scene.overrides));
+                     chart_subtitle(scene, o.scene.overrides, {along(param, run), across(p, *ref2, o.to2)}));
   out.commit();
   return finish(run, fmt::format("{} branches ({} balanced samples)", run.branches.size(), run.envelope.samples), dir);
 }
@@ -303,8 +331,9 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--ds-min", o->numerics.ds_min, "Minimum step")->capture_default_str();
   sub->add_option("--ds-max", o->numerics.ds_max, "Maximum step")->capture_default_str();
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
+  add_dry_rows_option(*sub, o->dry);
   sub->add_option("--threads", o->numerics.threads,
-                  "Branches traced at once, two balls (0: one per core; the output does not depend on it; on a busy "
+                  "Branches traced at once, two balls, and the dry figures of the rows (0: one per core; the output does not depend on it; on a busy "
                   "machine more threads cost more CPU time: a branch that turns out to be one already traced is "
                   "traced anyway)")
       ->capture_default_str();
@@ -412,13 +441,18 @@ Action add_continue_command(CLI::App& app) {
     if (run.memory_estimate + cycle_memory > 1e8)
       fmt::print(stderr, "memory: at most about {} (the branches{})\n", gigabytes(run.memory_estimate + cycle_memory),
                  o->cycles ? " and one cycle branch at a time" : "");
-    fmt::print(stderr, "{}", continuation_warnings(run));
     const std::string name = to_string(param);
     const std::filesystem::path dir(o->output_dir);
+    // With a coulomb or stribeck law every row also carries what dry friction leaves (model.md §14.10).
+    const ContinuationRun rows = with_special_rows(p, run);
+    const DryAlong dry = rows_dry_figures(p, rows, *o);
+    fmt::print(stderr, "{}{}",
+               dry_along_lead(name, unit(param.quantity), dry, (dir / fmt::format("branch_{}.csv", name)).string()),
+               continuation_warnings(run));
     const std::string header = provenance_header(command_line(), scene.file, p);
     OutputTransaction out;
-    const auto branches =
-        out.stage(dir / fmt::format("branch_{}.csv", name), branch_csv(with_special_rows(p, run), header));
+    const auto branches = out.stage(dir / fmt::format("branch_{}.csv", name),
+                                    branch_csv(rows, header, dry.computed() ? &dry.figures : nullptr, dry.which));
     const auto specials = out.stage(dir / fmt::format("special_{}.csv", name), special_points_csv(run, header));
     stage_views(out,
                 {dir, name, std::string(unit(param.quantity)), run.from, run.to, campbell_samples(run, p),
@@ -434,13 +468,13 @@ Action add_continue_command(CLI::App& app) {
                    {"param", name},
                    {"unit", std::string(unit(param.quantity))},
                    {"title", fmt::format("{}: continuation in {}", scene.file, name)},
-                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides, {along(param, run)})},
                    {"omega_n", format_omega_n(scene)}});
     if (ref2)
       stage_boundaries(out, continue_boundaries(p, run, *ref2, o->to2, o->numerics), dir, header, o->chart,
                        "boundary.gp",
                        fmt::format("{}: stability boundaries in ({}, {})", scene.file, name, to_string(*ref2)),
-                       chart_subtitle(scene, o->scene.overrides));
+                       chart_subtitle(scene, o->scene.overrides, {along(param, run), across(p, *ref2, o->to2)}));
     int cycle_code = exit_ok;
     if (o->cycles) {
       const std::vector<CycleBranch> cycles = follow_cycles(p, run, o->cycle);
@@ -456,7 +490,7 @@ Action add_continue_command(CLI::App& app) {
                      {"param", name},
                      {"unit", std::string(unit(param.quantity))},
                      {"title", fmt::format("{}: equilibria and periodic orbits in {}", scene.file, name)},
-                     {"subtitle", chart_subtitle(scene, o->scene.overrides)}});
+                     {"subtitle", chart_subtitle(scene, o->scene.overrides, {along(param, run)})}});
       cycle_code = cycles_exit(cycles);
     }
     out.commit();

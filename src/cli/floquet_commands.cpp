@@ -54,7 +54,8 @@ int write_floquet_outputs(const Scene& scene, const SceneOptions& scene_options,
                  {"logx", logarithmic ? "1" : "0"},
                  {"has_crossings", s.crossings.empty() ? "0" : "1"},
                  {"title", fmt::format("{}: {} (anisotropic support: Floquet over pi/omega)", scene.file, what)},
-                 {"subtitle", chart_subtitle(scene, scene_options.overrides)}});
+                 {"subtitle", chart_subtitle(scene, scene_options.overrides,
+                                              {{name, s.values.front(), s.values.back(), std::string(unit(s.param.quantity))}})}});
   // An omega sweep also gets the Campbell view of the Floquet modes (model.md §10.15).
   const auto campbell = stem == "sweep" ? stage_floquet_campbell(out, s, base, scene, scene_options, dir, header, chart)
                                         : std::vector<std::filesystem::path>{};

@@ -227,7 +227,8 @@ int sweep_shaft_race(const Scene& scene, const SceneOptions& options, const Unro
                  {"bare", "balls held at the balancer node"},
                  {"open", "unstable or undetermined equilibrium"},
                  {"title", fmt::format("{}: unround race on a flexible shaft, sweep of {}", scene.file, grid.name)},
-                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+                 {"subtitle", chart_subtitle(scene, options.overrides,
+                                              {{grid.name, grid.values.front(), grid.values.back(), grid.unit}})}});
   out.commit();
   std::size_t rows = 0;
   for (const auto& pt : sweep.points) rows += pt.states.size();

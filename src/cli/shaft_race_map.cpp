@@ -42,7 +42,7 @@ int map_shaft_race(const Scene& scene, const ShaftMapRequest& request) {
   run.chart_variables.insert(run.chart_variables.end(),
                              {{"first_order", "0"},
                               {"title", fmt::format("{}: unround race on a flexible shaft, map", scene.file)},
-                              {"subtitle", chart_subtitle(scene, request.overrides)}});
+                              {"subtitle", chart_subtitle(scene, request.overrides, {{x.name, x.axis.from, x.axis.to, x.unit}, {y.name, y.axis.from, y.axis.to, y.unit, "y axis"}})}});
   return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
     return compute_shaft_race_map_tiles(job, missing, run_options, sink);
   });

@@ -8,6 +8,18 @@
 
 namespace abu::cli {
 
+void add_dry_rows_option(CLI::App& sub, DryRows& rows) {
+  sub.add_option("--dry", rows,
+                 fmt::format("coulomb / stribeck: the rows' dry figures (dry_* columns, a stick set at each value, "
+                             "model.md §14.10): auto (unless more than {} values, {} for 3-12 balls, need a scan of "
+                             "the torus), on, off",
+                             kDryAutomaticScans, kDryAutomaticScansN))
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, DryRows>{{"auto", DryRows::automatic}, {"on", DryRows::on}, {"off", DryRows::off}},
+          CLI::ignore_case))
+      ->default_str("auto");
+}
+
 void add_stick_resolution_options(CLI::App& sub, StickSetOptions& options) {
   sub.add_option("--stick-columns", options.columns,
                  "coulomb-set, two balls: beta_1 columns of the stick set's scan (and twice as many beta_2 samples per "

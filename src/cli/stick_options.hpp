@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "abu/analysis/dry_friction.hpp"
 #include "abu/equilibria/stick_set.hpp"
 #include "abu/input/scene.hpp"
 
@@ -17,6 +18,10 @@ namespace abu::cli {
 /// Adds --stick-columns C (two balls: C beta_1 columns and 2 C beta_2 samples per column)
 /// and --stick-grid B (n >= 3: at most B grid points) with `options`' values as defaults.
 void add_stick_resolution_options(CLI::App& sub, StickSetOptions& options);
+
+/// Adds --dry auto|on|off: whether the rows of a coulomb / stribeck sweep or continuation carry
+/// the dry figures (analysis/dry_friction.hpp, model.md §14.10).
+void add_dry_rows_option(CLI::App& sub, DryRows& rows);
 
 /// `options` with the samples per column following the columns (2 C), as parsed.
 StickSetOptions stick_resolution(StickSetOptions options);

@@ -12,14 +12,17 @@
 #include "abu/core/errors.hpp"
 #include "abu/core/resources.hpp"
 #include "abu/core/suggest.hpp"
+#include "abu/core/widen_params.hpp"
 #include "abu/output/chart_labels.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
 #include "abu/input/ranges.hpp"
+#include "abu/output/report_dry_along.hpp"
 #include "abu/output/report_lugre.hpp"
 #include "abu/output/report.hpp"
 #include "abu/output/sweep_stream.hpp"
+#include "abu/analysis/dry_friction.hpp"
 #include "abu/analysis/equilibria.hpp"
 #include "abu/scan/scan.hpp"
 #include "commands.hpp"
@@ -43,6 +46,7 @@ struct SweepOptions {
   std::string output_dir = "out";
   BalancedSampling sampling;
   StickSetOptions stick;  // coulomb-set scenes
+  DryRows dry = DryRows::automatic;  // coulomb / stribeck: the rows' dry figures (model.md §14.10)
   ShaftSpectrumOptions shaft;  // a flexible shaft's Campbell diagram (model.md §18)
 };
 // The grid must stay inside the parameter's physical range; it is an interval, so the
@@ -104,7 +108,8 @@ SweepGrid sweep_grid(const Scene& scene, const SweepOptions& o) {
 
 // What a sweep other than the two-ball one holds, estimated before the work and refused
 // beyond the machine (docs/robustness.md): with `streamed` (sweep_any_balls, output/
-// sweep_stream.hpp) one value's analysis as `equilibria` holds it without the stick set's grid,
+// sweep_stream.hpp) one value's analysis as `equilibria` holds it (the stick set's grid only
+// with the rows' dry figures),
 // and per value its kept text (4 kB) and, for omega, its Campbell samples (16 kB a state,
 // measured 12.6 kB for 11 balls); otherwise (LuGre, coulomb-set) every value's analysis with
 // ~2 kB of CSV a state. For --param n at the largest ball count.
@@ -121,7 +126,9 @@ void check_sweep_memory(const Scene& scene, const SweepOptions& o, bool streamed
   request.stick = stick_resolution(o.stick);
   request.output_bytes_per_state = 2e3;
   const EquilibriaEstimate per_value = equilibria_estimate(largest, request);
-  const double analysis = per_value.memory - 60e6 - per_value.grid;
+  // the stick set's grid only where the rows may carry the dry figures (one set at a time)
+  const bool dry = dry_coefficients(scene.law) != "" && o.dry != DryRows::off;
+  const double analysis = per_value.memory - 60e6 - (dry ? 0.0 : per_value.grid);
   const double kept = 4e3 + (o.param == "omega" ? 16e3 * per_value.states : 0.0);
   const double memory = streamed ? 60e6 + analysis + values * kept : 60e6 + values * analysis;
   if (memory > 1e8) fmt::print(stderr, "sweep: memory: at most about {}\n", gigabytes(memory));
@@ -167,19 +174,25 @@ int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
   const SweepGrid grid = sweep_grid(scene, o);
   int n_max = 2;
   for (const auto& s : grid.scenes) n_max = std::max(n_max, int(s.balls.size()));
-  // Each value's analysis is written and dropped as it comes (output/sweep_stream.hpp).
-  SweepStream stream(grid.name, grid.unit, grid.values.size(), n_max, grid.name == "omega");
+  // Each value's analysis is written and dropped as it comes (output/sweep_stream.hpp); with a
+  // coulomb or stribeck law each row also carries what dry friction leaves there (model.md §14.10).
+  std::vector<ParamsN> params;
+  for (const auto& s : grid.scenes) params.push_back(params_of<any_balls>(s));
+  const DryAlong dry = dry_figures_along(grid.values, params, {o.dry, stick_resolution(o.stick), 1});
+  SweepStream stream(grid.name, grid.unit, grid.values.size(), n_max, grid.name == "omega",
+                     dry.computed() ? dry.which : std::string());
+  std::string warnings;  // after the dry verdict, which leads
   for (std::size_t i = 0; i < grid.scenes.size(); ++i) {
     throw_if_stopped("sweep");
-    const ParamsN p = params_of<any_balls>(grid.scenes[i]);
-    const AnalysisN analysis = analyze(p, o.sampling);
-    fmt::print(stderr, "{}", analysis_warnings(analysis, fmt::format("{}={}", grid.name, grid.values[i])));
-    stream.add(grid.values[i], analysis, p);
+    const AnalysisN analysis = analyze(params[i], o.sampling);
+    warnings += analysis_warnings(analysis, fmt::format("{}={}", grid.name, grid.values[i]));
+    stream.add(grid.values[i], analysis, params[i], dry.computed() ? dry.figures.at(grid.values[i]) : DryFigures{});
   }
   const ParamsN first = params_of<any_balls>(grid.scenes.front());
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(o.output_dir);
   const auto [csv_path, summary_path, png_path] = sweep_paths(dir, grid.name);
+  fmt::print(stderr, "{}{}", dry_along_lead(grid.name, grid.unit, dry, csv_path.string()), warnings);
   OutputTransaction out;
   stage_views(out,
               {dir, grid.name, grid.unit, grid.values.front(), grid.values.back(), stream.campbell(), stream.ranges(),
@@ -194,7 +207,9 @@ int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
                  {"unit", grid.unit},
                  {"logx", o.logarithmic ? "1" : "0"},
                  {"title", fmt::format("{}: sweep of {}", scene.file, grid.name)},
-                 {"subtitle", chart_subtitle(scene, o.scene.overrides)}});
+                 {"subtitle", chart_subtitle(scene, o.scene.overrides,
+                                              {{grid.name, grid.values.front(), grid.values.back(), grid.unit}})},
+                 {"dry", dry.computed() ? "1" : "0"}});
   }
   out.commit();
   fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
@@ -225,6 +240,7 @@ Action add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   add_stick_resolution_options(*sub, o->stick);
+  add_dry_rows_option(*sub, o->dry);
   add_shaft_spectrum_options(*sub, o->shaft);
   return [o]() -> int {
     Scene scene = load(o->scene);
@@ -301,20 +317,24 @@ Action add_sweep_command(CLI::App& app) {
                                ref->quantity == Quantity::omega ? " (its Campbell samples)" : ""),
                    "use fewer steps");
     // Each value's rows are written and its analysis dropped as it comes (output/sweep_stream.hpp).
-    TwoBallSweepStream stream(*ref, values.size(), base);
+    // With a coulomb or stribeck law each row also carries what dry friction leaves (model.md §14.10).
+    const DryAlong dry = dry_figures_along(widen(base), *ref, values, {o->dry, stick_resolution(o->stick), 1});
+    TwoBallSweepStream stream(*ref, values.size(), base, dry.computed() ? dry.which : std::string());
     Params p = base;
+    std::string warnings;  // after the dry verdict, which leads
     for (const double v : values) {
       throw_if_stopped("sweep");
       set(p, *ref, v);
       const Analysis a = analyze(p);
-      fmt::print(stderr, "{}", analysis_warnings(a, fmt::format("{}={}", o->param, v)));
-      stream.add(v, a);
+      warnings += analysis_warnings(a, fmt::format("{}={}", o->param, v));
+      stream.add(v, a, dry.computed() ? dry.figures.at(v) : DryFigures{});
     }
 
     const std::string name = to_string(*ref);
     const std::filesystem::path dir(o->output_dir);
     const auto csv_path = dir / fmt::format("sweep_{}.csv", name);
     const auto png_path = dir / fmt::format("sweep_{}.png", name);
+    fmt::print(stderr, "{}{}", dry_along_lead(name, unit(ref->quantity), dry, csv_path.string()), warnings);
     OutputTransaction out;
     const auto staged_csv = stream.stage(out, csv_path, provenance_header(command_line(), scene.file, base));
     stage_views(out,
@@ -331,8 +351,10 @@ Action add_sweep_command(CLI::App& app) {
                    {"unit", std::string(unit(ref->quantity))},
                    {"logx", o->logarithmic ? "1" : "0"},
                    {"title", fmt::format("{}: sweep of {}", scene.file, name)},
-                   {"subtitle", chart_subtitle(scene, o->scene.overrides)},
-                   {"omega_n", format_omega_n(scene)}});
+                   {"subtitle", chart_subtitle(scene, o->scene.overrides,
+                                                {{name, values.front(), values.back(), std::string(unit(ref->quantity))}})},
+                   {"omega_n", format_omega_n(scene)},
+                   {"dry", dry.computed() ? "1" : "0"}});
     }
     out.commit();
     fmt::print(stderr, "wrote {} ({} rows){}\n", csv_path.string(), stream.rows(),

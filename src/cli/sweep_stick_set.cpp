@@ -68,7 +68,7 @@ int sweep_stick_set(const Scene& scene, const StickSweepInput& in) {
                                        : scene.shaft             ? " on a flexible shaft (|q| at the balancer node)"
                                                                  : "",
                                        in.name)},
-                 {"subtitle", chart_subtitle(scene, in.overrides)}});
+                 {"subtitle", chart_subtitle(scene, in.overrides, {{in.name, in.values.front(), in.values.back(), in.unit}})}});
   out.commit();
   fmt::print(stderr, "wrote {} ({} values){}\n", csv_path.string(), sets.size(),
              in.chart && std::filesystem::exists(png_path) ? fmt::format(" and {}", png_path.string()) : std::string());

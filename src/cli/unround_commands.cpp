@@ -128,7 +128,8 @@ int sweep_unround(const Scene& scene, const SceneOptions& options, const Unround
                  {"unit", sweep.unit},
                  {"logx", g.logarithmic ? "1" : "0"},
                  {"title", fmt::format("{}: unround race, sweep of {}", scene.file, sweep.name)},
-                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+                 {"subtitle", chart_subtitle(scene, options.overrides,
+                                              {{sweep.name, sweep.values.front(), sweep.values.back(), sweep.unit}})}});
   out.commit();
   fmt::print(stderr, "wrote {} and {}{}\n", csv_path.string(), summary_path.string(),
              g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
@@ -158,7 +159,7 @@ int continue_unroundness(const Scene& scene, const SceneOptions& options, double
                  {"specials", staged_specials.string()},
                  {"png", out.reserve(png_path).string()},
                  {"title", fmt::format("{}: unround race, continuation in the unroundness factor", scene.file)},
-                 {"subtitle", chart_subtitle(scene, options.overrides)}});
+                 {"subtitle", chart_subtitle(scene, options.overrides, {{"unroundness", 0.0, to, "-"}})}});
   out.commit();
   std::size_t points = 0, specials = 0;
   for (const auto& br : b.branches) points += br.points.size(), specials += br.specials.size();
@@ -250,7 +251,7 @@ int map_unround(const Scene& scene, const SceneOptions& options, const UnroundMa
                     "equilibria"};
   run.chart_variables.insert(run.chart_variables.end(),
                              {{"title", fmt::format("{}: unround race map", scene.file)},
-                              {"subtitle", chart_subtitle(scene, options.overrides)}});
+                              {"subtitle", chart_subtitle(scene, options.overrides, {{x.name, x.axis.from, x.axis.to, x.unit}, {y.name, y.axis.from, y.axis.to, y.unit, "y axis"}})}});
   return run_summary_map(run, [&job](const auto& missing, const auto& run_options, const auto& sink) {
     return compute_unround_map_tiles(job, missing, run_options, sink);
   });

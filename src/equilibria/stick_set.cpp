@@ -151,6 +151,14 @@ void check_stick_set_defined(const ParamsN& p) {
   static_cast<void>(StickModel(p));  // its constructor refuses what has no stick set
 }
 
+bool whole_torus_by_bound(const ParamsN& p) {
+  try {
+    return whole_torus_by_bound(StickModel(p), {}).has_value();
+  } catch (const NotSupportedError&) {
+    return false;
+  }
+}
+
 StickSet stick_set_on_race(const ParamsN& p, const RaceShape& race, std::vector<StickSeed> seeds,
                            const StickSetOptions& options) {
   const StickModel m(p, &race);

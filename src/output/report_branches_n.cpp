@@ -3,6 +3,8 @@
 // envelope_NAME.csv of `continue` on n >= 3 balls.
 #include <fmt/format.h>
 
+#include "abu/output/report_dry_along.hpp"
+
 #include <cmath>
 
 #include "abu/output/format.hpp"
@@ -58,7 +60,8 @@ std::string run_comments(const ContinuationRunN& run) {
 
 }  // namespace
 
-std::string branch_csv(const ContinuationRunN& run, std::string_view header) {
+std::string branch_csv(const ContinuationRunN& run, std::string_view header, const DryFiguresAlong* dry,
+                       std::string_view dry_which) {
   const std::string name = to_string(run.param);
   const int n = run.n_balls, size = 2 * n + 4;
   std::string out(header);
@@ -77,10 +80,12 @@ std::string branch_csv(const ContinuationRunN& run, std::string_view header) {
       "exactly 0\n",
       n, name, unit(run.param.quantity), run.from, run.to, name, n, size);
   out += run_comments(run);
+  if (dry) out += dry_columns_doc(dry_which);
   out += fmt::format("branch,point,label,{},family,pattern,member,{},residual,spectral_abscissa,stable,n_unstable,"
                      "n_structural_zero",
                      name, position_header(n));
   for (int k = 1; k <= size; ++k) out += fmt::format(",re{},im{}", k, k);
+  if (dry) out += dry_columns();
   out += "\n";
   for (std::size_t b = 0; b < run.branches.size(); ++b) {
     const BranchN& branch = run.branches[b];
@@ -96,6 +101,7 @@ std::string branch_csv(const ContinuationRunN& run, std::string_view header) {
         const auto l = sp.structural[std::size_t(k)] ? std::complex<double>() : sp.eigenvalues[std::size_t(k)];
         out += fmt::format(",{},{}", num(l.real(), "eigenvalue"), num(l.imag(), "eigenvalue"));
       }
+      if (dry) out += dry_cells(*dry, double(pt.parameter));
       out += "\n";
     }
   }

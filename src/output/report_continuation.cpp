@@ -2,6 +2,8 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "abu/output/report_dry_along.hpp"
+
 #include <cmath>
 #include <iterator>
 #include <numbers>
@@ -55,7 +57,8 @@ std::string run_comments(const ContinuationRun& run) {
 
 }  // namespace
 
-std::string branch_csv(const ContinuationRun& run, std::string_view header) {
+std::string branch_csv(const ContinuationRun& run, std::string_view header, const DryFiguresAlong* dry,
+                       std::string_view dry_which) {
   const std::string name = to_string(run.param);
   std::string out(header);
   out += fmt::format(
@@ -68,8 +71,10 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
       "same mode along a branch)\n",
       name, unit(run.param.quantity), run.from, run.to, name);
   out += run_comments(run);
+  if (dry) out += dry_columns_doc(dry_which);
   out += fmt::format("branch,point,label,{},q1,q2,beta1,beta2,q_abs,family,stable,n_unstable", name);
   for (int k = 1; k <= 8; ++k) out += fmt::format(",re{},im{}", k, k);
+  if (dry) out += dry_columns();
   out += "\n";
   // The rows (some 20 numbers each, most of the file) formatted in place: the same text as
   // format_number's, without a string per number.
@@ -95,6 +100,7 @@ std::string branch_csv(const ContinuationRun& run, std::string_view header) {
       fmt::format_to(std::back_inserter(out), FMT_COMPILE(",{},{},{}"), to_string(pt.family),
                      pt.spectrum.stability == Stability::stable ? 1 : 0, pt.spectrum.n_unstable);
       for (const auto& l : pt.modes) cell(l.real(), "eigenvalue"), cell(l.imag(), "eigenvalue");
+      if (dry) out += dry_cells(*dry, double(pt.parameter));
       out += '\n';
     }
   }

@@ -16,7 +16,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 . "$(dirname "$0")/../contract.sh"
 
-"$bin" continue "$scene" --set omega=249 --param omega --to 251 --from-equilibrium balanced --cycles \
+"$bin" continue "$scene" --set omega=249 --param omega --to 251 --from-equilibrium balanced --cycles --dry off \
   --cycle-steps 4 -o "$work/c" >/dev/null 2>"$work/c.err"
 check "a coulomb cycle branch out of steps exits 3" "[ $? -eq 3 ]"
 check "... saying where and why" "grep -q 'numerical failure: cycle 1.*ran out of steps' '$work/c.err'"
@@ -72,7 +72,7 @@ check "... and comes back to x(0) within 1e-6 (scaled)" "[ $? -eq 0 ]"
 # The first orbit does not depend on the parameter box's scaling: with --to 252 (and 300) its
 # Newton used to stall at the stiff route's noise (~1e-6 scaled, model.md §17.9) and the branch
 # had no orbit at all, while 251 and 255 worked.
-"$bin" continue "$scene" --set omega=249 --param omega --to 252 --from-equilibrium balanced --cycles \
+"$bin" continue "$scene" --set omega=249 --param omega --to 252 --from-equilibrium balanced --cycles --dry off \
   --cycle-steps 2 -o "$work/c252" >/dev/null 2>"$work/c252.err"
 check "--to 252: out of steps (exit 3), not a failed first orbit" \
   "[ $? -eq 3 ] && grep -q 'ran out of steps' '$work/c252.err' && ! grep -q 'did not converge' '$work/c252.err'"

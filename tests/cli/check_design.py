@@ -47,7 +47,7 @@ def rows_of(path):
 
 def hopf_k(work, U):
     out = os.path.join(work, f"cont{U}")
-    r = run("continue", DEFAULT, "--set", "omega=300", "--set", "k=2000", "--set", f"U={U}", "--param", "k", "--to",
+    r = run("continue", DEFAULT, "--dry", "off", "--set", "omega=300", "--set", "k=2000", "--set", f"U={U}", "--param", "k", "--to",
             "20000", "-o", out, "--no-chart")
     ks = [float(x["k"]) for x in rows_of(os.path.join(out, "special_k.csv"))
           if x["label"] == "HB" and x["family"] == "balanced" and x["converged"] == "1"]

@@ -54,7 +54,7 @@ OMEGA_N = math.sqrt(7500.0 / M)
 
 with tempfile.TemporaryDirectory() as work:
     out = os.path.join(work, "sweep")
-    r = run("sweep", scene, "--param", "omega", "--from", "100", "--to", "600", "--steps", "100", "-o", out)
+    r = run("sweep", scene, "--param", "omega", "--from", "100", "--to", "600", "--steps", "100", "--dry", "off", "-o", out)
     check("sweep in omega exits 0", r.returncode == 0)
     campbell = rows(os.path.join(out, "campbell_omega.csv"))
     sweep = rows(os.path.join(out, "sweep_omega.csv"))

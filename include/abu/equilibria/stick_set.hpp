@@ -125,6 +125,11 @@ StickSet stick_set(const ParamsN& p, const StickSetOptions& options = {});
 /// mu_i <= 0 or K = C = 0.
 void check_stick_set_defined(const ParamsN& p);
 
+/// True when the bound (14.10.1) proves that every arrangement sticks (E = T^n): then the
+/// verdict (StickSetOptions::verdict_only) costs nothing, otherwise it scans the torus. False
+/// where the set is not defined.
+bool whole_torus_by_bound(const ParamsN& p);
+
 /// The same on an unround race (model.md §20.5) from given seeds, the race's equilibria
 /// (§11.4): their angles, names and anchors (the stable one of least |q|); each seed's q_abs
 /// is computed here. The grid method for every n (two balls too, at the stated resolution), V

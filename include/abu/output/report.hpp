@@ -93,8 +93,11 @@ std::string sweep_summary_row(std::size_t step, const std::string& name, double 
 
 /// Continuation: one row per branch point,
 /// `branch,point,label,<param>,q1,q2,beta1,beta2,q_abs,family,stable,n_unstable,re1,im1,...,re8,im8`
-/// with the eigenvalues in tracked order (eigenvalue k is the same mode along a branch).
-std::string branch_csv(const ContinuationRun& run, std::string_view header);
+/// with the eigenvalues in tracked order (eigenvalue k is the same mode along a branch); with
+/// `dry` (a coulomb / stribeck scene) every row also carries the dry_* columns of its parameter
+/// value (output/report_dry_along.hpp), `dry_which` the resting law's coefficients.
+std::string branch_csv(const ContinuationRun& run, std::string_view header, const DryFiguresAlong* dry = nullptr,
+                       std::string_view dry_which = {});
 /// One row per special point (and an MX row where a branch ended in failure):
 /// `branch,label,<param>,q1,q2,beta1,beta2,q_abs,family,frequency,re,im,lyapunov,converged,n_unstable_before,n_unstable_after`.
 std::string special_points_csv(const ContinuationRun& run, std::string_view header);
@@ -108,8 +111,9 @@ std::string continuation_warnings(const ContinuationRun& run);
 /// Continuation of n >= 3 balls (report_branches_n.cpp): one row per branch point,
 /// `branch,point,label,<param>,family,pattern,member,q1,q2,beta1..beta<n>,q_abs,residual,
 /// spectral_abscissa,stable,n_unstable,n_structural_zero,re1,im1,...,re<2n+4>,im<2n+4>`
-/// (eigenvalues sorted, normal stability on balanced samples).
-std::string branch_csv(const ContinuationRunN& run, std::string_view header);
+/// (eigenvalues sorted, normal stability on balanced samples); `dry` as for two balls.
+std::string branch_csv(const ContinuationRunN& run, std::string_view header, const DryFiguresAlong* dry = nullptr,
+                       std::string_view dry_which = {});
 /// `branch,label,<param>,family,pattern,member,q1,..,q_abs,frequency,re,im,converged,
 /// n_unstable_before,n_unstable_after,bracket_from,bracket_to,note` (frequency empty off HB).
 std::string special_points_csv(const ContinuationRunN& run, std::string_view header);

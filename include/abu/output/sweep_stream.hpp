@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "abu/analysis/dry_friction.hpp"
 #include "abu/output/files.hpp"
 #include "abu/output/report_views.hpp"
 
@@ -23,10 +24,11 @@ namespace abu {
 class SweepStream {
  public:
   /// `values` the sweep's length (its CSV says it first), `n_max` the largest ball count (the
-  /// CSV's columns), `campbell` whether to keep the Campbell samples (an omega sweep).
-  SweepStream(std::string name, std::string unit, std::size_t values, int n_max, bool campbell);
-  /// The next value's analysis, written and dropped.
-  void add(double value, const AnalysisN& a, const ParamsN& p);
+  /// CSV's columns), `campbell` whether to keep the Campbell samples (an omega sweep), `dry` the
+  /// dry verdict's coefficients ("the same mu_i"; empty: no dry_* columns, report_dry_along.hpp).
+  SweepStream(std::string name, std::string unit, std::size_t values, int n_max, bool campbell, std::string dry = {});
+  /// The next value's analysis, written and dropped; `dry` its dry figures (with dry_* columns).
+  void add(double value, const AnalysisN& a, const ParamsN& p, const DryFigures& dry = {});
   /// Stages the long CSV (head, every value's comments, columns, the spilled rows) and the
   /// summary; returns their staged paths.
   std::pair<std::filesystem::path, std::filesystem::path> stage(OutputTransaction& out,
@@ -43,6 +45,7 @@ class SweepStream {
   std::size_t count_;
   int n_max_;
   bool campbell_;
+  std::string dry_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> rows_;  // the spill file (tmpfile, gone when closed)
   std::string comments_, summary_rows_;
   std::vector<double> values_;
@@ -55,8 +58,8 @@ class SweepStream {
 /// comments, stability flags and, for omega, its Campbell samples.
 class TwoBallSweepStream {
  public:
-  TwoBallSweepStream(ParamRef param, std::size_t values, const Params& base);
-  void add(double value, const Analysis& a);
+  TwoBallSweepStream(ParamRef param, std::size_t values, const Params& base, std::string dry = {});
+  void add(double value, const Analysis& a, const DryFigures& dry = {});
   /// Stages the long CSV; returns its staged path.
   std::filesystem::path stage(OutputTransaction& out, const std::filesystem::path& csv, std::string_view header);
   std::vector<CampbellSample> campbell();
@@ -68,6 +71,7 @@ class TwoBallSweepStream {
   ParamRef param_;
   std::size_t count_;
   Params base_;
+  std::string dry_;
   std::vector<File> spills_;  // balanced 1, 2, together 1, 2, opposite 1, 2
   std::vector<std::vector<CampbellSample>> samples_;  // the same order
   std::string comments_;
