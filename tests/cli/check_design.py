@@ -18,31 +18,15 @@ percentile residual: NLopt from a 3 x 3 grid against a brute-force 9 x 9 grid; t
 objective is no worse than the fine grid's best by more than the fine grid's own resolution (the
 largest change of the objective from its best cell to a neighbouring cell).
 """
-import csv
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
-BIN, SRC = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+from cli_checks import BIN, SRC, check, failures, rows_of, run
+
 MODE = sys.argv[3] if len(sys.argv) > 3 else "contract"
 DEFAULT = os.path.join(SRC, "data/scenes/default.toml")
-fails = 0
-
-
-def check(name, ok):
-    global fails
-    print(("ok   " if ok else "FAIL ") + name)
-    fails += 0 if ok else 1
-
-
-def run(*args):
-    return subprocess.run([BIN, *args], capture_output=True, text=True)
-
-
-def rows_of(path):
-    return list(csv.DictReader(line for line in open(path) if not line.startswith("#")))
 
 
 def hopf_k(work, U):
@@ -148,5 +132,5 @@ def grid(work):
 
 with tempfile.TemporaryDirectory() as work:
     (grid if MODE == "grid" else contract)(work)
-print(f"{fails} failure(s)")
-sys.exit(1 if fails else 0)
+print(f"{failures()} failure(s)")
+sys.exit(1 if failures() else 0)

@@ -18,32 +18,14 @@ Contract:
   (14.10.1) decides the others for free) and says so first; off leaves them out silently; a
   continuation's figures are the same bytes on 1 and 2 threads.
 """
-import csv
 import json
-import math
 import os
 import re
-import subprocess
-import sys
 import tempfile
 
-BIN, SRC = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+from cli_checks import BIN, SRC, check, finish, rows_of, run
+
 DEFAULT = os.path.join(SRC, "data/scenes/default.toml")
-fails = 0
-
-
-def check(name, ok):
-    global fails
-    print(("ok   " if ok else "FAIL ") + name)
-    fails += 0 if ok else 1
-
-
-def run(*args):
-    return subprocess.run([BIN, *args], capture_output=True, text=True)
-
-
-def rows_of(path):
-    return list(csv.DictReader(line for line in open(path) if not line.startswith("#")))
 
 
 def close(a, b, rel):
@@ -156,5 +138,4 @@ with tempfile.TemporaryDirectory() as work:
           r.returncode == 0 and "dry friction" not in r.stderr and
           "dry_" not in open(os.path.join(out, "sweep_U.csv")).read())
 
-print("all checks passed" if fails == 0 else f"{fails} checks failed")
-sys.exit(1 if fails else 0)
+finish()
