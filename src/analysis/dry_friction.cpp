@@ -60,7 +60,7 @@ DryAlong dry_figures_along(std::span<const double> values, std::span<const Param
   order.erase(std::unique(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] == values[b]; }),
               order.end());
   out.values = order.size();
-  for (const std::size_t k : order) out.scans += !whole_torus_by_bound(params[k]);
+  for (const std::size_t k : order) out.scans += !whole_torus_by_bound(resting_balls(params[k]));
   out.scan_limit = params.front().n_balls() == 2 ? kDryAutomaticScans : kDryAutomaticScansN;
   if (request.rows == DryRows::automatic && out.scans > out.scan_limit) return out;
   std::vector<DryFigures> figures(order.size());

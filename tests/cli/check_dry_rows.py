@@ -106,9 +106,11 @@ with tempfile.TemporaryDirectory() as work:
                   open(DEFAULT).read().replace('law = "coulomb"', 'law = "stribeck"'))
     open(stribeck, "w").write(text)
     out = os.path.join(work, "stribeck")
-    r = run("sweep", stribeck, "--param", "omega", "--from", "400", "--to", "900", "--steps", "2", "-o", out, "--no-chart")
+    # 101 values whose sets the bound decides with mu_s (the smooth law has no mu): computed by --dry auto
+    r = run("sweep", stribeck, "--param", "omega", "--from", "800", "--to", "1000", "--steps", "100", "-o", out,
+            "--no-chart")
     head = open(os.path.join(out, "sweep_omega.csv")).read() if r.returncode == 0 else ""
-    check("stribeck: the dry columns are those of mu_i = mu_s", "coulomb-set with mu_i = mu_s" in head and
+    check("stribeck: the dry columns are those of mu_i = mu_s, 101 values the bound decides computed", "coulomb-set with mu_i = mu_s" in head and
           "dry_worst_q_abs" in head)
 
     viscous = os.path.join(work, "viscous.toml")
