@@ -50,7 +50,6 @@ DryFigures dry_figures(const DryFrictionVerdict& d) {
 DryAlong dry_figures_along(std::span<const double> values, std::span<const ParamsN> params,
                            const DryRequest& request) {
   DryAlong out;
-  out.rows = request.rows;
   if (params.empty() || !has_dry_verdict(params.front().law) || request.rows == DryRows::off) return out;
   out.which = dry_coefficients(params.front().law);
   // each distinct value once, in ascending order

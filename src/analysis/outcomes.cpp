@@ -267,7 +267,7 @@ OutcomeStudy analyze_outcomes(const Scene& scene, const SpeedProfile& speed, con
   }
   std::atomic<int> done{0};
   std::mutex report;
-  for_each_index(o.samples, o.threads, [&](int k) {
+  for_each_index(o.samples, std::max(1, o.threads), [&](int k) {
     if (o.interrupt && o.interrupt->load()) return false;
     run_one(scene, speed, o, study.samples[std::size_t(k)]);
     const int d = ++done;

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <charconv>
 #include <sstream>
-#include <thread>
 
 #include "cli.hpp"
 #include "abu/continuation/boundaries.hpp"
@@ -53,8 +52,7 @@ struct ContinueOptions {
 // among --threads.
 template <class P, class Run>
 DryAlong rows_dry_figures(const P& p, const Run& rows, const ContinueOptions& o) {
-  const int threads = o.numerics.threads > 0 ? o.numerics.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  return dry_figures_along(p, rows, {.rows = o.dry, .stick = {}, .threads = threads});
+  return dry_figures_along(p, rows, {.rows = o.dry, .stick = {}, .threads = o.numerics.threads});  // 0: one per core
 }
 
 // What a continuation's charts vary: the parameter over the run (x axis), the second one from

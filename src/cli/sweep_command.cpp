@@ -127,7 +127,7 @@ void check_sweep_memory(const Scene& scene, const SweepOptions& o, bool streamed
   request.output_bytes_per_state = 2e3;
   const EquilibriaEstimate per_value = equilibria_estimate(largest, request);
   // the stick set's grid only where the rows may carry the dry figures (one set at a time)
-  const bool dry = dry_coefficients(scene.law) != "" && o.dry != DryRows::off;
+  const bool dry = has_dry_verdict(scene.law) && o.dry != DryRows::off;
   const double analysis = per_value.memory - 60e6 - (dry ? 0.0 : per_value.grid);
   const double kept = 4e3 + (o.param == "omega" ? 16e3 * per_value.states : 0.0);
   const double memory = streamed ? 60e6 + analysis + values * kept : 60e6 + values * analysis;
@@ -188,7 +188,7 @@ int sweep_any_balls(const Scene& scene, const SweepOptions& o) {
     warnings += analysis_warnings(analysis, fmt::format("{}={}", grid.name, grid.values[i]));
     stream.add(grid.values[i], analysis, params[i], dry.computed() ? dry.figures.at(grid.values[i]) : DryFigures{});
   }
-  const ParamsN first = params_of<any_balls>(grid.scenes.front());
+  const ParamsN& first = params.front();
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(o.output_dir);
   const auto [csv_path, summary_path, png_path] = sweep_paths(dir, grid.name);

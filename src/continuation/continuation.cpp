@@ -1,9 +1,10 @@
 #include "abu/continuation/continuation.hpp"
 
+#include "abu/core/parallel.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <numbers>
@@ -161,20 +162,6 @@ std::size_t workers_for(std::size_t count, int threads) {
   return std::min(count, threads > 0 ? std::size_t(threads) : hardware);
 }
 
-// Calls work(k) for k = 0 .. count - 1 on `workers` threads; each k once, in no particular
-// order.
-template <class Work>
-void trace_concurrently(std::size_t count, std::size_t workers, const Work& work) {
-  std::atomic<std::size_t> next{0};
-  const auto loop = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < count;) work(k);
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(loop);
-  loop();
-  for (auto& t : pool) t.join();
-}
-
 // Does the branch pass through the configuration z at the scaled parameter of z?
 bool passes_through(const StaticEquations& eq, const Branch& b, const Vec5& z) {
   for (const auto& pt : b.points)
@@ -246,13 +233,15 @@ ContinuationRun continue_branches(const Params& p, ParamRef param, double to, co
       return;
     }
     std::vector<Traced> traced(todo.size());
-    trace_concurrently(todo.size(), workers, [&](std::size_t k) {
+    for_each_index(int(todo.size()), int(workers), [&](int j) {  // each start's errors kept for its turn below
+      const std::size_t k = std::size_t(j);
       const Start& s = starts[todo[k]];
       try {
         traced[k].branch = trace_branch(eq, s.e, s.parameter, s.end, options, traced[k].stats);
       } catch (...) {
         traced[k].error = std::current_exception();
       }
+      return true;
     });
     for (std::size_t k = 0; k < todo.size(); ++k) {
       const Start& s = starts[todo[k]];

@@ -28,8 +28,9 @@ void for_each_index(int count, int threads, const std::function<bool(int)>& body
       }
     }
   };
+  const int wanted = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::thread> workers;
-  for (int t = 1; t < std::max(1, threads) && t < count; ++t) workers.emplace_back(work);
+  for (int t = 1; t < wanted && t < count; ++t) workers.emplace_back(work);
   work();
   for (auto& t : workers) t.join();
   if (error) std::rethrow_exception(error);

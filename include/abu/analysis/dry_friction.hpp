@@ -51,7 +51,7 @@ inline constexpr std::size_t kDryAutomaticScansN = 12;  ///< 3 to 12 balls
 struct DryRequest {
   DryRows rows = DryRows::automatic;
   StickSetOptions stick;  ///< the sets' resolution
-  int threads = 1;        ///< the values shared among them (the same figures on any number)
+  int threads = 1;        ///< the values shared among them, 0 one per core (the same figures on any number)
 };
 
 /// The dry figures along one parameter of a smooth `coulomb` / `stribeck` scene, each distinct
@@ -64,7 +64,6 @@ struct DryAlong {
   std::size_t values = 0;   ///< distinct values
   std::size_t scans = 0;    ///< of them, the sets the bound (14.10.1) does not decide
   std::size_t scan_limit = 0;  ///< what `automatic` computes at most
-  DryRows rows = DryRows::automatic;
   bool computed() const { return !figures.empty(); }
   bool skipped() const { return !which.empty() && figures.empty(); }
 };

@@ -11,7 +11,8 @@
 
 namespace abu {
 
-/// Calls body(k) for k = 0 .. count-1 on max(1, threads) threads (the caller's among them).
+/// Calls body(k) for k = 0 .. count-1 on `threads` threads (0 or less: one per core; never more
+/// than `count`), the caller's among them.
 /// body returns false to stop the hand-out (an interruption); items already running finish.
 void for_each_index(int count, int threads, const std::function<bool(int)>& body);
 
