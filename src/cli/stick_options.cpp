@@ -9,14 +9,14 @@
 namespace abu::cli {
 
 void add_dry_rows_option(CLI::App& sub, DryRows& rows) {
-  sub.add_option("--dry", rows,
-                 fmt::format("coulomb / stribeck: the rows' dry figures (dry_* columns, a stick set at each value, "
-                             "model.md §14.10): auto (unless more than {} values, {} for 3-12 balls, need a scan of "
-                             "the torus), on, off",
-                             kDryAutomaticScans, kDryAutomaticScansN))
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, DryRows>{{"auto", DryRows::automatic}, {"on", DryRows::on}, {"off", DryRows::off}},
-          CLI::ignore_case))
+  sub.add_option_function<std::string>(
+         "--dry",
+         [&rows](const std::string& v) { rows = v == "on" ? DryRows::on : v == "off" ? DryRows::off : DryRows::automatic; },
+         fmt::format("coulomb / stribeck: the rows' dry figures (dry_* columns, a stick set at each value, "
+                     "model.md §14.10): auto (unless more than {} values, {} for 3-12 balls, need a scan of the "
+                     "torus), on, off",
+                     kDryAutomaticScans, kDryAutomaticScansN))
+      ->check(CLI::IsMember({"auto", "on", "off"}))
       ->default_str("auto");
 }
 
