@@ -13,6 +13,7 @@
 
 using namespace abu;
 using abu::testing::kBase;
+using abu::testing::line_replaced;
 
 TEST_CASE("a chart subtitle names what varies and the speed", "[chart_labels]") {
   const Scene s = parse_scene(kBase, "base.toml");
@@ -30,11 +31,17 @@ TEST_CASE("a chart subtitle names what varies and the speed", "[chart_labels]") 
   CHECK(over_omega.find("900 rad/s") == std::string::npos);
   CHECK(over_omega.find("speed omega varies") != std::string::npos);
 
-  // the ball radius moves m, l and mu through the specification (model.md §1.1); one ball's mu
-  const std::string over_r = chart_subtitle(s, {}, {{"r", 5e-4, 2e-3, "m"}, {"mu1", 1e-3, 3e-3, "-", "y axis"}});
-  CHECK(over_r.find("m follows r") != std::string::npos);
+  // the ball radius moves mu through f (mu = f / r, model.md §1.1), but not m and l given as they
+  // are; a scene with mu given keeps it: nothing follows r
+  const Scene rolling = parse_scene(line_replaced(kBase, 17, "f = 2.0e-6").c_str(), "rolling.toml");
+  const std::string over_r = chart_subtitle(rolling, {}, {{"r", 5e-4, 2e-3, "m"}, {"m1", 1e-5, 3e-5, "kg", "y axis"}});
   CHECK(over_r.find("mu follows r") != std::string::npos);
+  CHECK(over_r.find("l = 0.018 m") != std::string::npos);
+  CHECK(over_r.find("m m1 varies") != std::string::npos);
   CHECK(over_r.find("(y axis)") != std::string::npos);
+  const std::string given = chart_subtitle(s, {}, {{"r", 5e-4, 2e-3, "m"}});
+  CHECK(given.find("follows") == std::string::npos);
+  CHECK(given.find("mu = 0.002") != std::string::npos);
 
   // k moves omega_n, and the capacity stays
   const std::string over_k = chart_subtitle(s, {}, {{"k", 1e3, 1e4, "N/m"}});

@@ -20,14 +20,24 @@ namespace {
 // What the chart varies, by the symbols the subtitle shows.
 class Varied {
  public:
-  explicit Varied(const std::vector<ChartAxis>& axes) : axes_(axes) {}
-  // "varies", "follows r", or empty (the scene's value holds on the whole chart).
+  Varied(const std::vector<ChartAxis>& axes, const Scene& scene) : axes_(axes) {
+    for (const auto& b : scene.balls) derived_ |= b.specified;
+  }
+  // "varies", "follows r", or empty (the scene's value holds on the whole chart). m, mu and l
+  // follow a varied r, rho, f or R_s only where a ball is given through them (model.md §1.1).
   std::string of(std::string_view symbol) const {
+    const std::uint8_t bit = symbol == "m" ? specified::density : symbol == "mu" ? specified::rolling_length
+                             : symbol == "l"                    ? specified::surface_radius
+                                                                : 0;
     for (const auto& a : axes_) {
       const std::string base = a.name.substr(0, a.name.find_last_not_of("0123456789") + 1);
       if (base == symbol) return a.name == symbol ? "varies" : fmt::format("{} varies", a.name);
-      const bool through_specification = base == "r" || base == "rho" || base == "f" || base == "R_s";
-      if (through_specification && (symbol == "m" || symbol == "l" || symbol == "mu")) return "follows " + a.name;
+      const std::uint8_t moves = base == "r"     ? specified::density | specified::rolling_length | specified::surface_radius
+                                 : base == "rho" ? specified::density
+                                 : base == "f"   ? specified::rolling_length
+                                 : base == "R_s" ? specified::surface_radius
+                                                 : 0;
+      if (bit & moves & derived_) return "follows " + a.name;
     }
     return {};
   }
@@ -42,6 +52,7 @@ class Varied {
 
  private:
   const std::vector<ChartAxis>& axes_;
+  std::uint8_t derived_ = 0;  // the specified bits of any ball
 };
 
 // "m = 3.3e-05 kg" if every ball has the value, else "m = 3.3e-05 .. 4e-05 kg"; "m varies".
@@ -62,7 +73,7 @@ std::string global(const Varied& varied, const char* symbol, double value, const
 
 std::string chart_subtitle(const Scene& scene, const std::vector<std::string>& overrides,
                            const std::vector<ChartAxis>& varies) {
-  const Varied varied(varies);
+  const Varied varied(varies, scene);
   std::string out = varied.line();
   for (const auto& s : overrides) out += fmt::format("--set {}  ", s);
   if (!overrides.empty()) out += "|";
