@@ -18,22 +18,6 @@ namespace abu {
 
 namespace {
 
-// The distance of two orbits' x(0), scaled as the shooting's unknowns (model.md (10.14.3):
-// q by L, ball angles in rad modulo 2 pi, velocities by L omega and omega).
-double composed_orbit_distance(const ParamsN& p, const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size() || a.empty()) return std::numeric_limits<double>::infinity();
-  const int n = p.n_balls();
-  const double L = displacement_scale(p), w = p.omega;
-  double worst = 0.0;
-  for (int i = 0; i < 2 * n + 4; ++i) {
-    double diff = a[std::size_t(i)] - b[std::size_t(i)];
-    if (i >= 2 && i < n + 2) diff = std::remainder(diff, 2.0 * std::numbers::pi);
-    const double scale = i < 2 ? L : i < n + 2 ? 1.0 : i < n + 4 ? L * w : w;
-    worst = std::max(worst, std::abs(diff) / scale);
-  }
-  return worst;
-}
-
 // ln max|rho| and the largest multiplier of a converged orbit (log_moduli: exact also where
 // |rho| underflows).
 GrowthSample composed_growth(const ForcedOrbit& o) { return {o.log_moduli.front(), o.multipliers.front()}; }
@@ -148,6 +132,20 @@ void locate_composed_crossings(ComposedSweep& s, const AnisotropicSupport& suppo
 }
 
 }  // namespace
+
+double composed_orbit_distance(const ParamsN& p, const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || a.empty()) return std::numeric_limits<double>::infinity();
+  const int n = p.n_balls();
+  const double L = displacement_scale(p), w = p.omega;
+  double worst = 0.0;
+  for (int i = 0; i < 2 * n + 4; ++i) {
+    double diff = a[std::size_t(i)] - b[std::size_t(i)];
+    if (i >= 2 && i < n + 2) diff = std::remainder(diff, 2.0 * std::numbers::pi);
+    const double scale = i < 2 ? L : i < n + 2 ? 1.0 : i < n + 4 ? L * w : w;
+    worst = std::max(worst, std::abs(diff) / scale);
+  }
+  return worst;
+}
 
 bool composed_orbit_usable(const ForcedOrbit& o) { return o.status.ok() && !o.multipliers.empty(); }
 

@@ -64,7 +64,7 @@ constexpr CommandParts kCommandParts[] = {
     {"sweep",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .unround_set_valued = true, .shaft_set_valued = true, .shaft_unround = true}},
-    {"continue", {.lugre = true, .unround = true, .anisotropic = true}},
+    {"continue", {.lugre = true, .unround = true, .anisotropic = true, .unround_anisotropic = true}},
     {"map",
      {.lugre = true, .set_valued = true, .unround = true, .anisotropic = true, .shaft = true, .unround_anisotropic = true,
       .unround_set_valued = true, .shaft_set_valued = true, .shaft_unround = true}},

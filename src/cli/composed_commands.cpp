@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "abu/analysis/composed_branches.hpp"
 #include "abu/analysis/composed_map.hpp"
 #include "abu/analysis/composed_sweep.hpp"
 #include "abu/core/errors.hpp"
@@ -14,6 +15,7 @@
 #include "abu/output/files.hpp"
 #include "abu/output/gnuplot.hpp"
 #include "abu/output/provenance.hpp"
+#include "abu/output/report_composed_branches.hpp"
 #include "abu/output/report_composed_sweep.hpp"
 #include "abu/scan/scan.hpp"
 #include "tiled_run.hpp"
@@ -40,46 +42,74 @@ ComposedAt composed_machine_at(const Scene& scene, const std::string& param, std
     return ComposedMachineAt{params_of<any_balls>(s), race_shape(s)};
   };
 }
+
+// The parameter of a sweep or continuation on this machine: a scene symbol, or (nothing)
+// the unroundness factor; its name and unit. The ball count and the support's k, c refused.
+struct ComposedParam {
+  std::optional<ParamRef> ref;
+  std::string name = kUnroundnessParam, unit_name = "-";
+};
+ComposedParam composed_param(const Scene& scene, const std::string& param) {
+  if (param == "n")
+    refuse_composed_param(scene, param, "the ball count is not swept here (each ball has its own path); sweep each "
+                                        "count's scene separately");
+  ComposedParam out;
+  if (param == kUnroundnessParam) return out;
+  out.ref = parse_param(param, int(scene.balls.size()));
+  if (!out.ref)
+    throw InputError("--param", 0, param,
+                     unknown_name_rule("unknown parameter", closest_param(param, true), "known",
+                                       fmt::format("{}, or {} (the race's amplitudes times a factor)",
+                                                   param_symbols_help(), kUnroundnessParam)));
+  if (out.ref->quantity == Quantity::stiffness || out.ref->quantity == Quantity::damping)
+    refuse_composed_param(scene, param,
+                          "k and c are the anisotropic support's means (stiffness_x, ... in [rotor]), not one "
+                          "parameter; edit the support's keys in the scene, or sweep omega, U, the balls' "
+                          "parameters or unroundness");
+  out.name = to_string(*out.ref);
+  out.unit_name = std::string(unit(out.ref->quantity));
+  return out;
+}
+
+// The scene at a value of the parameter, checked by the scene's rules (exit 2 naming `origin`).
+void check_composed_value(const Scene& scene, const ComposedParam& c, double v, const std::string& origin) {
+  if (!c.ref) {
+    if (!(v >= 0)) throw InputError(origin, 0, kUnroundnessParam, fmt::format("the unroundness factor is >= 0 (got {})", v));
+    checked_scaled_race(scene, race_shape(scene), v, origin);
+    return;
+  }
+  Scene s = scene;
+  set_checked(s, *c.ref, v, origin);
+  check_numerical_range(s, origin, fmt::format("at {}={}", c.name, v));
+}
+// The machine along a continuation: the parameter set exactly (also a little beyond the ends,
+// where the predictor and the difference quotients reach: model.md §20.9), the scene's rules
+// and the race re-read at the value clamped into [lo, hi] (its paths follow l and r); the
+// unroundness factor unchecked (a negative factor turns each harmonic by half its period).
+ComposedAt composed_family(const Scene& scene, const ComposedParam& c, double lo, double hi) {
+  const RaceShape race = race_shape(scene);
+  if (!c.ref) return [scene, race](double v) { return ComposedMachineAt{params_of<any_balls>(scene), scaled_race(race, v)}; };
+  return [scene, ref = *c.ref, lo, hi](double v) {
+    Scene s = scene;
+    set_checked(s, ref, std::clamp(v, lo, hi), "--to");
+    ParamsN p = params_of<any_balls>(s);
+    set(p, ref, v);
+    return ComposedMachineAt{std::move(p), race_shape(s)};
+  };
+}
 }  // namespace
 
 int sweep_composed(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
-  if (g.param == "n")
-    refuse_composed_param(scene, g.param, "the ball count is not swept here (each ball has its own path); sweep each "
-                                          "count's scene separately");
-  std::optional<ParamRef> ref;
-  std::string name = kUnroundnessParam, unit_name = "-";
-  if (g.param != kUnroundnessParam) {
-    ref = parse_param(g.param, int(scene.balls.size()));
-    if (!ref)
-      throw InputError("--param", 0, g.param,
-                       unknown_name_rule("unknown parameter", closest_param(g.param, true), "known",
-                                         fmt::format("{}, or {} (the race's amplitudes times a factor)",
-                                                     param_symbols_help(), kUnroundnessParam)));
-    if (ref->quantity == Quantity::stiffness || ref->quantity == Quantity::damping)
-      refuse_composed_param(scene, g.param,
-                            "k and c are the anisotropic support's means (stiffness_x, ... in [rotor]), not one "
-                            "parameter; edit the support's keys in the scene, or sweep omega, U, the balls' "
-                            "parameters or unroundness");
-    name = to_string(*ref);
-    unit_name = std::string(unit(ref->quantity));
-  }
+  const ComposedParam c = composed_param(scene, g.param);
+  const std::optional<ParamRef>& ref = c.ref;
+  const std::string& name = c.name;
+  const std::string& unit_name = c.unit_name;
   if (g.steps < 1 || g.steps > kMaxComposedSteps)
     throw InputError("--steps", 0, "steps", fmt::format("must be in [1, {}] (got {})", kMaxComposedSteps, g.steps));
   if (g.logarithmic && !(g.from > 0 && g.to > 0))
     throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
-  if (!ref && !(g.from >= 0 && g.to >= 0))
-    throw InputError("--from/--to", 0, kUnroundnessParam,
-                     fmt::format("the unroundness factor is >= 0 (got {} .. {})", g.from, g.to));
   const std::vector<double> values = grid_values(g.from, g.to, g.steps, g.logarithmic);
-  for (double v : {g.from, g.to}) {  // the ends decide: every value between keeps the rules
-    if (!ref) {
-      checked_scaled_race(scene, race_shape(scene), v, "--from/--to");
-      continue;
-    }
-    Scene s = scene;
-    set_checked(s, *ref, v, "--from/--to");
-    check_numerical_range(s, "--from/--to", fmt::format("at {}={}", g.param, v));
-  }
+  for (double v : {g.from, g.to}) check_composed_value(scene, c, v, "--from/--to");  // the ends decide: every value between keeps the rules
   const ComposedSweep s = composed_sweep(*scene.support, composed_machine_at(scene, g.param, ref), values);
 
   const ParamsN first = params_of<any_balls>(scene);
@@ -110,6 +140,50 @@ int sweep_composed(const Scene& scene, const SceneOptions& options, const Unroun
   fmt::print(stderr, "{} orbit(s) followed over {} values ({} rows); wrote {} and {}{}\n", s.tracks, values.size(), rows,
              csv_path.string(), crossings_path.string(), g.chart ? fmt::format(" and {}", png_path.string()) : std::string());
   return exit_ok;
+}
+
+int continue_composed(const Scene& scene, const SceneOptions& options, const std::string& param, double to,
+                      const ContinuationOptions& numerics, bool chart, const std::string& output_dir) {
+  const ComposedParam c = composed_param(scene, param);
+  const ParamsN first = params_of<any_balls>(scene);
+  const double from = c.ref ? get(first, *c.ref) : 1.0;
+  if (!(to != from)) throw InputError("--to", 0, param, fmt::format("must differ from the start value {}", from));
+  check_composed_value(scene, c, to, "--to");
+  ForcedBranchOptions o;
+  o.continuation = numerics;  // steps of at most 0.05 of the interval (forced_branch.hpp)
+  o.continuation.ds_max = std::min(numerics.ds_max, 0.05);
+  o.continuation.ds = std::min(numerics.ds, o.continuation.ds_max);
+  const ComposedBranches b =
+      composed_branches(*scene.support, composed_family(scene, c, std::min(from, to), std::max(from, to)), from, to, o);
+
+  const std::string header = provenance_header(command_line(), scene.file, first);
+  const std::filesystem::path dir(output_dir);
+  const auto csv_path = dir / fmt::format("branch_{}.csv", c.name);
+  const auto specials_path = dir / fmt::format("special_{}.csv", c.name);
+  const auto png_path = dir / fmt::format("branch_{}.png", c.name);
+  std::size_t specials = 0, points = 0;
+  for (const auto& br : b.branches) specials += br.branch.specials.size(), points += br.branch.points.size();
+  OutputTransaction out;
+  const auto staged_csv = out.stage(csv_path, composed_branches_csv(b, c.name, header));
+  const auto staged_specials = out.stage(specials_path, composed_specials_csv(b, c.name, header));
+  if (chart)
+    run_gnuplot(plots_dir() / "continue_composed.gp",
+                {{"csv", staged_csv.string()},
+                 {"specials", staged_specials.string()},
+                 {"png", out.reserve(png_path).string()},
+                 {"param", c.name},
+                 {"unit", c.unit_name},
+                 {"has_specials", specials == 0 ? "0" : "1"},
+                 {"title", fmt::format("{}: continuation in {} (unround race on an anisotropic support: periodic orbits)",
+                                       scene.file, c.name)},
+                 {"subtitle", chart_subtitle(scene, options.overrides,
+                                             {{c.name, std::min(from, to), std::max(from, to), c.unit_name}})}});
+  out.commit();
+  fmt::print(stderr, "{}", composed_branches_text(b, c.name));
+  fmt::print(stderr, "{} branch(es) of periodic orbits, {} points ({} orbits at {} = {}, {} at {}); wrote {} and {}{}\n",
+             b.branches.size(), points, b.orbits_at_start, c.name, from, b.orbits_at_end, to, csv_path.string(),
+             specials_path.string(), chart ? fmt::format(" and {}", png_path.string()) : std::string());
+  return b.status.ok() ? exit_ok : exit_numerical;  // a branch that ended early: exit 3, the rest written
 }
 
 int map_composed(const Scene& scene, const SceneOptions& options, const UnroundMapRequest& request) {

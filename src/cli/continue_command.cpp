@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "composed_commands.hpp"
 #include "abu/continuation/boundaries.hpp"
 #include "abu/continuation/continuation.hpp"
 #include "abu/continuation/special_rows.hpp"
@@ -369,6 +370,18 @@ Action add_continue_command(CLI::App& app) {
       ->capture_default_str();
   return [o]() -> int {
     Scene scene = load(o->scene);
+    if (unround_on_anisotropic_support(scene)) {  // branches of periodic orbits (model.md §20.9)
+      refuse_unmodelled(scene, "continue", {.unround_anisotropic = true});
+      if (!o->param2.empty() || o->cycles || !o->family.empty() || !o->state.empty())
+        throw InputError(!o->param2.empty() ? "--param2" : o->cycles ? "--cycles" : !o->family.empty() ? "--family" : "--from-state",
+                         0, "",
+                         "an unround race on an anisotropic support: every periodic orbit is continued in one parameter "
+                         "(model.md §20.9); --param2, --cycles, --family and --from-state do not apply");
+      if (const auto rule = options_violation(o->numerics)) throw InputError("options", 0, "", *rule);
+      check_output_directory(o->output_dir);
+      if (o->param == "omega") o->to = omega_input(o->scene, o->to);
+      return continue_composed(scene, o->scene, o->param, o->to, o->numerics, o->chart, o->output_dir);
+    }
     if (o->param == kUnroundnessParam) {  // model.md §11.10
       refuse_unmodelled(scene, "continue", {.unround = true});
       if (!o->param2.empty() || o->cycles || !o->family.empty() || !o->state.empty())

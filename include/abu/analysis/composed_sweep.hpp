@@ -24,13 +24,9 @@
 
 namespace abu {
 
-/// The machine at one value of the swept parameter: its parameters with the mean support
-/// (k_bar, c_bar) and the race's paths at that value.
-struct ComposedMachineAt {
-  ParamsN params;
-  RaceShape race;
-};
-using ComposedAt = std::function<ComposedMachineAt(double value)>;
+/// The machine at one value of the swept parameter (dynamics/forced_orbits.hpp).
+using ComposedMachineAt = MachineAtValue;
+using ComposedAt = MachineFamily;
 
 /// One orbit at one value.
 struct ComposedOrbitRow {
@@ -87,6 +83,10 @@ struct ComposedSweepOptions {
   /// ones differ by O(1).
   double match_tolerance = 1e-6;
 };
+
+/// The distance of two orbits' x(0) on the machine p, scaled as the shooting's unknowns
+/// (model.md (10.14.3): q by L, ball angles in rad modulo 2 pi, velocities by L omega and omega).
+double composed_orbit_distance(const ParamsN& p, const std::vector<double>& a, const std::vector<double>& b);
 
 /// An orbit with a verdict: converged, its multipliers computed.
 bool composed_orbit_usable(const ForcedOrbit& o);

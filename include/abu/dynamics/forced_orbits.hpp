@@ -17,6 +17,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,19 @@
 #include "abu/linear/spectrum.hpp"
 #include "abu/model/anisotropic_support.hpp"
 #include "abu/model/machine_field.hpp"
+#include "abu/model/unround_race.hpp"
 
 namespace abu {
+
+/// The machine at one value of a physical parameter: its parameters with the mean support
+/// (k_bar, c_bar) and the race's paths at that value.
+struct MachineAtValue {
+  ParamsN params;
+  RaceShape race;
+};
+/// The machine along the parameter. Called also a little beyond the interval's ends (a
+/// continuation's predictor, a difference quotient): it must not refuse such values.
+using MachineFamily = std::function<MachineAtValue(double value)>;
 
 struct ForcedOrbitOptions {
   int intervals = 8;  ///< M shooting intervals per pi/omega; default 8
