@@ -53,6 +53,38 @@ std::vector<double> sorted_moduli(const std::vector<std::complex<double>>& v) {
   return out;
 }
 
+// The orbits found at v by the homotopy (composed_orbits_at) against the branch segments that
+// straddle v, each segment's orbit there by Newton from its nearer end (forced_orbit_near).
+// Both are converged to the shooting's 1e-13 and refined to the 1e-10 multiplier target: x(0)
+// agrees far inside the 1e-6 match tolerance, max|rho| to 1e-8; each orbit on one crossing.
+void check_crossings(const ComposedBranches& b, const ComposedAt& at, double v) {
+  const ComposedMachineAt m = at(v);
+  const ComposedSweepPoint found = composed_orbits_at(kSupport, m, v);
+  std::vector<ForcedOrbit> crossings;
+  for (const ComposedBranch& br : b.branches) {
+    const auto& pts = br.branch.points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      if ((pts[k].value - v) * (pts[k + 1].value - v) > 0) continue;
+      const auto& near = std::abs(pts[k].value - v) < std::abs(pts[k + 1].value - v) ? pts[k] : pts[k + 1];
+      const ForcedOrbit o = forced_orbit_near(m.params, RigidMachine{&m.race, &kSupport}, near.orbit, "crossing");
+      INFO(o.reason);
+      REQUIRE(o.status.ok());
+      crossings.push_back(o);
+    }
+  }
+  INFO("value " << v);
+  REQUIRE(crossings.size() == found.rows.size());
+  for (const ComposedOrbitRow& row : found.rows) {
+    REQUIRE(composed_orbit_usable(row.orbit));
+    const auto match = std::find_if(crossings.begin(), crossings.end(), [&](const ForcedOrbit& o) {
+      return composed_orbit_distance(m.params, o.state0, row.orbit.state0) <= 1e-6;
+    });
+    REQUIRE(match != crossings.end());
+    CHECK(std::abs(match->multipliers.front()) == Approx(std::abs(row.orbit.multipliers.front())).epsilon(1e-8));
+    crossings.erase(match);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("composed continuation: the branches cross a value exactly at the orbits found there, and a fold has a "
@@ -63,35 +95,7 @@ TEST_CASE("composed continuation: the branches cross a value exactly at the orbi
   const ComposedBranches b = composed_branches(kSupport, at, 1.3, 1.38);  // the fold at 1.34 of this race
   INFO(b.reason);
   REQUIRE(b.status.ok());
-  // The orbits found at 1.36 by the homotopy (composed_orbits_at) against the branch segments
-  // that straddle it, each segment's orbit there by Newton from its nearer end
-  // (forced_orbit_near). Both are converged to the shooting's 1e-13 and refined to the 1e-10
-  // multiplier target: x(0) agrees far inside the 1e-6 match tolerance, max|rho| to 1e-8.
-  const double v = 1.36;  // past the fold: both orbits of its pair
-  const ComposedSweepPoint found = composed_orbits_at(kSupport, at(v), v);
-  std::vector<ForcedOrbit> crossings;
-  for (const ComposedBranch& br : b.branches) {
-    const auto& pts = br.branch.points;
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-      if ((pts[k].value - v) * (pts[k + 1].value - v) > 0) continue;
-      const auto& near = std::abs(pts[k].value - v) < std::abs(pts[k + 1].value - v) ? pts[k] : pts[k + 1];
-      const ComposedMachineAt m = at(v);
-      const ForcedOrbit o = forced_orbit_near(m.params, RigidMachine{&m.race, &kSupport}, near.orbit, "crossing");
-      INFO(o.reason);
-      REQUIRE(o.status.ok());
-      crossings.push_back(o);
-    }
-  }
-  REQUIRE(crossings.size() == found.rows.size());
-  for (const ComposedOrbitRow& row : found.rows) {
-    REQUIRE(composed_orbit_usable(row.orbit));
-    const auto match = std::find_if(crossings.begin(), crossings.end(), [&](const ForcedOrbit& o) {
-      return composed_orbit_distance(p, o.state0, row.orbit.state0) <= 1e-6;
-    });
-    REQUIRE(match != crossings.end());
-    CHECK(std::abs(match->multipliers.front()) == Approx(std::abs(row.orbit.multipliers.front())).epsilon(1e-8));
-    crossings.erase(match);  // each orbit found on one crossing only
-  }
+  check_crossings(b, at, 1.36);  // past the fold: both orbits of its pair
   // The fold: its critical multiplier is +1 (Brent's bracket is 1e-10 of the chord, along
   // which the multiplier moves linearly: 1e-7 is a wide margin); the fold's pair is the
   // orbit count's difference between the ends.
@@ -118,37 +122,7 @@ TEST_CASE("composed continuation: over both folds of the oval, the orbits found 
   const ComposedBranches b = composed_branches(kSupport, at, 1.25, 1.5);  // both folds of this race (1.34, 1.44)
   INFO(b.reason);
   REQUIRE(b.status.ok());
-  // Each value: the orbits found there by the homotopy (composed_orbits_at) against the
-  // branch segments that straddle it, each segment's orbit at the value by Newton from its
-  // nearer end (forced_orbit_near). Both are converged to the shooting's 1e-13 and refined to
-  // the 1e-10 multiplier target: x(0) agrees far inside the 1e-6 match tolerance, max|rho| to 1e-8.
-  for (const double v : {1.39}) {  // between the folds: three crossings of a folded branch
-    const ComposedSweepPoint found = composed_orbits_at(kSupport, at(v), v);
-    std::vector<ForcedOrbit> crossings;
-    for (const ComposedBranch& br : b.branches) {
-      const auto& pts = br.branch.points;
-      for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-        if ((pts[k].value - v) * (pts[k + 1].value - v) > 0) continue;
-        const auto& near = std::abs(pts[k].value - v) < std::abs(pts[k + 1].value - v) ? pts[k] : pts[k + 1];
-        const ComposedMachineAt m = at(v);
-        const ForcedOrbit o = forced_orbit_near(m.params, RigidMachine{&m.race, &kSupport}, near.orbit, "crossing");
-        INFO(o.reason);
-        REQUIRE(o.status.ok());
-        crossings.push_back(o);
-      }
-    }
-    INFO("value " << v);
-    REQUIRE(crossings.size() == found.rows.size());
-    for (const ComposedOrbitRow& row : found.rows) {
-      REQUIRE(composed_orbit_usable(row.orbit));
-      const auto match = std::find_if(crossings.begin(), crossings.end(), [&](const ForcedOrbit& o) {
-        return composed_orbit_distance(p, o.state0, row.orbit.state0) <= 1e-6;
-      });
-      REQUIRE(match != crossings.end());
-      CHECK(std::abs(match->multipliers.front()) == Approx(std::abs(row.orbit.multipliers.front())).epsilon(1e-8));
-      crossings.erase(match);  // each orbit found on one crossing only
-    }
-  }
+  check_crossings(b, at, 1.39);  // between the folds: three crossings of a folded branch
   // The folds: the critical multiplier is +1 (Brent's bracket is 1e-10 of the chord, along which
   // the multiplier moves linearly: 1e-7 is a wide margin); 0.02 before the first one (the
   // folds are 0.1 apart) `equilibria` finds two orbits more than 0.02 past it.
