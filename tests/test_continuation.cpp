@@ -28,6 +28,7 @@
 #include "abu/continuation/continuation.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/equilibria/equilibria.hpp"
+#include "abu/input/scene.hpp"
 #include "abu/model/model.hpp"
 #include "abu/core/params.hpp"
 #include "abu/linear/spectrum.hpp"
@@ -441,4 +442,67 @@ TEST_CASE("fold curves are vertical in omega-d and the balanced Hopf curve reach
                                                         << " (tol 1e-8)");
   CHECK(relative(far.parameter, exact.omega) <= 1e-8L);
   CHECK(relative(far.frequency, exact.frequency) <= 1e-8L);
+}
+
+// ---------------------------------------------------------------------------------------
+// A Hopf point across a long step whose crossing pair is small beside the other eigenvalues
+// (the default scene continued in k at 300 rad/s, U = 9e-7: the trivial balanced branch is
+// crossed in steps of 2000 N/m, the pair's real part far from linear over one). The linear
+// interpolation's guess (10208 N/m) left Newton on the Hopf system unconverged; the bracket is
+// now halved until Newton converges. Independent check: the balanced state's refined spectrum
+// (`equilibria`'s, not the continuation's) is stable 1e-6 below the located point and unstable
+// 1e-6 above it (relative).
+TEST_CASE("a Hopf point behind a long step is located, where equilibria says the balanced state changes stability",
+          "[continuation]") {
+  quiet_gsl();
+  abu::Scene scene = abu::parse_scene(R"(rolling = true
+[rotor]
+mass = 0.12
+stiffness = 7500.0
+damping = 2.0
+unbalance = 9.0e-7
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[[ball]]
+mass = 3.3e-5
+race_radius = 0.018
+radius = 1.0e-3
+[friction]
+law = "coulomb"
+mu = 0.002
+kappa = 1.0e3
+[speed]
+omega = 300.0
+)",
+                                      "default_k.toml");
+  abu::Params p = abu::params_of<2>(scene);
+  const abu::ContinuationRun run = abu::continue_branches(p, param("k"), 20000.0, abu::ContinuationOptions{},
+                                                          abu::StartSelection{Family::balanced, std::nullopt});
+  int hopf = 0;
+  for (const auto& b : run.branches)
+    for (const auto& sp : b.specials) {
+      if (sp.label != Label::HB) continue;
+      ++hopf;
+      INFO(sp.note);
+      REQUIRE(sp.converged);
+      const double k = double(sp.parameter);
+      const auto balanced_stable = [&](double kv) {
+        abu::Params q = p;
+        q.rotor.stiffness = kv;
+        const abu::Analysis a = abu::analyze(q);
+        bool any = false, stable = true;
+        for (std::size_t i = 0; i < a.equilibria.points().size(); ++i)
+          if (a.equilibria.points()[i].family == Family::balanced) {
+            any = true;
+            stable = stable && a.spectra[i].stability == abu::Stability::stable;
+          }
+        REQUIRE(any);
+        return stable;
+      };
+      CHECK(balanced_stable(k * (1 - 1e-6)));
+      CHECK_FALSE(balanced_stable(k * (1 + 1e-6)));
+    }
+  CHECK(hopf == 2);  // the two mirror balanced branches
 }

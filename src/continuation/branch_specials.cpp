@@ -140,12 +140,35 @@ void BranchTracer::locate_hopf_between(const Bracket& br) {
     // Hopf point (or a crossing too close to a coalescence to resolve): not reported.
     return;
   }
-  const auto [la, lb] = *pair;
-  const double theta = la.real() / (la.real() - lb.real());
-  const Vec5 guess = za + ld(theta) * (zb - za);
-  const ld omega_guess = la.imag() + theta * (lb.imag() - la.imag());
-  const Located h = locate_hopf(eq, guess, omega_guess);
-  const bool ok = h.converged && inside(br.za, br.zb, h.z);
+  // Newton on the Hopf system from the pair's linear interpolation; where the pair's real part
+  // is far from linear over the bracket (a long step across a crossing whose eigenvalues are
+  // small beside the others: the default scene continued in k at 300 rad/s), the bracket is
+  // halved on the test function's sign, the pair complex at both ends, and Newton tried again
+  // from the narrower one, down to 1e-12 of the parameter's scale.
+  Vec5 guess;
+  ld omega_guess = 0;
+  Located h;
+  bool ok = false;
+  for (int it = 0; it < 60; ++it) {
+    const auto [la, lb] = *pair;
+    const double theta = la.real() / (la.real() - lb.real());
+    guess = za + ld(theta) * (zb - za);
+    omega_guess = la.imag() + theta * (lb.imag() - la.imag());
+    h = locate_hopf(eq, guess, omega_guess);
+    ok = h.converged && inside(br.za, br.zb, h.z);
+    if (ok || distance(za, zb) < 1e-12L) break;
+    const Corrected mid = correct(eq, (za + zb) / 2, (zb - za).normalized());
+    if (!mid.converged()) break;
+    const Spectrum sm = compute_spectrum(eq.linearization(mid.u));
+    if (hopf_test_sign(sm) == sign_a) {
+      za = mid.u, sa = sm;
+    } else {
+      zb = mid.u, sb = sm;
+    }
+    const auto narrower = crossing_pair(sa, sb);
+    if (!narrower) break;
+    pair = narrower;
+  }
   SpecialPoint sp = special_at(Label::HB, ok ? h.z : guess, br);
   sp.converged = ok;
   sp.frequency = double(ok ? h.frequency : omega_guess);
