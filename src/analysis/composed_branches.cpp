@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "abu/core/cancel.hpp"
+#include "abu/core/parallel.hpp"
 
 namespace abu {
 
@@ -53,22 +56,38 @@ ComposedBranches composed_branches(const AnisotropicSupport& support, const Comp
   const std::vector<ForcedOrbit> at_start = usable_orbits(first);
   out.orbits_at_start = int(at_start.size());
   if (!first.search_doubt.empty()) note(out, Outcome::not_converged, fmt::format("at {}: {}", start, first.search_doubt));
-  const auto trace = [&](const ForcedOrbit& orbit, double value) {
-    throw_if_stopped("continue: composed orbits");
-    ComposedBranch b{value, continue_forced_orbit(support, at, lo, hi, orbit, value, options)};
-    if (!b.branch.status.ok()) note(out, b.branch.status.outcome, fmt::format("{} from {}: {}", orbit.kind, value, b.branch.reason));
-    out.branches.push_back(std::move(b));
+  // The seeds of one end: on one thread each is traced unless a branch already ends on it; on
+  // several all are traced at once, then kept in seed order unless a kept branch ends on the
+  // seed — the same branches either way (a dropped one retraces a kept one backwards).
+  const auto trace_from = [&](const std::vector<ForcedOrbit>& seeds, double value, const ParamsN& p) {
+    std::vector<std::optional<ForcedBranch>> traced(seeds.size());
+    std::vector<std::size_t> open;  // the seeds no branch traced before this end reaches
+    for (std::size_t i = 0; i < seeds.size(); ++i)
+      if (ends_at(out.branches, p, value, width, seeds[i]) == 0) open.push_back(i);
+    if (options.continuation.threads != 1)
+      for_each_index(int(open.size()), options.continuation.threads, [&](int k) {
+        const std::size_t i = open[std::size_t(k)];
+        traced[i] = continue_forced_orbit(support, at, lo, hi, seeds[i], value, options);
+        return !stop_requested();
+      });
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      throw_if_stopped("continue: composed orbits");
+      if (ends_at(out.branches, p, value, width, seeds[i]) != 0) continue;
+      ComposedBranch b{value, traced[i] ? std::move(*traced[i])
+                                        : continue_forced_orbit(support, at, lo, hi, seeds[i], value, options)};
+      if (!b.branch.status.ok())
+        note(out, b.branch.status.outcome, fmt::format("{} from {}: {}", seeds[i].kind, value, b.branch.reason));
+      out.branches.push_back(std::move(b));
+    }
   };
   const ParamsN p_start = at(start).params;
-  for (const ForcedOrbit& orbit : at_start)
-    if (ends_at(out.branches, p_start, start, width, orbit) == 0) trace(orbit, start);
+  trace_from(at_start, start, p_start);
   const ComposedSweepPoint last = composed_orbits_at(support, at(end), end, options.orbit);
   const std::vector<ForcedOrbit> at_end = usable_orbits(last);
   out.orbits_at_end = int(at_end.size());
   if (!last.search_doubt.empty()) note(out, Outcome::not_converged, fmt::format("at {}: {}", end, last.search_doubt));
   const ParamsN p_end = at(end).params;
-  for (const ForcedOrbit& orbit : at_end)
-    if (ends_at(out.branches, p_end, end, width, orbit) == 0) trace(orbit, end);
+  trace_from(at_end, end, p_end);
   // Every orbit at either end ends exactly one branch (a run that jumped to a neighbouring
   // orbit would end two there, or none on an orbit found).
   for (const auto& [orbits, value, p] : {std::tuple{&at_start, start, &p_start}, std::tuple{&at_end, end, &p_end}})

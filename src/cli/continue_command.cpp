@@ -332,7 +332,7 @@ Action add_continue_command(CLI::App& app) {
   sub->add_option("--max-steps", o->numerics.max_steps, "Steps per branch and direction")->capture_default_str();
   add_dry_rows_option(*sub, o->dry);
   sub->add_option("--threads", o->numerics.threads,
-                  "Branches traced at once, two balls, and the dry figures of the rows (0: one per core; the output does not depend on it; on a busy "
+                  "Branches traced at once (two balls, or the periodic orbits of an unround race on an anisotropic support), and the dry figures of the rows (0: one per core; the output does not depend on it; on a busy "
                   "machine more threads cost more CPU time: a branch that turns out to be one already traced is "
                   "traced anyway)")
       ->capture_default_str();

@@ -35,7 +35,9 @@ class RadauStep {
   }
 
   /// The step from (t, y) of length h. field(t, y, F, J, P) writes the field F, its Jacobian J
-  /// and its parameter derivative P at (t, y) (all preallocated). With `derivatives`, also
+  /// and its parameter derivative P at (t, y) (all preallocated); a field with
+  /// deferred_parameter() true writes P in field.parameter(t, y, P) instead, called once per
+  /// stage at the converged stages when `derivatives`. With `derivatives`, also
   /// d(increment)/dy and d(increment)/dp. False (with why) if the stage equations' Newton
   /// iteration fails: a step too long for the field's nonlinearity, or a non-finite value.
   template <class Field>
@@ -88,6 +90,16 @@ class RadauStep {
     }
     increment_ = z_.segment(2 * d, d);  // stiffly accurate: y_{n+1} = y_n + Z_3
     if (!derivatives) return true;
+    // A field whose parameter derivative costs more than its value (a difference quotient)
+    // writes P only here, at the converged stages, instead of at every stage iteration.
+    if constexpr (requires { field.parameter(t, stage_, p_.segment(0, d)); }) {
+      if (field.deferred_parameter())
+        for (int i = 0; i < 3; ++i) {
+          stage_ = y + z_.segment(i * d, d);
+          auto pi = p_.segment(i * d, d);
+          field.parameter(t + kC[i] * h, stage_, pi);
+        }
+    }
     // dZ/dy and dZ/dp from the converged stage equations: K dZ = h (A (x) I) blkdiag(J) (1 (x) dy)
     // + h (A (x) I) P dp, K = I - h (A (x) I) blkdiag(J) at the converged stages.
     assemble();

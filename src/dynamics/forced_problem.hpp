@@ -80,20 +80,24 @@ struct ForcedContext {
     machine_field(down.params, RigidMachine{&down.race, &support, 1.0}, x, t, 0.0, side, false);
     side_down_ = side.field / down.params.omega;
   }
-  // The Radau step's field(t, y, F, J, P).
+  // The Radau step's field(t, y, F, J, P); with a family P is left to parameter() (the
+  // difference quotient costs two more fields: only at the converged stages).
   template <class F, class P>
   void operator()(double t, const Eigen::VectorXd& y, F&& f, Eigen::MatrixXd& J, P&& par) {
     evaluate(t, y, true);
-    if (family) {
-      StateX x(dim);
-      for (int i = 0; i < dim; ++i) x(i) = scale(i) * y(i);
-      evaluate_sides(t, x);
-    }
     for (int i = 0; i < dim; ++i) {
       f(i) = value.field(i) / scale(i);
-      par(i) = (family ? lambda_derivative(i) : value.delta_derivative(i)) * span / scale(i);
+      if (!family) par(i) = value.delta_derivative(i) * span / scale(i);
       for (int j = 0; j < dim; ++j) J(i, j) = value.jacobian(i, j) * scale(j) / scale(i);
     }
+  }
+  bool deferred_parameter() const { return family != nullptr; }
+  template <class P>
+  void parameter(double t, const Eigen::VectorXd& y, P&& par) {
+    StateX x(dim);
+    for (int i = 0; i < dim; ++i) x(i) = scale(i) * y(i);
+    evaluate_sides(t, x);
+    for (int i = 0; i < dim; ++i) par(i) = lambda_derivative(i) * span / scale(i);
   }
 
  private:

@@ -61,8 +61,8 @@ struct ContinuationOptions {
   double ds_min = 1e-9;  ///< below this a failing step ends the branch (MX)
   double ds_max = 0.2;   ///< upper bound (the step also adapts to the branch's curvature)
   int max_steps = 5000;  ///< predictor-corrector attempts (retries included) per branch and direction
-  /// Branches traced at once (continue_branches, two balls; 0: one per core). The result
-  /// does not depend on it.
+  /// Branches traced at once (continue_branches, two balls; the composed machine's orbits,
+  /// composed_branches; 0: one per core). The result does not depend on it.
   int threads = 1;
 };
 /// Checks the options up front; returns the rule broken, if any.
