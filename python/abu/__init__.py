@@ -36,8 +36,9 @@ __version__ = _abu.__version__
 __all__ = [
     "InputError", "NumericalError", "NotSupportedError", "Scene",
     "load_scene", "scene_from_dict", "scene_toml", "parameter_symbols",
-    "equilibria", "continue_branches", "map", "simulate", "outcomes", "design",
-    "Equilibria", "MachineEquilibria", "Continuation", "Branch", "Table", "StabilityMap", "Simulation", "Result",
+    "equilibria", "continue_branches", "continue_orbits", "map", "simulate", "outcomes", "design",
+    "Equilibria", "MachineEquilibria", "Continuation", "Branch", "OrbitBranches", "Table", "StabilityMap", "Simulation",
+    "Result",
 ]
 
 
@@ -489,6 +490,58 @@ def continue_branches(scene, param, to, *, family=None, state=None, ds=0.01, ds_
     return Continuation(_abu.continue_branches(scene, str(param), float(to), family, state, float(ds),
                                                float(ds_min), float(ds_max), int(max_steps),
                                                int(samples_per_sheet)))
+
+
+class OrbitBranches(Result):
+    """Branches of periodic orbits (abu.continue_orbits), as the CLI's `continue` writes them on an
+    unround race with an anisotropic support (docs/model.md §20.9).
+
+      param, unit, from_value, to_value   the parameter and the interval (from: the scene's value)
+      orbits_at_start, orbits_at_end      the orbits `equilibria` finds at each end
+      branches        list of Table, in the CLI's order (branch k is row `branch` = k + 1 of
+                      branch_NAME.csv), one row per point: value, orbit (its start orbit's name),
+                      stability ('stable', 'unstable', 'marginal'), rho_abs_max, q_abs_max,
+                      q_abs_min [m], band, multipliers (K, 2n + 4) complex over pi/omega (rotating
+                      frame), state0 (K, 2n + 4) x(0) in SI; and as attributes start, end_forward,
+                      end_backward, ok, reason
+      special_points  Table: branch (1-based), kind ('LP', 'BP', 'PD', 'NS'), value, q_abs_max,
+                      multiplier (the critical one, complex)
+      ok, reason      False with where and why if a branch ended early or an orbit at an end ends
+                      no branch or two (the CLI's exit code 3)
+    """
+
+    def __init__(self, data):
+        branches = []
+        for b in data["branches"]:
+            rows = {k: b[k] for k in ("value", "rho_abs_max", "q_abs_max", "q_abs_min", "band", "multipliers",
+                                      "state0")}
+            rows["orbit"] = _strings(b["orbit"])
+            rows["stability"] = _strings(b["stability"])
+            table = Table(rows)
+            for k in ("start", "end_forward", "end_backward", "ok", "reason"):
+                setattr(table, k, b[k])
+            branches.append(table)
+        data["branches"] = branches
+        specials = data["special_points"]
+        specials["kind"] = _strings(specials["kind"])
+        data["special_points"] = Table(specials)
+        super().__init__(data)
+
+
+def continue_orbits(scene, param, to, *, ds=0.01, ds_min=1e-9, ds_max=0.2, max_steps=5000, threads=1):
+    """Pseudo-arclength continuation of every periodic orbit of an unround race on an anisotropic
+    support: the CLI's `continue` on that machine (docs/model.md §20.9).
+
+    Follows each orbit `equilibria` finds at the scene's value of PARAM (omega, U, a ball's
+    parameter, kappa, or 'unroundness', the race's amplitudes times a factor from 1; not k, c or
+    the ball count) to TO through its folds, with the fold (LP), branch (BP), flip (PD) and
+    Neimark-Sacker (NS) points located; then the orbits at TO that no branch reached. ds, ds_min,
+    ds_max (capped at 0.05), max_steps: the step control, the CLI's defaults; threads: the orbits
+    of one end traced at once (the same result on any count). Returns an abu.OrbitBranches. Runs
+    with the GIL released.
+    """
+    return OrbitBranches(_abu.continue_orbits(scene, str(param), float(to), float(ds), float(ds_min), float(ds_max),
+                                              int(max_steps), int(threads)))
 
 
 def _axis_spec(axis, name):

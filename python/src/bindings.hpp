@@ -51,6 +51,8 @@ inline void require_parts(const Scene& scene, std::string_view call, Handles han
 void bind_runs(py::module_& m);
 /// Registers outcomes and design (studies.cpp).
 void bind_studies(py::module_& m);
+/// Registers continue_orbits (orbits.cpp).
+void bind_orbits(py::module_& m);
 
 /// A new C-ordered array of the given shape, zero-filled.
 template <class T>

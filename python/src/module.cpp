@@ -596,5 +596,5 @@ PYBIND11_MODULE(_abu, m) {
         "The shortest decimal that reads back to the same double, as every CSV of the CLI writes numbers.");
   m.def("parameter_symbols", [] { return std::string(param_symbols_help()); },
         "The parameter symbols that set(), get() and the axes take.");
-  bind_runs(m), bind_studies(m);
+  bind_runs(m), bind_studies(m), bind_orbits(m);
 }

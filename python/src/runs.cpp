@@ -294,6 +294,11 @@ py::dict run_dict(const RunT& run, int n) {
 py::dict continue_run(const Scene& scene, const std::string& param, double to, std::optional<std::string> family,
                       std::optional<std::vector<double>> state, double ds, double ds_min, double ds_max,
                       int max_steps, int samples_per_sheet) {
+  if (unround_on_anisotropic_support(scene))
+    throw NotSupportedError(fmt::format("abu.continue_branches continues equilibria; {} has an unround race on an "
+                                        "anisotropic support, whose states are periodic orbits: abu.continue_orbits "
+                                        "continues them (model.md §20.9)",
+                                        scene.file));
   require_parts(scene, "continue_branches", {});
   const int n = int(scene.balls.size());
   check_numerical_range(scene, "abu.continue_branches");  // the start, as the CLI checks a scene

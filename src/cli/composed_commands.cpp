@@ -6,6 +6,7 @@
 
 #include "abu/analysis/composed_branches.hpp"
 #include "abu/analysis/composed_map.hpp"
+#include "abu/analysis/composed_parameter.hpp"
 #include "abu/analysis/composed_sweep.hpp"
 #include "abu/core/errors.hpp"
 #include "abu/core/suggest.hpp"
@@ -24,84 +25,10 @@ namespace abu::cli {
 
 namespace {
 constexpr int kMaxComposedSteps = 10000;  // each value costs the orbits of `equilibria` (~0.2 s an orbit)
-
-// One message for the parameters this machine does not sweep: what they are and what to use.
-[[noreturn]] void refuse_composed_param(const Scene& scene, const std::string& param, const std::string& why) {
-  throw InputError("--param", 0, param,
-                   fmt::format("{} has an unround race on an anisotropic support (model.md §20): {}", scene.file, why));
-}
-
-// The machine at a value: a copy of the scene with the parameter set (the race re-read: surface
-// harmonics follow l and r), or the race scaled by the unroundness factor.
-ComposedAt composed_machine_at(const Scene& scene, const std::string& param, std::optional<ParamRef> ref) {
-  const RaceShape race = race_shape(scene);
-  return [scene, param, ref, race](double v) {
-    if (!ref) return ComposedMachineAt{params_of<any_balls>(scene), checked_scaled_race(scene, race, v, "--from/--to")};
-    Scene s = scene;
-    set_checked(s, *ref, v, "--from/--to");
-    return ComposedMachineAt{params_of<any_balls>(s), race_shape(s)};
-  };
-}
-
-// The parameter of a sweep or continuation on this machine: a scene symbol, or (nothing)
-// the unroundness factor; its name and unit. The ball count and the support's k, c refused.
-struct ComposedParam {
-  std::optional<ParamRef> ref;
-  std::string name = kUnroundnessParam, unit_name = "-";
-};
-ComposedParam composed_param(const Scene& scene, const std::string& param) {
-  if (param == "n")
-    refuse_composed_param(scene, param, "the ball count is not swept here (each ball has its own path); sweep each "
-                                        "count's scene separately");
-  ComposedParam out;
-  if (param == kUnroundnessParam) return out;
-  out.ref = parse_param(param, int(scene.balls.size()));
-  if (!out.ref)
-    throw InputError("--param", 0, param,
-                     unknown_name_rule("unknown parameter", closest_param(param, true), "known",
-                                       fmt::format("{}, or {} (the race's amplitudes times a factor)",
-                                                   param_symbols_help(), kUnroundnessParam)));
-  if (out.ref->quantity == Quantity::stiffness || out.ref->quantity == Quantity::damping)
-    refuse_composed_param(scene, param,
-                          "k and c are the anisotropic support's means (stiffness_x, ... in [rotor]), not one "
-                          "parameter; edit the support's keys in the scene, or sweep omega, U, the balls' "
-                          "parameters or unroundness");
-  out.name = to_string(*out.ref);
-  out.unit_name = std::string(unit(out.ref->quantity));
-  return out;
-}
-
-// The scene at a value of the parameter, checked by the scene's rules (exit 2 naming `origin`).
-void check_composed_value(const Scene& scene, const ComposedParam& c, double v, const std::string& origin) {
-  if (!c.ref) {
-    if (!(v >= 0)) throw InputError(origin, 0, kUnroundnessParam, fmt::format("the unroundness factor is >= 0 (got {})", v));
-    checked_scaled_race(scene, race_shape(scene), v, origin);
-    return;
-  }
-  Scene s = scene;
-  set_checked(s, *c.ref, v, origin);
-  check_numerical_range(s, origin, fmt::format("at {}={}", c.name, v));
-}
-// The machine along a continuation: the parameter set exactly (also a little beyond the ends,
-// where the predictor and the difference quotients reach: model.md §20.9), the scene's rules
-// and the race re-read at the value clamped into [lo, hi] (its paths follow l and r); the
-// unroundness factor unchecked (a negative factor turns each harmonic by half its period).
-ComposedAt composed_family(const Scene& scene, const ComposedParam& c, double lo, double hi) {
-  const RaceShape race = race_shape(scene);
-  if (!c.ref) return [scene, race](double v) { return ComposedMachineAt{params_of<any_balls>(scene), scaled_race(race, v)}; };
-  return [scene, ref = *c.ref, lo, hi](double v) {
-    Scene s = scene;
-    set_checked(s, ref, std::clamp(v, lo, hi), "--to");
-    ParamsN p = params_of<any_balls>(s);
-    set(p, ref, v);
-    return ComposedMachineAt{std::move(p), race_shape(s)};
-  };
-}
 }  // namespace
 
 int sweep_composed(const Scene& scene, const SceneOptions& options, const UnroundGrid& g) {
-  const ComposedParam c = composed_param(scene, g.param);
-  const std::optional<ParamRef>& ref = c.ref;
+  const ComposedParam c = composed_param(scene, g.param, "--param");
   const std::string& name = c.name;
   const std::string& unit_name = c.unit_name;
   if (g.steps < 1 || g.steps > kMaxComposedSteps)
@@ -110,7 +37,7 @@ int sweep_composed(const Scene& scene, const SceneOptions& options, const Unroun
     throw InputError("--log", 0, g.param, fmt::format("a log grid needs both ends > 0 (got {} .. {})", g.from, g.to));
   const std::vector<double> values = grid_values(g.from, g.to, g.steps, g.logarithmic);
   for (double v : {g.from, g.to}) check_composed_value(scene, c, v, "--from/--to");  // the ends decide: every value between keeps the rules
-  const ComposedSweep s = composed_sweep(*scene.support, composed_machine_at(scene, g.param, ref), values);
+  const ComposedSweep s = composed_sweep(*scene.support, composed_machine_at(scene, c, "--from/--to"), values);
 
   const ParamsN first = params_of<any_balls>(scene);
   const std::string header = provenance_header(command_line(), scene.file, first);
@@ -144,17 +71,12 @@ int sweep_composed(const Scene& scene, const SceneOptions& options, const Unroun
 
 int continue_composed(const Scene& scene, const SceneOptions& options, const std::string& param, double to,
                       const ContinuationOptions& numerics, bool chart, const std::string& output_dir) {
-  const ComposedParam c = composed_param(scene, param);
+  const ComposedParam c = composed_param(scene, param, "--param");
   const ParamsN first = params_of<any_balls>(scene);
-  const double from = c.ref ? get(first, *c.ref) : 1.0;
-  if (!(to != from)) throw InputError("--to", 0, param, fmt::format("must differ from the start value {}", from));
-  check_composed_value(scene, c, to, "--to");
+  const double from = composed_start(scene, c);
   ForcedBranchOptions o;
-  o.continuation = numerics;  // steps of at most 0.05 of the interval (forced_branch.hpp)
-  o.continuation.ds_max = std::min(numerics.ds_max, 0.05);
-  o.continuation.ds = std::min(numerics.ds, o.continuation.ds_max);
-  const ComposedBranches b =
-      composed_branches(*scene.support, composed_family(scene, c, std::min(from, to), std::max(from, to)), from, to, o);
+  o.continuation = numerics;
+  const ComposedBranches b = continue_composed(scene, c, to, o, "--to");
 
   const std::string header = provenance_header(command_line(), scene.file, first);
   const std::filesystem::path dir(output_dir);

@@ -7,14 +7,12 @@
 #include <string>
 
 #include "abu/continuation/arclength.hpp"
+#include "abu/input/race_scene.hpp"  // kUnroundnessParam, checked_scaled_race
 #include "abu/model/unround_race.hpp"
 #include "abu/scan/map.hpp"
 #include "cli.hpp"
 
 namespace abu::cli {
-
-/// The continuation / sweep parameter that scales every race amplitude (§11.10).
-inline const std::string kUnroundnessParam = "unroundness";
 
 /// The files of a sweep over NAME: sweep_NAME.csv, summary_NAME.csv, summary_NAME.png
 /// (the n-ball sweep and the unround race's).
@@ -23,9 +21,6 @@ struct SweepPaths {
 };
 SweepPaths sweep_paths(const std::filesystem::path& dir, const std::string& name);
 
-/// The scene's race (`race`, race_shape(scene)) with every amplitude times `factor`; throws
-/// InputError at `option` where a ball's path breaks a rule of model.md §11.1.
-RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option);
 
 struct UnroundGrid {
   std::string param;  ///< "unroundness" or a parameter symbol (omega, U, ...)

@@ -41,6 +41,16 @@ RaceShape race_shape(const Scene& scene) {
   return shape;
 }
 
+RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option) {
+  const RaceShape out = scaled_race(race, factor);
+  for (std::size_t i = 0; i < out.balls.size() && i < scene.balls.size(); ++i)
+    if (const auto why = path_violation(out.balls[i], scene.balls[i].race_radius, scene.balls[i].radius))
+      throw InputError(option, 0, kUnroundnessParam,
+                       fmt::format("at unroundness factor {} ball {}'s race breaks a rule of model.md §11.1: {}", factor,
+                                   i + 1, *why));
+  return out;
+}
+
 namespace scene_reading {
 
 namespace {

@@ -46,6 +46,13 @@ struct RaceSpec {
 /// if a ball's path breaks a rule of path_violation, e.g. after --set l=... .
 RaceShape race_shape(const Scene& scene);
 
+/// The parameter that multiplies every amplitude of the scene's race (model.md §11.10).
+inline const std::string kUnroundnessParam = "unroundness";
+
+/// The scene's race (`race`, race_shape(scene)) with every amplitude times `factor`; throws
+/// InputError at `option` (key `unroundness`) where a ball's path breaks a rule of model.md §11.1.
+RaceShape checked_scaled_race(const Scene& scene, const RaceShape& race, double factor, const std::string& option);
+
 /// Multiplies every amplitude of the scene's [race] by `factor` in [0, 1] (the `unroundness` of a
 /// study, model.md §21.2: the scene's race is the largest runout). Throws InputError(origin, 0,
 /// "unroundness", rule) for a round race or a factor outside [0, 1].
