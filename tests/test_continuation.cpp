@@ -34,6 +34,7 @@
 #include "abu/linear/spectrum.hpp"
 #include "abu/scan/scan.hpp"
 #include "continuation_reference.hpp"
+#include "scene_texts.hpp"
 
 using namespace continuation_reference;
 
@@ -455,28 +456,9 @@ TEST_CASE("fold curves are vertical in omega-d and the balanced Hopf curve reach
 TEST_CASE("a Hopf point behind a long step is located, where equilibria says the balanced state changes stability",
           "[continuation]") {
   quiet_gsl();
-  abu::Scene scene = abu::parse_scene(R"(rolling = true
-[rotor]
-mass = 0.12
-stiffness = 7500.0
-damping = 2.0
-unbalance = 9.0e-7
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[[ball]]
-mass = 3.3e-5
-race_radius = 0.018
-radius = 1.0e-3
-[friction]
-law = "coulomb"
-mu = 0.002
-kappa = 1.0e3
-[speed]
-omega = 300.0
-)",
-                                      "default_k.toml");
+  abu::Scene scene = abu::parse_scene(abu::testing::kBase, "default.toml");  // data/scenes/default.toml
+  abu::apply_override(scene, "U=9e-7");
+  abu::apply_override(scene, "omega=300");
   abu::Params p = abu::params_of<2>(scene);
   const abu::ContinuationRun run = abu::continue_branches(p, param("k"), 20000.0, abu::ContinuationOptions{},
                                                           abu::StartSelection{Family::balanced, std::nullopt});

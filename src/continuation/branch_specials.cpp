@@ -122,19 +122,21 @@ void BranchTracer::locate_hopf_between(const Bracket& br) {
   // a Hopf crossing changes it by two. Only the latter is worth locating.
   if (std::abs(sa.n_unstable - sb.n_unstable) != 2) return;
   const int sign_a = hopf_test_sign(sa);
-  std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
-  for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it) {
-    if (distance(za, zb) < 1e-15L) break;
-    const Vec5 d = (zb - za).normalized();
-    const Corrected mid = correct(eq, (za + zb) / 2, d);
-    if (!mid.converged()) break;
+  // One halving of the bracket on the test function's sign, the midpoint corrected onto the branch.
+  const auto halve = [&] {
+    const Corrected mid = correct(eq, (za + zb) / 2, (zb - za).normalized());
+    if (!mid.converged()) return false;
     const Spectrum sm = compute_spectrum(eq.linearization(mid.u));
     if (hopf_test_sign(sm) == sign_a) {
       za = mid.u, sa = sm;
     } else {
       zb = mid.u, sb = sm;
     }
-  }
+    return true;
+  };
+  std::optional<std::pair<std::complex<double>, std::complex<double>>> pair;
+  for (int it = 0; it < 90 && !(pair = crossing_pair(sa, sb)); ++it)
+    if (distance(za, zb) < 1e-15L || !halve()) break;
   if (!pair) {
     // The sign change came from a real pair lambda, -lambda: a neutral saddle, not a
     // Hopf point (or a crossing too close to a coalescence to resolve): not reported.
@@ -156,15 +158,7 @@ void BranchTracer::locate_hopf_between(const Bracket& br) {
     omega_guess = la.imag() + theta * (lb.imag() - la.imag());
     h = locate_hopf(eq, guess, omega_guess);
     ok = h.converged && inside(br.za, br.zb, h.z);
-    if (ok || distance(za, zb) < 1e-12L) break;
-    const Corrected mid = correct(eq, (za + zb) / 2, (zb - za).normalized());
-    if (!mid.converged()) break;
-    const Spectrum sm = compute_spectrum(eq.linearization(mid.u));
-    if (hopf_test_sign(sm) == sign_a) {
-      za = mid.u, sa = sm;
-    } else {
-      zb = mid.u, sb = sm;
-    }
+    if (ok || distance(za, zb) < 1e-12L || !halve()) break;
     const auto narrower = crossing_pair(sa, sb);
     if (!narrower) break;
     pair = narrower;
