@@ -70,7 +70,6 @@ class BranchProblem : public ForcedProblem {
     const bool fold = (changed & 1u) != 0;
     if (fold) record("LP", seg, [&](const Vec& u, const Vec& chord) { return fold_test(u, chord); });
     if (!(changed & 2u)) return;
-    std::string kind;
     const auto located = record_at(seg, [&](const Vec& u, const Vec&) { return top_log_modulus(multipliers(u)); });
     if (!located) return;
     // The multiplier on the unit circle there: +1 (at a fold it is the fold itself), -1, or a pair.
@@ -79,7 +78,7 @@ class BranchProblem : public ForcedProblem {
     for (std::size_t k = 1; k < f.log_moduli.size(); ++k)
       if (f.log_moduli[k] > f.log_moduli[top]) top = k;
     const double arg = f.arguments.empty() ? 0.0 : std::abs(f.arguments[top]);
-    kind = arg < 1e-6 ? "BP" : arg > std::numbers::pi - 1e-6 ? "PD" : "NS";
+    const std::string kind = arg < 1e-6 ? "BP" : arg > std::numbers::pi - 1e-6 ? "PD" : "NS";
     if (kind == "BP" && fold) return;
     add_special(kind, *located);
   }

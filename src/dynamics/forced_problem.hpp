@@ -32,7 +32,7 @@ using StateX = State<double, any_balls>;
 // time is tau = omega t (the period pi whatever omega), the field f / omega, and its lambda
 // derivative the central difference of f / omega between the machines at lambda -+ h.
 struct ForcedContext {
-  ParamsN p;
+  ParamsN p;  // the machine of the homotopy in delta (a family's are here, up, down)
   AnisotropicSupport support;
   const RaceShape* race = nullptr;  // an unround race under the support (model.md §20); null: round
   Eigen::VectorXd scale;  // D
@@ -58,7 +58,6 @@ struct ForcedContext {
     here = (*family)(lambda);
     up = (*family)(lambda + h);
     down = (*family)(lambda - h);
-    p = here.params;
   }
   void evaluate(double t, const Eigen::VectorXd& y, bool derivatives) {
     StateX x(dim);
@@ -72,14 +71,6 @@ struct ForcedContext {
     value.field /= w;
     if (derivatives) value.jacobian /= w;
   }
-  // d(f / omega)/dlambda at (tau, x) by the central difference (family only).
-  double lambda_derivative(int i) const { return 0.5 * (side_up_(i) - side_down_(i)) / h; }
-  void evaluate_sides(double t, const StateX& x) {
-    machine_field(up.params, RigidMachine{&up.race, &support, 1.0}, x, t, 0.0, side, false);
-    side_up_ = side.field / up.params.omega;
-    machine_field(down.params, RigidMachine{&down.race, &support, 1.0}, x, t, 0.0, side, false);
-    side_down_ = side.field / down.params.omega;
-  }
   // The Radau step's field(t, y, F, J, P); with a family P is left to parameter() (the
   // difference quotient costs two more fields: only at the converged stages).
   template <class F, class P>
@@ -92,16 +83,16 @@ struct ForcedContext {
     }
   }
   bool deferred_parameter() const { return family != nullptr; }
+  // d(f / omega)/dlambda at (tau, y) by the central difference between the machines at lambda -+ h.
   template <class P>
   void parameter(double t, const Eigen::VectorXd& y, P&& par) {
     StateX x(dim);
     for (int i = 0; i < dim; ++i) x(i) = scale(i) * y(i);
-    evaluate_sides(t, x);
-    for (int i = 0; i < dim; ++i) par(i) = lambda_derivative(i) * span / scale(i);
+    machine_field(up.params, RigidMachine{&up.race, &support, 1.0}, x, t, 0.0, side, false);
+    for (int i = 0; i < dim; ++i) par(i) = side.field(i) / up.params.omega;
+    machine_field(down.params, RigidMachine{&down.race, &support, 1.0}, x, t, 0.0, side, false);
+    for (int i = 0; i < dim; ++i) par(i) = 0.5 * (par(i) - side.field(i) / down.params.omega) / h * span / scale(i);
   }
-
- private:
-  StateX side_up_, side_down_;
 };
 
 using Evaluated = detail::ShootingEvaluation;
@@ -145,8 +136,6 @@ class ForcedProblem : public detail::ShootingSystem<ForcedProblem> {
     set_parameter(u);
     return ctx_.family ? std::numbers::pi / ctx_.here.params.omega : period_;
   }
-  /// The machine's parameters at the last value set.
-  const ParamsN& params() const { return ctx_.p; }
 
   int size() const { return dim_ * m_ + 1; }
   int param_index() const { return dim_ * m_; }
