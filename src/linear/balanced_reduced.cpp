@@ -64,11 +64,14 @@ Arrangement arrangement_of(const Coordinates<ld, any_balls>& position) {
 }
 
 bool reducible(const BalancedReduction& r, const EquilibriumN& e) {
+  return r.applies && e.on_balanced_set && reducible(r, e, arrangement_of(e.position).g);
+}
+
+bool reducible(const BalancedReduction& r, const EquilibriumN& e, ld g) {
   if (!r.applies || !e.on_balanced_set || !e.converged || e.n_balls() != r.n) return false;
   if (e.structural_zeros != r.n - 2 && e.structural_zeros != 2 * (r.n - 2)) return false;
   // The tangent basis has n - 2 directions: the smaller singular value of [a cos; a sin],
   // a sqrt((n - g)/2), well above the rank threshold relative to the larger.
-  const ld g = arrangement_of(e.position).g;
   const ld n = ld(r.n);
   return std::sqrt(std::max(n - g, ld(0)) / (n + g)) > 16 * kRankThreshold;
 }
@@ -159,10 +162,10 @@ SpectrumN reduced_normal_spectrum(const BalancedReduction& r, const ParamsN& p, 
   return sp;
 }
 
-ReducedPolynomials reduced_polynomials(const BalancedReduction& r) {
+ReducedSplits reduced_splits(const BalancedReduction& r) {
   // The corners need s1^2 + s2^2 = n only for the physical g; the determinant is a
   // polynomial in s1^2, s2^2 whatever their sum: evaluate it on the pencil directly.
-  ReducedPolynomials out;
+  ReducedSplits out;
   const ld X = ld(r.n) / 2;
   const std::array<std::array<ld, 2>, 4> at{{{0, 0}, {X, 0}, {0, X}, {X, X}}};
   for (std::size_t c = 0; c < 4; ++c) {
@@ -177,10 +180,18 @@ ReducedPolynomials reduced_polynomials(const BalancedReduction& r) {
     lin.damping(3, 1) = 2 * w * a * s2;
     lin.stiffness(0, 3) = lin.stiffness(3, 0) = w * w * a * s2;
     lin.stiffness(1, 2) = lin.stiffness(2, 1) = -w * w * a * s1;
-    out.corner[c] = characteristic_polynomial(lin);
+    out.corner[c] = friction_split(friction_free(lin));
   }
   return out;
 }
+
+ReducedPolynomials reduced_polynomials(const ReducedSplits& splits, const BalancedReduction& r) {
+  ReducedPolynomials out;
+  for (std::size_t c = 0; c < 4; ++c) out.corner[c] = combine_long(splits.corner[c], r.friction, r.friction);
+  return out;
+}
+
+ReducedPolynomials reduced_polynomials(const BalancedReduction& r) { return reduced_polynomials(reduced_splits(r), r); }
 
 Polynomial reduced_polynomial(const BalancedReduction& r, const ReducedPolynomials& corners, ld g) {
   // Bilinear interpolation in (x, y) = ((n + g)/2, (n - g)/2) between the corners, exact
@@ -198,13 +209,10 @@ Polynomial reduced_polynomial(const BalancedReduction& r, const ReducedPolynomia
   return to_double(p);
 }
 
-NormalVerdict reduced_normal_verdict(const BalancedReduction& r, const ReducedPolynomials& corners, ld g,
-                                     std::complex<double>& rightmost, bool& tracked) {
+NormalVerdict pencil_verdict(const Polynomial& poly, const Linearization<ld, 2>& lin, std::complex<double>& rightmost,
+                             bool& tracked) {
   NormalVerdict v;
-  v.n_structural = r.level * (r.n - 2);
-  bool decided = false;
   if (tracked) {
-    const Polynomial poly = reduced_polynomial(r, corners, g);
     std::complex<double> z = rightmost;
     // Clear of the axis by 1e-6 of its modulus: a band that wide needs a condition number
     // 60 times the one flagged ill-conditioned (developers.md, Stability threshold).
@@ -216,19 +224,25 @@ NormalVerdict reduced_normal_verdict(const BalancedReduction& r, const ReducedPo
         v.n_unstable = rc.n_unstable;
         v.stability = rc.n_unstable > 0 ? Stability::unstable : Stability::stable;
         v.abscissa = z.real();
-        decided = true;
+        return v;
       }
     }
   }
-  if (!decided) {
-    const Spectrum sp = compute_spectrum(reduced_linearization(r, g), SpectrumMethod::refined, 0);
-    rightmost = sp.eigenvalues[0];
-    tracked = true;
-    v.n_unstable = sp.n_unstable;
-    v.stability = sp.stability;
-    v.abscissa = sp.abscissa;
-    v.converged = sp.converged;
-  }
+  const Spectrum sp = compute_spectrum(lin, SpectrumMethod::refined, 0);
+  rightmost = sp.eigenvalues[0];
+  tracked = true;
+  v.n_unstable = sp.n_unstable;
+  v.stability = sp.stability;
+  v.abscissa = sp.abscissa;
+  v.converged = sp.converged;
+  return v;
+}
+
+NormalVerdict reduced_normal_verdict(const BalancedReduction& r, const ReducedPolynomials& corners, ld g,
+                                     std::complex<double>& rightmost, bool& tracked) {
+  const Polynomial poly = tracked ? reduced_polynomial(r, corners, g) : Polynomial{};
+  NormalVerdict v = pencil_verdict(poly, reduced_linearization(r, g), rightmost, tracked);
+  v.n_structural = r.level * (r.n - 2);
   if (r.level == 1) v.abscissa = std::max(v.abscissa, double(-r.friction / r.inertia));
   return v;
 }

@@ -140,6 +140,30 @@ Polynomial combine(const FrictionSplit& split, double s1, double s2) {
   return out;
 }
 
+PolynomialLD combine_long(const FrictionSplit& split, ld s1, ld s2) {
+  // The split's expansions times s1, s2, s1 s2 are the terms of P's: their magnitudes scale
+  // alike; the products' and sums' own roundings are covered by adding |term| once more.
+  PolynomialLD out;
+  const ld ab = s1 * s2;
+  for (std::size_t k = 0; k <= 8; ++k) {
+    ld value = split.p00.c[k], size = split.p00.magnitude[k];
+    if (k >= 1) {
+      const ld t1 = s1 * split.p10.c[k - 1], t2 = s2 * split.p01.c[k - 1];
+      value += t1 + t2;
+      size += std::abs(s1) * split.p10.magnitude[k - 1] + std::abs(s2) * split.p01.magnitude[k - 1] + std::abs(t1) +
+              std::abs(t2);
+    }
+    if (k >= 2) {
+      const ld t3 = ab * split.p11.c[k - 2];
+      value += t3;
+      size += std::abs(ab) * split.p11.magnitude[k - 2] + std::abs(t3);
+    }
+    out.c[k] = value;
+    out.magnitude[k] = size + std::abs(value);
+  }
+  return out;
+}
+
 Polynomial to_double(const PolynomialLD& p) {
   Polynomial out;
   for (std::size_t k = 0; k <= 8; ++k) {

@@ -232,6 +232,18 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     find_permutation_classes(lugre ? BallKinds{} : ball_kinds(p), set_.points(), classes_);
     set_params_ = frictionless;
     have_set_ = true;
+    // What the reductions of §13.9 and §13.10 need of each equilibrium: the geometry only.
+    const auto found = set_.points();
+    sample_g_.assign(found.size(), 0);
+    sides_.assign(found.size(), AlignedReduction{});
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      if (found[k].on_balanced_set) sample_g_[k] = arrangement_of(found[k].position).g;
+      if (!lugre) sides_[k] = aligned_reduction(p, found[k]);
+    }
+    aligned_roots_.assign(found.size(), {});
+    pencil_of_.assign(found.size(), -1);
+    pencils_.clear();
+    reduced_splits_.reset();
   }
   out.n_balls = p.n_balls();
   out.capacity = 0;
@@ -247,9 +259,10 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     return;
   }
   out.equilibria.resize(points.size());
-  if (ix != column_) {
+  if (ix != column_ || !same_statics) {
     column_ = ix;
     reduced_tracked_ = false;
+    for (auto& r : aligned_roots_) r.tracked = false;
   }
   // The balanced samples of equal balls are judged by the reduced problem in g.
   const BalancedReduction reduction = lugre ? BalancedReduction{} : balanced_reduction(p);
@@ -267,15 +280,21 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
       m.n_structural = r.n_structural;
       m.stable = r.stable;
       m.abscissa = r.abscissa;
-    } else if (reducible(reduction, e)) {
-      if (!corners) corners = reduced_polynomials(reduction);
-      const NormalVerdict v =
-          reduced_normal_verdict(reduction, *corners, arrangement_of(e.position).g, reduced_root_, reduced_tracked_);
+    } else if (reducible(reduction, e, sample_g_[k])) {
+      if (!reduced_splits_) reduced_splits_ = reduced_splits(reduction);
+      if (!corners) corners = reduced_polynomials(*reduced_splits_, reduction);
+      const NormalVerdict v = reduced_normal_verdict(reduction, *corners, sample_g_[k], reduced_root_, reduced_tracked_);
       m.n_unstable = v.n_unstable;
       m.n_structural = v.n_structural;
       m.stable = v.stability == Stability::stable;
       m.abscissa = v.abscissa;
       converged = v.converged;
+    } else if (const AlignedVerdict a = aligned_cell_verdict(pl, k); a.decided) {
+      m.n_unstable = a.verdict.n_unstable;
+      m.n_structural = 0;
+      m.stable = a.verdict.stability == Stability::stable;
+      m.abscissa = a.verdict.abscissa;
+      converged = a.verdict.converged;
     } else {
       // As equilibrium_spectrum (scan.hpp): on the balanced set the normal spectrum, the
       // tangent directions deflated (model.md §13.5); elsewhere the verdict of the refined
@@ -315,6 +334,23 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
       out.aligned_stable += m.stable;
     }
   }
+}
+
+AlignedVerdict CellAnalyzerN::aligned_cell_verdict(const ParamsT<long double, any_balls>& pl, std::size_t k) {
+  const AlignedReduction& sides = sides_[k];
+  if (!sides.applies) return {};
+  if (pencil_of_[k] < 0) {
+    pencils_.push_back(aligned_pencil(sides, linearize(pl, set_.points()[k].state()), set_.points()[k]));
+    pencil_of_[k] = int(pencils_.size()) - 1;
+  }
+  // gamma = -l F'(0), as the linearization forms D(2+i, 2+i) (model.md (6.4)).
+  std::array<long double, 2> friction{};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const int b = sides.first[s];
+    friction[s] = -pl.balls[std::size_t(b)].race_radius * friction_slope(pl, b, 0.0L);
+  }
+  return aligned_verdict(pencils_[std::size_t(pencil_of_[k])], friction, aligned_roots_[k].root,
+                         aligned_roots_[k].tracked);
 }
 
 void CellAnalyzerN::analyze_floquet_cell(const ParamsN& p, std::span<const EquilibriumN> points, MapCellN& out) {

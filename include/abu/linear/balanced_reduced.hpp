@@ -47,6 +47,8 @@ Arrangement arrangement_of(const Coordinates<long double, any_balls>& position);
 /// The reduced problem can stand for e's normal spectrum: a polished sample of the set,
 /// regular (not collinear: g well below n, where the tangent space has n - 2 directions).
 bool reducible(const BalancedReduction& r, const EquilibriumN& e);
+/// The same with e's g already known (arrangement_of(e.position).g).
+bool reducible(const BalancedReduction& r, const EquilibriumN& e, long double g);
 
 /// The reduced linearization at g (13.9.6), coordinates (q1, q2, u1, u2) in the frame
 /// turned by alpha.
@@ -73,6 +75,13 @@ struct ReducedPolynomials {
   std::array<PolynomialLD, 4> corner;  ///< (0,0), (X,0), (0,X), (X,X)
 };
 ReducedPolynomials reduced_polynomials(const BalancedReduction& r);
+/// The corners without the balls' friction damping, split (characteristic.hpp): fixed while
+/// only friction changes (a map's friction axis); the corners at r.friction from them.
+struct ReducedSplits {
+  std::array<FrictionSplit, 4> corner;
+};
+ReducedSplits reduced_splits(const BalancedReduction& r);
+ReducedPolynomials reduced_polynomials(const ReducedSplits& splits, const BalancedReduction& r);
 /// P(lambda; g) with error bounds (characteristic.hpp's Polynomial).
 Polynomial reduced_polynomial(const BalancedReduction& r, const ReducedPolynomials& corners, long double g);
 
@@ -80,6 +89,13 @@ Polynomial reduced_polynomial(const BalancedReduction& r, const ReducedPolynomia
 /// (characteristic.hpp: the rightmost root followed from `rightmost` by Newton,
 /// certified by a Routh count) where that is decided clear of the axis, else from its
 /// refined spectrum. `rightmost` (valid if `tracked`) is updated for the next call.
+/// The verdict of a 4-dof pencil `lin` (two balls' shape) from its characteristic
+/// polynomial `poly` (read only when `tracked`): the rightmost root followed from
+/// `rightmost` by Newton, certified by a Routh count and accepted clear of the axis; else
+/// the refined spectrum of `lin`. Updates `rightmost` and sets `tracked`.
+NormalVerdict pencil_verdict(const Polynomial& poly, const Linearization<long double, 2>& lin,
+                             std::complex<double>& rightmost, bool& tracked);
+
 NormalVerdict reduced_normal_verdict(const BalancedReduction& r, const ReducedPolynomials& corners, long double g,
                                      std::complex<double>& rightmost, bool& tracked);
 

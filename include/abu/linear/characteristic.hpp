@@ -63,6 +63,8 @@ Linearization<long double, 2> friction_free(Linearization<long double, 2> lin);
 /// error bounds.
 Polynomial to_double(const PolynomialLD& p);
 Polynomial combine(const FrictionSplit& split, double s1, double s2);
+/// The same in long double, the magnitudes carried (the products' terms and their sums).
+PolynomialLD combine_long(const FrictionSplit& split, long double s1, long double s2);
 
 
 /// Result of the Routh test: `decided` false when a first-column entry is within its

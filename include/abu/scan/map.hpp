@@ -31,6 +31,7 @@
 #include "abu/equilibria/ball_permutations.hpp"
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/equilibria/equilibria_n.hpp"
+#include "abu/linear/aligned_reduced.hpp"
 #include "abu/linear/characteristic.hpp"
 #include "abu/model/anisotropic_support.hpp"
 
@@ -170,6 +171,8 @@ class CellAnalyzerN {
 
  private:
   void analyze_floquet_cell(const ParamsN& p, std::span<const EquilibriumN> points, MapCellN& out);
+  // Equilibrium k by §13.10 (equal balls, aligned), its pencil made at first need.
+  AlignedVerdict aligned_cell_verdict(const ParamsT<long double, any_balls>& pl, std::size_t k);
 
   ParamsN base_;
   std::vector<ParamsN> by_count_;
@@ -185,6 +188,18 @@ class CellAnalyzerN {
   ParamsN set_params_{};
   bool have_set_ = false;
   std::vector<int> source_;  // per class: the member whose verdict the others copy
+  // Per equilibrium of set_: g of a balanced sample (model.md (13.9.4)), the sides of an
+  // aligned one (§13.10); its pencil's rightmost root along the column, once found.
+  struct PencilRoot {
+    std::complex<double> root{};
+    bool tracked = false;
+  };
+  std::vector<long double> sample_g_;
+  std::vector<AlignedReduction> sides_;
+  std::vector<PencilRoot> aligned_roots_;
+  std::vector<int> pencil_of_;           // index in pencils_, -1 not made yet
+  std::vector<AlignedPencil> pencils_;   // of the aligned classes' computed members
+  std::optional<ReducedSplits> reduced_splits_;  // the balanced corners', made at first need
   // The reduced problem's rightmost root along the column (cells iy = 0, 1, .. of one ix,
   // in that order whatever the threads: the same bytes), the start of the next sample's.
   int column_ = -1;
