@@ -4,6 +4,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -11,6 +12,7 @@
 
 #include "line_roots.hpp"
 
+#include "abu/equilibria/ball_permutations.hpp"
 #include "abu/model/friction.hpp"
 
 namespace abu {
@@ -64,6 +66,29 @@ EquilibriumN make_equilibrium(const Problem& f, Family family, unsigned pattern,
 }
 
 
+// `e` (unpolished, same k and root as `done`, equal balls) made the image of `done`: the
+// polished angles of done's + balls go to e's + balls in order, likewise the - balls, and
+// everything else is copied. False (e untouched) if the two differ in a flag that the
+// polish does not decide (structural zeros) or in the number of balls per side.
+bool image_of(const EquilibriumN& done, EquilibriumN& e) {
+  const int n = e.n_balls();
+  if (done.structural_zeros != e.structural_zeros || std::popcount(done.pattern) != std::popcount(e.pattern))
+    return false;
+  EquilibriumN out = done;
+  out.pattern = e.pattern;
+  out.member = e.member;
+  std::array<int, 2> next{0, 0};
+  for (int i = 0; i < n; ++i) {
+    const unsigned side = e.pattern >> i & 1u;
+    int& j = next[side];
+    while ((done.pattern >> j & 1u) != side) ++j;  // the next ball of done on that side
+    out.position(2 + i) = done.position(2 + j);
+    ++j;
+  }
+  e = out;
+  return true;
+}
+
 // The isolated equilibria, every ball on the line of q (model.md §13.2).
 void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
   if (f.no_rotor_equilibrium) {
@@ -72,6 +97,11 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
   }
   const ld tol = kInputRounding * (f.capacity + f.U);
   const unsigned patterns = 1u << (f.n - 1);
+  // Equal balls (model.md §13.9): a pattern with k balls opposite is a permutation image of
+  // every other with k, root by root; the first one of each (k, root) is polished, the others
+  // are its image (its polished angles handed to their balls side by side), exact by (13.9.1).
+  const bool images = ball_kinds(p).all_equal;
+  std::vector<std::pair<int, std::size_t>> polished;  // (k * 2 + root, index in set.list)
   for (unsigned mask = 0; mask < patterns; ++mask) {
     const unsigned pattern = mask << 1;  // ball 1 is always +
     ld S = 0;
@@ -119,7 +149,14 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
       bool any_slope = false;
       for (int i = 0; i < f.n; ++i) any_slope = any_slope || friction_slope(p, i, 0.0) != 0.0;
       e.structural_zeros = on_set ? (any_slope ? 1 : 2) * (f.n - 1) : double_root ? 1 : 0;
+      const int key = std::popcount(pattern) * 2 + r;
+      const auto done = std::find_if(polished.begin(), polished.end(), [&](const auto& x) { return x.first == key; });
+      if (images && done != polished.end() && image_of(set.list[done->second], e)) {
+        set.list.push_back(e);
+        continue;
+      }
       set.list.push_back(polish_equilibrium(p, e));
+      if (images) polished.emplace_back(key, set.list.size() - 1);
     }
   }
 }
