@@ -19,6 +19,7 @@
 #include "abu/analysis/composed_branches.hpp"
 #include "abu/analysis/floquet_sweep.hpp"
 #include "abu/linear/unround_spectrum.hpp"
+#include "abu/output/report_composed_branches.hpp"
 
 #include "composed_params.hpp"
 
@@ -210,4 +211,31 @@ TEST_CASE("composed continuation: an isotropic support in the anisotropic form c
     }
   }
   CHECK(compared >= 3);
+}
+
+// A special point detected but not located (Brent's search on the chord failed) is written as
+// such: no row with a value it does not have, a comment with its bracket and why, and the text
+// says so; a located one beside it keeps its row.
+TEST_CASE("composed continuation: a special point detected but not located is reported, not dropped",
+          "[composed_branches][output]") {
+  ComposedBranches b;
+  b.branches.resize(1);
+  ForcedSpecialPoint fold;
+  fold.kind = "LP";
+  fold.value = 1.25;
+  fold.orbit.kind = "orbit";
+  ForcedSpecialPoint lost = fold;
+  lost.kind = "PD";
+  lost.located = false;
+  lost.bracket = {2.5, 2.75};
+  lost.reason = "a trial point did not converge";
+  b.branches[0].branch.specials = {fold, lost};
+  const std::string csv = composed_specials_csv(b, "U", "");
+  CHECK(csv.find("1,LP,1.25,orbit,") != std::string::npos);
+  CHECK(csv.find("# not located: branch 1, PD between U = 2.5 and 2.75: a trial point did not converge") !=
+        std::string::npos);
+  CHECK(csv.find(",PD,") == std::string::npos);
+  const std::string text = composed_branches_text(b, "U");
+  CHECK(text.find("PD between U = 2.5 and 2.75, detected but not located") != std::string::npos);
+  CHECK(text.find("LP at U = 1.25") != std::string::npos);
 }

@@ -70,13 +70,18 @@ py::dict orbit_specials_dict(const ComposedBranches& r) {
     for (const ForcedSpecialPoint& s : r.branches[i].branch.specials) all.push_back(&s), branch.push_back(int(i) + 1);
   const py::ssize_t k = py::ssize_t(all.size());
   auto index = zeros<int>({k});
-  auto value = zeros<double>({k}), q_max = zeros<double>({k});
+  auto value = zeros<double>({k}), q_max = zeros<double>({k}), lower = zeros<double>({k}), upper = zeros<double>({k});
   auto multiplier = zeros<std::complex<double>>({k});
+  auto located = zeros<bool>({k});
   py::list kind;
   for (py::ssize_t i = 0; i < k; ++i) {
     const ForcedSpecialPoint& s = *all[std::size_t(i)];
     index.mutable_at(i) = branch[std::size_t(i)];
-    value.mutable_at(i) = s.value;
+    // detected, not located: no value, the bracket of branch values it lies in
+    located.mutable_at(i) = s.located;
+    value.mutable_at(i) = s.located ? s.value : kNaN;
+    lower.mutable_at(i) = s.located ? kNaN : s.bracket[0];
+    upper.mutable_at(i) = s.located ? kNaN : s.bracket[1];
     q_max.mutable_at(i) = s.orbit.status.ok() ? s.orbit.q_abs_max : kNaN;
     multiplier.mutable_at(i) = s.multiplier;
     kind.append(s.kind);
@@ -85,6 +90,9 @@ py::dict orbit_specials_dict(const ComposedBranches& r) {
   out["branch"] = index;
   out["kind"] = kind;
   out["value"] = value;
+  out["located"] = located;
+  out["bracket_lower"] = lower;
+  out["bracket_upper"] = upper;
   out["q_abs_max"] = q_max;
   out["multiplier"] = multiplier;
   return out;

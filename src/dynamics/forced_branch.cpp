@@ -71,16 +71,19 @@ class BranchProblem : public ForcedProblem {
     if (fold) record("LP", seg, [&](const Vec& u, const Vec& chord) { return fold_test(u, chord); });
     if (!(changed & 2u)) return;
     const auto located = record_at(seg, [&](const Vec& u, const Vec&) { return top_log_modulus(multipliers(u)); });
-    if (!located) return;
-    // The multiplier on the unit circle there: +1 (at a fold it is the fold itself), -1, or a pair.
-    const ProductEigenvalues f = multipliers(*located);
+    // The multiplier on the unit circle there: +1 (at a fold it is the fold itself), -1, or a pair
+    // (where the search failed, classified at the later branch point).
+    const ProductEigenvalues f = multipliers(located ? *located : seg.to);
     std::size_t top = 0;
     for (std::size_t k = 1; k < f.log_moduli.size(); ++k)
       if (f.log_moduli[k] > f.log_moduli[top]) top = k;
     const double arg = f.arguments.empty() ? 0.0 : std::abs(f.arguments[top]);
     const std::string kind = arg < 1e-6 ? "BP" : arg > std::numbers::pi - 1e-6 ? "PD" : "NS";
     if (kind == "BP" && fold) return;
-    add_special(kind, *located);
+    if (located)
+      add_special(kind, *located);
+    else
+      add_unlocated(kind, seg);
   }
 
   void commit(Vec& u, Vec&, arclength::Stage) { points.push_back({value(u), describe_at(u)}); }
@@ -124,7 +127,7 @@ class BranchProblem : public ForcedProblem {
   // The point between seg.from and seg.to where `test` changes sign, by Brent's method on
   // the chord's fraction s, each trial point corrected onto the branch across the chord; the
   // bracket 1e-10 of the chord (itself <= ds_max = 0.05 of the interval). Nothing if a trial
-  // point did not converge (the special point is then not reported: the rows around it are).
+  // point did not converge (the caller then reports the point as detected, not located).
   template <class Test>
   std::optional<Vec> record_at(const arclength::Segment<Vec>& seg, Test&& test) {
     const Vec chord = seg.to - seg.from;
@@ -146,10 +149,28 @@ class BranchProblem : public ForcedProblem {
   }
   template <class Test>
   void record(const char* kind, const arclength::Segment<Vec>& seg, Test&& test) {
-    if (const auto u = record_at(seg, test)) add_special(kind, *u);
+    if (const auto u = record_at(seg, test))
+      add_special(kind, *u);
+    else
+      add_unlocated(kind, seg);
+  }
+  void add_unlocated(const std::string& kind, const arclength::Segment<Vec>& seg) {
+    ForcedSpecialPoint s;
+    s.kind = kind;
+    s.value = value(seg.to);
+    s.orbit = describe_at(seg.to);
+    s.multiplier = critical_multiplier(s.orbit, kind);
+    s.located = false;
+    s.bracket = {value(seg.from), value(seg.to)};
+    s.reason = "its test changed sign between two branch points, but a trial point of Brent's search on the chord "
+               "between them did not converge";
+    specials.push_back(std::move(s));
   }
   void add_special(const std::string& kind, const Vec& u) {
-    ForcedSpecialPoint s{kind, value(u), describe_at(u), {}};
+    ForcedSpecialPoint s;
+    s.kind = kind;
+    s.value = value(u);
+    s.orbit = describe_at(u);
     s.multiplier = critical_multiplier(s.orbit, kind);
     specials.push_back(std::move(s));
   }
@@ -210,6 +231,11 @@ ForcedBranch continue_forced_orbit(const AnisotropicSupport& support, const Mach
   }
   out.points.insert(out.points.end(), forward.points.begin(), forward.points.end());
   out.specials.insert(out.specials.end(), forward.specials.begin(), forward.specials.end());
+  for (const ForcedSpecialPoint& sp : out.specials)
+    if (!sp.located)
+      failed_branch(out, Outcome::not_converged,
+                    fmt::format("a {} point between {:.10g} and {:.10g} was detected but not located: {}", sp.kind,
+                                sp.bracket[0], sp.bracket[1], sp.reason));
   for (const auto* run : {&runs.forward, &runs.backward}) {
     if (run == &runs.backward && !runs.backward_traced) continue;
     if (run->status != Outcome::converged)

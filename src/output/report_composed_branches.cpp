@@ -82,6 +82,11 @@ std::string composed_specials_csv(const ComposedBranches& b, const std::string& 
   for (std::size_t i = 0; i < b.branches.size(); ++i)
     for (const ForcedSpecialPoint& s : b.branches[i].branch.specials) {
       const ForcedOrbit& o = s.orbit;
+      if (!s.located) {  // no row: its value is not known
+        out += fmt::format("# not located: branch {}, {} between {} = {} and {}: {}\n", i + 1, s.kind, name,
+                           s.bracket[0], s.bracket[1], s.reason);
+        continue;
+      }
       out += fmt::format("{},{},{},{},", i + 1, s.kind, s.value, o.kind);
       out += o.status.ok() && !o.multipliers.empty()
                  ? fmt::format("{},{},{},{},{}\n", o.q_abs_max, s.multiplier.real(), s.multiplier.imag(),
@@ -98,6 +103,11 @@ std::string composed_branches_text(const ComposedBranches& b, const std::string&
     const auto& br = b.branches[i].branch;
     for (const ForcedSpecialPoint& s : br.specials) {
       ++specials;
+      if (!s.located) {
+        out += fmt::format("branch {} ({}): {} between {} = {:.12g} and {:.12g}, detected but not located ({})\n", i + 1,
+                           s.orbit.kind, s.kind, name, s.bracket[0], s.bracket[1], s.reason);
+        continue;
+      }
       out += fmt::format("branch {} ({}): {} at {} = {:.12g}", i + 1, s.orbit.kind, s.kind, name, s.value);
       if (s.orbit.status.ok() && !s.orbit.multipliers.empty())
         out += fmt::format(" (max |q| {:.6g} m; multiplier {:.9f}{:+.9f}i, |rho| {:.12f}; {})", s.orbit.q_abs_max,

@@ -15,6 +15,7 @@
 //   for (const auto& pt : b.points) ... pt.value, pt.orbit.q_abs_max, pt.orbit.verdict ...
 #pragma once
 
+#include <array>
 #include <complex>
 #include <string>
 #include <vector>
@@ -42,6 +43,12 @@ struct ForcedSpecialPoint {
   /// The critical multiplier there (rotating frame, over pi/omega): for LP and BP the real one
   /// nearest +1, for PD the one nearest -1, for NS the complex one of modulus nearest 1.
   std::complex<double> multiplier;
+  /// false: the test changed sign between two branch points but Brent's search did not
+  /// converge (a trial point on the chord failed); `value` and `orbit` are then the later
+  /// branch point's, `bracket` the two values and `reason` why.
+  bool located = true;
+  std::array<double, 2> bracket{};
+  std::string reason;
 };
 
 struct ForcedBranch {
