@@ -184,6 +184,72 @@ TEST_CASE("an aligned equilibrium of equal balls from the two-ball pencil and th
   WARN("the full refined spectrum miscounted " << full_miscounts << " of " << counted << " decisive cases");
 }
 
+// The whole spectrum `equilibria` prints for such an equilibrium (aligned_spectrum): every
+// eigenvector satisfies T(λ)x = 0 to 1e-12 of (|λ|²|A| + |λ||D| + |E|)|x| (the vectors are
+// stored in double); the eigenvalues pair with Eigen's plain QR of the double Jacobian (an
+// independent algorithm) to 1e-9 of ‖J‖ (its backward error, ~1e-16 ‖J‖, times the condition of
+// the creep-like modes); the unstable count is the QR's wherever that is clear of the axis.
+TEST_CASE("the spectrum of an aligned equilibrium of equal balls from the reduction", "[n-balls][reduced][aligned]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> speed(120, 2500), unbalance(0.05, 6.0), friction(1e-4, 2e-2);
+  int checked = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const int n = 3 + trial % 10;
+    const FrictionLaw law = trial % 2 == 0 ? FrictionLaw::viscous : FrictionLaw::coulomb;
+    const double omega = speed(rng), u = unbalance(rng) * 5.94e-7, mu = friction(rng);
+    const ParamsN p = equal_ring(n, law, omega, u, mu);
+    const auto pl = p.cast<ld>();
+    const EquilibriumSetN set = find_equilibria(p);
+    const std::size_t stride = std::max<std::size_t>(1, set.points().size() / 16);
+    for (std::size_t index = 0; index < set.points().size(); index += stride) {
+      const EquilibriumN& e = set.points()[index];
+      if (e.family == Family::balanced) continue;
+      const AlignedReduction r = aligned_reduction(p, e);
+      const auto lin = linearize(pl, e.state());
+      const AlignedPencil a = aligned_pencil(r, lin, e);
+      REQUIRE(a.applies);
+      const SpectrumN sp = aligned_spectrum(a, r, side_friction(pl, r), e);
+      INFO("n = " << n << ", omega = " << omega << ", pattern " << e.pattern << ", member " << e.member);
+      REQUIRE(sp.count == 2 * n + 4);
+      for (int k = 0; k < sp.count; ++k) {
+        const std::complex<ld> l(sp.eigenvalues[std::size_t(k)].real(), sp.eigenvalues[std::size_t(k)].imag());
+        const auto x = sp.vectors[std::size_t(k)].cast<std::complex<ld>>();
+        const auto T = (l * l * lin.mass.cast<std::complex<ld>>() + l * lin.damping.cast<std::complex<ld>>() +
+                        lin.stiffness.cast<std::complex<ld>>())
+                           .eval();
+        const ld al = std::abs(l);
+        const ld size =
+            ((al * al * lin.mass.cwiseAbs() + al * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs()) * x.cwiseAbs())
+                .maxCoeff();
+        INFO("eigenvalue " << sp.eigenvalues[std::size_t(k)]);
+        CHECK(double((T * x).cwiseAbs().maxCoeff() / size) <= 1e-12);
+      }
+      const auto J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
+      Eigen::EigenSolver<Eigen::MatrixXd> qr(J, false);
+      std::vector<std::complex<double>> values(qr.eigenvalues().data(), qr.eigenvalues().data() + J.rows());
+      bool clear = true;
+      int unstable = 0;
+      for (const auto z : values) {
+        clear = clear && std::abs(z.real()) > 1e-6 * std::abs(z) && std::abs(z.real()) > 1e-9 * J.norm();
+        unstable += z.real() > 0;
+      }
+      std::vector<bool> used(values.size());
+      for (int k = 0; k < sp.count; ++k) {
+        std::size_t best = 0;
+        double best_d = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < values.size(); ++j)
+          if (!used[j] && std::abs(values[j] - sp.eigenvalues[std::size_t(k)]) < best_d)
+            best_d = std::abs(values[j] - sp.eigenvalues[std::size_t(k)]), best = j;
+        used[best] = true;
+        CHECK(best_d <= 1e-9 * J.norm());
+      }
+      if (clear) CHECK(sp.n_unstable == unstable);
+      ++checked;
+    }
+  }
+  CHECK(checked > 150);
+}
+
 // Relative modes in closed form: the roots against the quadratic's own residual and
 // Vieta's product, and the decisions at the edges (a root exactly 0, no friction).
 TEST_CASE("relative modes of equal balls on one side", "[n-balls][reduced][aligned]") {

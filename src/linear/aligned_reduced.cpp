@@ -5,15 +5,20 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 #include "abu/equilibria/ball_permutations.hpp"
 #include "abu/linear/characteristic.hpp"
+#include "abu/model/friction.hpp"
+#include "spectrum_starts.hpp"
 
 namespace abu {
 
 namespace {
 
 using ld = long double;
+constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon() / 2;
+constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;
 
 bool smooth_law(FrictionLaw law) {
   return law == FrictionLaw::none || law == FrictionLaw::viscous || law == FrictionLaw::coulomb ||
@@ -120,6 +125,15 @@ AlignedPencil aligned_pencil(const AlignedReduction& r, const Linearization<ld, 
   return a;
 }
 
+std::array<ld, 2> side_friction(const ParamsT<ld, any_balls>& pl, const AlignedReduction& r) {
+  std::array<ld, 2> friction{};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const int b = r.first[s];
+    friction[s] = -pl.balls[std::size_t(b)].race_radius * friction_slope(pl, b, ld(0));
+  }
+  return friction;
+}
+
 AlignedVerdict aligned_verdict(const AlignedPencil& a, const std::array<ld, 2>& friction, std::complex<double>& rightmost,
                                bool& tracked) {
   AlignedVerdict out;
@@ -144,6 +158,64 @@ AlignedVerdict aligned_verdict(const AlignedPencil& a, const std::array<ld, 2>& 
   out.verdict = v;
   out.decided = true;
   return out;
+}
+
+SpectrumN aligned_spectrum(const AlignedPencil& a, const AlignedReduction& r, const std::array<ld, 2>& friction,
+                           const EquilibriumN& e) {
+  const int n = e.n_balls(), d = n + 2;
+  Linearization<ld, 2> pencil = a.free;
+  pencil.damping(2, 2) = friction[0];
+  pencil.damping(3, 3) = friction[1];
+  const Spectrum reduced = compute_spectrum(pencil, SpectrumMethod::refined, 0);
+  SpectrumN sp;
+  sp.count = 2 * d;
+  sp.status = reduced.status;
+  sp.converged = reduced.converged;
+  sp.ill_conditioned = reduced.ill_conditioned;
+  std::array<ld, SpectrumN::capacity> band{};
+  // The balls of each side (every ball on one side: ball 1, then the others).
+  std::array<std::array<int, max_balls>, 2> side{};
+  std::array<int, 2> count{};
+  for (int i = 0; i < n; ++i) {
+    const std::size_t s = r.size[0] == 1 && e.pattern == 0 ? (i == 0 ? 0 : 1) : ((e.pattern >> i) & 1u);
+    side[s][std::size_t(count[s]++)] = i;
+  }
+  std::size_t slot = 0;
+  for (std::size_t k = 0; k < 8; ++k, ++slot) {
+    sp.eigenvalues[slot] = reduced.eigenvalues[k];
+    sp.error[slot] = reduced.error[k];
+    sp.condition[slot] = reduced.condition[k];
+    band[slot] = reduced.on_axis[k] ? std::numeric_limits<ld>::infinity() : ld(0);
+    const auto& x = reduced.vectors[k];
+    QepVector<any_balls> v(d);
+    v(0) = x(0);
+    v(1) = x(1);
+    for (std::size_t s = 0; s < 2; ++s)
+      for (int j = 0; j < count[s]; ++j) v(2 + side[s][std::size_t(j)]) = x(2 + int(s)) / std::sqrt(double(count[s]));
+    sp.vectors[slot] = v.normalized();
+  }
+  for (std::size_t s = 0; s < 2; ++s) {
+    if (a.copies[s] == 0) continue;
+    const RelativeModes m = relative_modes(a.inertia[s], friction[s], a.stiffness[s]);
+    for (const auto root : m.roots) {
+      const std::complex<ld> l(root.real(), root.imag());
+      const ld size = a.inertia[s] * std::norm(l) + std::abs(friction[s]) * std::abs(l) + std::abs(a.stiffness[s]);
+      const ld slope = std::abs(std::complex<ld>(2 * a.inertia[s]) * l + std::complex<ld>(friction[s]));
+      const ld condition = std::abs(l) > 0 && slope > 0 ? size / (std::abs(l) * slope) : std::numeric_limits<ld>::infinity();
+      for (int c = 1; c < count[s]; ++c, ++slot) {
+        sp.eigenvalues[slot] = root;
+        sp.condition[slot] = double(condition);
+        sp.error[slot] = double(4 * condition * std::abs(l) * kEpsLong);
+        band[slot] = 8 * condition * std::abs(l) * (kEpsLong + ld(kEps));
+        QepVector<any_balls> v = QepVector<any_balls>::Zero(d);
+        v(2 + side[s][0]) = 1;
+        v(2 + side[s][std::size_t(c)]) = -1;
+        sp.vectors[slot] = v.normalized();
+      }
+    }
+  }
+  spectrum_detail::finish_spectrum(sp, band, 0);
+  return sp;
 }
 
 }  // namespace abu

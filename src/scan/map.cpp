@@ -343,13 +343,7 @@ AlignedVerdict CellAnalyzerN::aligned_cell_verdict(const ParamsT<long double, an
     pencils_.push_back(aligned_pencil(sides, linearize(pl, set_.points()[k].state()), set_.points()[k]));
     pencil_of_[k] = int(pencils_.size()) - 1;
   }
-  // gamma = -l F'(0), as the linearization forms D(2+i, 2+i) (model.md (6.4)).
-  std::array<long double, 2> friction{};
-  for (std::size_t s = 0; s < 2; ++s) {
-    const int b = sides.first[s];
-    friction[s] = -pl.balls[std::size_t(b)].race_radius * friction_slope(pl, b, 0.0L);
-  }
-  return aligned_verdict(pencils_[std::size_t(pencil_of_[k])], friction, aligned_roots_[k].root,
+  return aligned_verdict(pencils_[std::size_t(pencil_of_[k])], side_friction(pl, sides), aligned_roots_[k].root,
                          aligned_roots_[k].tracked);
 }
 

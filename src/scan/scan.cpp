@@ -1,9 +1,11 @@
 #include "abu/scan/scan.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "abu/core/cancel.hpp"
 #include "abu/equilibria/ball_permutations.hpp"
+#include "abu/linear/aligned_reduced.hpp"
 #include "abu/linear/balanced_reduced.hpp"
 #include "abu/linear/lugre_spectrum.hpp"
 #include "abu/linear/spectrum_counts.hpp"
@@ -36,6 +38,20 @@ SpectrumN permuted(const SpectrumN& of, const PermutationImage& image, int n_bal
     if (x.size() != n_balls + 2) continue;
     for (int i = 0; i < n_balls; ++i) y(2 + i) = x(2 + image.ball_of[std::size_t(i)]);
   }
+  return sp;
+}
+// An aligned equilibrium of equal balls from its two-ball pencil and relative modes (model.md
+// §13.10); nothing where the reduction does not apply or a condition number is not finite (a
+// double root of (13.10.2)): the full spectrum then.
+std::optional<SpectrumN> aligned_equal_spectrum(const ParamsN& p, const EquilibriumN& e) {
+  const AlignedReduction r = aligned_reduction(p, e);
+  if (!r.applies) return std::nullopt;
+  const auto pl = p.cast<long double>();
+  const AlignedPencil a = aligned_pencil(r, linearize(pl, e.state()), e);
+  if (!a.applies) return std::nullopt;
+  SpectrumN sp = aligned_spectrum(a, r, side_friction(pl, r), e);
+  for (int k = 0; k < sp.count; ++k)
+    if (!std::isfinite(sp.condition[std::size_t(k)])) return std::nullopt;
   return sp;
 }
 }  // namespace
@@ -73,9 +89,13 @@ AnalysisN analyze(const ParamsN& p, const BalancedSampling& sampling, SpectrumMe
       a.representative[k] = from;
       continue;
     }
-    a.spectra[k] = method == SpectrumMethod::refined && reducible(reduction, points[k])
-                       ? reduced_normal_spectrum(reduction, p, points[k])
-                       : equilibrium_spectrum(p, points[k], method);
+    if (method == SpectrumMethod::refined && reducible(reduction, points[k]))
+      a.spectra[k] = reduced_normal_spectrum(reduction, p, points[k]);
+    else if (const auto aligned = method == SpectrumMethod::refined ? aligned_equal_spectrum(p, points[k])
+                                                                    : std::nullopt)
+      a.spectra[k] = *aligned;
+    else
+      a.spectra[k] = equilibrium_spectrum(p, points[k], method);
     if (method != SpectrumMethod::refined || a.spectra[k].converged) source[rep] = int(k);
   }
   return a;

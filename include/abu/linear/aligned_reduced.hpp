@@ -23,6 +23,7 @@
 #include "abu/equilibria/equilibria.hpp"
 #include "abu/linear/balanced_reduced.hpp"
 #include "abu/linear/characteristic.hpp"
+#include "abu/linear/spectrum.hpp"
 #include "abu/model/model.hpp"
 
 namespace abu {
@@ -62,6 +63,9 @@ struct AlignedPencil {
 AlignedPencil aligned_pencil(const AlignedReduction& r, const Linearization<long double, any_balls>& lin,
                              const EquilibriumN& e);
 
+/// gamma = -l F'(0) of each side's first ball, as the linearization forms D(2+i, 2+i) (6.4).
+std::array<long double, 2> side_friction(const ParamsT<long double, any_balls>& pl, const AlignedReduction& r);
+
 /// The verdict compute_spectrum would give (stability, unstable count, abscissa) for the
 /// sides' friction damping gamma = -l F'(0) (the entries D(2+i, 2+i) of (6.4)): the pencil
 /// by pencil_verdict (its polynomial followed from `rightmost` when `tracked`, else its
@@ -73,5 +77,13 @@ struct AlignedVerdict {
 };
 AlignedVerdict aligned_verdict(const AlignedPencil& a, const std::array<long double, 2>& friction,
                                std::complex<double>& rightmost, bool& tracked);
+
+/// The spectrum compute_spectrum(lin, refined) gives at e, from the reduction: the pencil's 8
+/// eigenvalues refined by compute_spectrum with their vectors mapped back (each ball of side ±
+/// moves by u_± / sqrt(k_±)), and each side's relative modes k_± - 1 times in closed form with
+/// the vectors e_b - e_j (b the side's first ball), relative condition
+/// (J0|λ|² + |γ||λ| + |e|) / (|λ| |2 J0 λ + γ|) of a root of (13.10.2).
+SpectrumN aligned_spectrum(const AlignedPencil& a, const AlignedReduction& r, const std::array<long double, 2>& friction,
+                           const EquilibriumN& e);
 
 }  // namespace abu
