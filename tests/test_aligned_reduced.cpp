@@ -20,6 +20,7 @@
 #include "abu/model/friction.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/map.hpp"
+#include "qep_residual.hpp"
 
 using namespace abu;
 
@@ -126,20 +127,11 @@ TEST_CASE("an aligned equilibrium of equal balls from the two-ball pencil and th
         if (r.size[0] == 1) other = r.first[1] + 1;  // every ball on one side: balls 2 and 3
         REQUIRE(other >= 0);
         for (const auto root : modes[s].roots) {
-          const std::complex<ld> l(root.real(), root.imag());
-          Eigen::Matrix<std::complex<ld>, Eigen::Dynamic, 1> x = Eigen::Matrix<std::complex<ld>, Eigen::Dynamic, 1>::Zero(n + 2);
-          const int b = r.size[0] == 1 ? r.first[1] : r.first[s];
-          x(2 + b) = 1;
+          Eigen::VectorXd x = Eigen::VectorXd::Zero(n + 2);
+          x(2 + (r.size[0] == 1 ? r.first[1] : r.first[s])) = 1;
           x(2 + other) = -1;
-          const auto T = (l * l * lin.mass.cast<std::complex<ld>>() + l * lin.damping.cast<std::complex<ld>>() +
-                          lin.stiffness.cast<std::complex<ld>>())
-                             .eval();
-          const ld al = std::abs(l);
-          const ld size = ((al * al * lin.mass.cwiseAbs() + al * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs()) *
-                           x.cwiseAbs())
-                              .maxCoeff();
           INFO("relative mode " << root << " of side " << s);
-          CHECK(double((T * x).cwiseAbs().maxCoeff() / size) <= 1e-12);
+          CHECK(double(test::qep_residual(lin, root, x)) <= 1e-12);
           ++relative;
         }
       }
@@ -212,17 +204,8 @@ TEST_CASE("the spectrum of an aligned equilibrium of equal balls from the reduct
       INFO("n = " << n << ", omega = " << omega << ", pattern " << e.pattern << ", member " << e.member);
       REQUIRE(sp.count == 2 * n + 4);
       for (int k = 0; k < sp.count; ++k) {
-        const std::complex<ld> l(sp.eigenvalues[std::size_t(k)].real(), sp.eigenvalues[std::size_t(k)].imag());
-        const auto x = sp.vectors[std::size_t(k)].cast<std::complex<ld>>();
-        const auto T = (l * l * lin.mass.cast<std::complex<ld>>() + l * lin.damping.cast<std::complex<ld>>() +
-                        lin.stiffness.cast<std::complex<ld>>())
-                           .eval();
-        const ld al = std::abs(l);
-        const ld size =
-            ((al * al * lin.mass.cwiseAbs() + al * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs()) * x.cwiseAbs())
-                .maxCoeff();
         INFO("eigenvalue " << sp.eigenvalues[std::size_t(k)]);
-        CHECK(double((T * x).cwiseAbs().maxCoeff() / size) <= 1e-12);
+        CHECK(double(test::qep_residual(lin, sp.eigenvalues[std::size_t(k)], sp.vectors[std::size_t(k)])) <= 1e-12);
       }
       const auto J = jacobian(p, at_rest<double, any_balls>(e.position_si()));
       Eigen::EigenSolver<Eigen::MatrixXd> qr(J, false);

@@ -18,6 +18,7 @@
 #include "abu/linear/spectrum_verdict.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
+#include "qep_residual.hpp"
 
 using namespace abu;
 
@@ -141,18 +142,7 @@ TEST_CASE("the reduced problem in g gives the balanced set's normal spectrum", "
     const auto lin = linearize(p.cast<ld>(), e.state());
     for (int k = 0; k < reduced.count; ++k) {
       if (reduced.structural[std::size_t(k)]) continue;
-      const std::complex<ld> l(reduced.eigenvalues[std::size_t(k)].real(), reduced.eigenvalues[std::size_t(k)].imag());
-      const auto x = reduced.vectors[std::size_t(k)].cast<std::complex<ld>>();
-      const auto T = (l * l * lin.mass.cast<std::complex<ld>>() + l * lin.damping.cast<std::complex<ld>>() +
-                      lin.stiffness.cast<std::complex<ld>>())
-                         .eval();
-      const ld al = std::abs(l);
-      const auto size = ((al * al * lin.mass.cwiseAbs() + al * lin.damping.cwiseAbs() + lin.stiffness.cwiseAbs()) *
-                         x.cwiseAbs())
-                            .eval();
-      const auto residual = (T * x).eval();
-      ld worst = 0;
-      for (int i = 0; i < n + 2; ++i) worst = std::max(worst, std::abs(residual(i)) / size.maxCoeff());
+      const ld worst = test::qep_residual(lin, reduced.eigenvalues[std::size_t(k)], reduced.vectors[std::size_t(k)]);
       INFO("eigenvector " << k << " of lambda = " << reduced.eigenvalues[std::size_t(k)]);
       CHECK(double(worst) <= 1e-12);
     }

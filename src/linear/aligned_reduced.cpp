@@ -167,11 +167,7 @@ SpectrumN aligned_spectrum(const AlignedPencil& a, const AlignedReduction& r, co
   pencil.damping(2, 2) = friction[0];
   pencil.damping(3, 3) = friction[1];
   const Spectrum reduced = compute_spectrum(pencil, SpectrumMethod::refined, 0);
-  SpectrumN sp;
-  sp.count = 2 * d;
-  sp.status = reduced.status;
-  sp.converged = reduced.converged;
-  sp.ill_conditioned = reduced.ill_conditioned;
+  SpectrumN sp = spectrum_of_reduction(reduced, n);
   std::array<ld, SpectrumN::capacity> band{};
   // The balls of each side (every ball on one side: ball 1, then the others).
   std::array<std::array<int, max_balls>, 2> side{};
@@ -182,10 +178,7 @@ SpectrumN aligned_spectrum(const AlignedPencil& a, const AlignedReduction& r, co
   }
   std::size_t slot = 0;
   for (std::size_t k = 0; k < 8; ++k, ++slot) {
-    sp.eigenvalues[slot] = reduced.eigenvalues[k];
-    sp.error[slot] = reduced.error[k];
-    sp.condition[slot] = reduced.condition[k];
-    band[slot] = reduced.on_axis[k] ? std::numeric_limits<ld>::infinity() : ld(0);
+    put_reduced_eigenvalue(reduced, k, slot, sp, band);
     const auto& x = reduced.vectors[k];
     QepVector<any_balls> v(d);
     v(0) = x(0);

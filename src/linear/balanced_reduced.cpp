@@ -101,11 +101,7 @@ SpectrumN reduced_normal_spectrum(const BalancedReduction& r, const ParamsN& p, 
   const Arrangement arr = arrangement_of(e.position);
   const Spectrum reduced = compute_spectrum(reduced_linearization(r, arr.g), SpectrumMethod::refined, 0);
   const int n = r.n, t = n - 2, d = n + 2;
-  SpectrumN sp;
-  sp.count = 2 * d;
-  sp.status = reduced.status;
-  sp.converged = reduced.converged;
-  sp.ill_conditioned = reduced.ill_conditioned;
+  SpectrumN sp = spectrum_of_reduction(reduced, n);
   std::array<ld, SpectrumN::capacity> band{};
   TangentBasis V;
   if (vectors) V = balanced_tangent_basis(p, e.position);
@@ -139,11 +135,7 @@ SpectrumN reduced_normal_spectrum(const BalancedReduction& r, const ParamsN& p, 
     }
   const ld det = g11 * g22 - g12 * g12;
   for (std::size_t k = 0; k < 8; ++k, ++slot) {
-    sp.eigenvalues[slot] = reduced.eigenvalues[k];
-    sp.error[slot] = reduced.error[k];
-    sp.condition[slot] = reduced.condition[k];
-    // (compute_spectrum does not return its bands; its classification does the same job)
-    band[slot] = reduced.on_axis[k] ? std::numeric_limits<ld>::infinity() : ld(0);
+    put_reduced_eigenvalue(reduced, k, slot, sp, band);
     if (!vectors) continue;
     const auto& x = reduced.vectors[k];
     using C = std::complex<ld>;
@@ -160,6 +152,23 @@ SpectrumN reduced_normal_spectrum(const BalancedReduction& r, const ParamsN& p, 
   }
   spectrum_detail::finish_spectrum(sp, band, 0);
   return sp;
+}
+
+SpectrumN spectrum_of_reduction(const Spectrum& reduced, int n_balls) {
+  SpectrumN sp;
+  sp.count = 2 * (n_balls + 2);
+  sp.status = reduced.status;
+  sp.converged = reduced.converged;
+  sp.ill_conditioned = reduced.ill_conditioned;
+  return sp;
+}
+
+void put_reduced_eigenvalue(const Spectrum& reduced, std::size_t k, std::size_t slot, SpectrumN& sp,
+                            std::array<ld, SpectrumN::capacity>& band) {
+  sp.eigenvalues[slot] = reduced.eigenvalues[k];
+  sp.error[slot] = reduced.error[k];
+  sp.condition[slot] = reduced.condition[k];
+  band[slot] = reduced.on_axis[k] ? std::numeric_limits<ld>::infinity() : ld(0);
 }
 
 ReducedSplits reduced_splits(const BalancedReduction& r) {

@@ -89,6 +89,14 @@ Polynomial reduced_polynomial(const BalancedReduction& r, const ReducedPolynomia
 /// (characteristic.hpp: the rightmost root followed from `rightmost` by Newton,
 /// certified by a Routh count) where that is decided clear of the axis, else from its
 /// refined spectrum. `rightmost` (valid if `tracked`) is updated for the next call.
+/// Shared by the reductions (§13.9, §13.10): a spectrum of n balls filled from a two-ball one —
+/// count 2n + 4 and the reduced spectrum's status, convergence and conditioning — and the
+/// reduced eigenvalue k put into `slot` (value, error, condition; its band: infinite where the
+/// reduced classification put it on the axis, compute_spectrum not returning its bands).
+SpectrumN spectrum_of_reduction(const Spectrum& reduced, int n_balls);
+void put_reduced_eigenvalue(const Spectrum& reduced, std::size_t k, std::size_t slot, SpectrumN& sp,
+                            std::array<long double, SpectrumN::capacity>& band);
+
 /// The verdict of a 4-dof pencil `lin` (two balls' shape) from its characteristic
 /// polynomial `poly` (read only when `tracked`): the rightmost root followed from
 /// `rightmost` by Newton, certified by a Routh count and accepted clear of the axis; else
