@@ -259,7 +259,9 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     return;
   }
   out.equilibria.resize(points.size());
-  if (ix != column_ || !same_statics) {
+  // An aligned root is followed per equilibrium along a column while its statics stay (a
+  // friction axis; a new set starts untracked above, since it may list other equilibria at an index).
+  if (ix != column_) {
     column_ = ix;
     reduced_tracked_ = false;
     for (auto& r : aligned_roots_) r.tracked = false;
