@@ -20,6 +20,7 @@
 #include "abu/model/friction.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/map.hpp"
+#include "equal_ring.hpp"
 #include "qep_residual.hpp"
 
 using namespace abu;
@@ -29,16 +30,7 @@ namespace {
 using ld = long double;
 constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
 
-ParamsN equal_ring(int n, FrictionLaw law, double omega, double unbalance, double mu) {
-  ParamsN p;
-  p.rotor = {0.12, 7500.0, 2.0, unbalance};
-  p.omega = omega;
-  p.law = law;
-  p.kappa = 1e3;
-  p.balls.resize(std::size_t(n));
-  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, mu, 1e-4, 0.001, 0.003, 0.1};
-  return p;
-}
+using test::equal_ring;
 
 ld friction_of(const ParamsT<ld, any_balls>& pl, int ball) {
   return -pl.balls[std::size_t(ball)].race_radius * friction_slope(pl, ball, ld(0));

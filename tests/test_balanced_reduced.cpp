@@ -18,6 +18,7 @@
 #include "abu/linear/spectrum_verdict.hpp"
 #include "abu/model/model.hpp"
 #include "abu/scan/scan.hpp"
+#include "equal_ring.hpp"
 #include "qep_residual.hpp"
 
 using namespace abu;
@@ -27,16 +28,7 @@ namespace {
 using ld = long double;
 constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
 
-ParamsN equal_ring(int n, FrictionLaw law, double omega, double unbalance) {
-  ParamsN p;
-  p.rotor = {0.12, 7500.0, 2.0, unbalance};
-  p.omega = omega;
-  p.law = law;
-  p.kappa = 1e3;
-  p.balls.resize(std::size_t(n));
-  for (auto& b : p.balls) b = {3.3e-5, 0.018, 1e-3, 1.4, 0.002, 1e-4, 0.001, 0.003, 0.1};
-  return p;
-}
+using test::equal_ring;
 
 // A random point of the balanced set: free angles beta_3..beta_n uniform, balls 1 and 2
 // closing the polygon (model.md (13.4.11)) in long double: W = 0 to a few long-double
