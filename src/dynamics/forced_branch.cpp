@@ -80,10 +80,7 @@ class BranchProblem : public ForcedProblem {
     const double arg = f.arguments.empty() ? 0.0 : std::abs(f.arguments[top]);
     const std::string kind = arg < 1e-6 ? "BP" : arg > std::numbers::pi - 1e-6 ? "PD" : "NS";
     if (kind == "BP" && fold) return;
-    if (located)
-      add_special(kind, *located);
-    else
-      add_unlocated(kind, seg);
+    add_special(kind, located, seg);
   }
 
   void commit(Vec& u, Vec&, arclength::Stage) { points.push_back({value(u), describe_at(u)}); }
@@ -149,29 +146,23 @@ class BranchProblem : public ForcedProblem {
   }
   template <class Test>
   void record(const char* kind, const arclength::Segment<Vec>& seg, Test&& test) {
-    if (const auto u = record_at(seg, test))
-      add_special(kind, *u);
-    else
-      add_unlocated(kind, seg);
+    add_special(kind, record_at(seg, test), seg);
   }
-  void add_unlocated(const std::string& kind, const arclength::Segment<Vec>& seg) {
+  // The special point at u; without u (the search failed) detected in seg, described at its
+  // later end, and not located.
+  void add_special(const std::string& kind, const std::optional<Vec>& u, const arclength::Segment<Vec>& seg) {
+    const Vec& at = u ? *u : seg.to;
     ForcedSpecialPoint s;
     s.kind = kind;
-    s.value = value(seg.to);
-    s.orbit = describe_at(seg.to);
+    s.value = value(at);
+    s.orbit = describe_at(at);
     s.multiplier = critical_multiplier(s.orbit, kind);
-    s.located = false;
-    s.bracket = {value(seg.from), value(seg.to)};
-    s.reason = "its test changed sign between two branch points, but a trial point of Brent's search on the chord "
-               "between them did not converge";
-    specials.push_back(std::move(s));
-  }
-  void add_special(const std::string& kind, const Vec& u) {
-    ForcedSpecialPoint s;
-    s.kind = kind;
-    s.value = value(u);
-    s.orbit = describe_at(u);
-    s.multiplier = critical_multiplier(s.orbit, kind);
+    if (!u) {
+      s.located = false;
+      s.bracket = {value(seg.from), value(seg.to)};
+      s.reason = "its test changed sign between two branch points, but a trial point of Brent's search on the chord "
+                 "between them did not converge";
+    }
     specials.push_back(std::move(s));
   }
 

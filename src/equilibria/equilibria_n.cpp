@@ -4,6 +4,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <complex>
@@ -101,7 +102,11 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
   // every other with k, root by root; the first one of each (k, root) is polished, the others
   // are its image (its polished angles handed to their balls side by side), exact by (13.9.1).
   const bool images = ball_kinds(p).all_equal;
-  std::vector<std::pair<int, std::size_t>> polished;  // (k * 2 + root, index in set.list)
+  std::array<int, 2 * (max_balls + 1)> polished;  // by k * 2 + root: its index in set.list, -1 none yet
+  polished.fill(-1);
+  // (twice that where no ball's friction has a slope: Jordan pairs, model.md §13.4)
+  bool any_slope = false;
+  for (int i = 0; i < f.n; ++i) any_slope = any_slope || friction_slope(p, i, 0.0) != 0.0;
   for (unsigned mask = 0; mask < patterns; ++mask) {
     const unsigned pattern = mask << 1;  // ball 1 is always +
     ld S = 0;
@@ -145,18 +150,14 @@ void add_aligned(const ParamsN& p, const Problem& f, EquilibriumSetN& set) {
         set.degeneracy |= balanced_collinear;
         e.position(0) = e.position(1) = 0;
       }
-      // (twice that where no ball's friction has a slope: Jordan pairs, model.md §13.4)
-      bool any_slope = false;
-      for (int i = 0; i < f.n; ++i) any_slope = any_slope || friction_slope(p, i, 0.0) != 0.0;
       e.structural_zeros = on_set ? (any_slope ? 1 : 2) * (f.n - 1) : double_root ? 1 : 0;
-      const int key = std::popcount(pattern) * 2 + r;
-      const auto done = std::find_if(polished.begin(), polished.end(), [&](const auto& x) { return x.first == key; });
-      if (images && done != polished.end() && image_of(set.list[done->second], e)) {
+      int& done = polished[std::size_t(std::popcount(pattern) * 2 + r)];
+      if (images && done >= 0 && image_of(set.list[std::size_t(done)], e)) {
         set.list.push_back(e);
         continue;
       }
       set.list.push_back(polish_equilibrium(p, e));
-      if (images) polished.emplace_back(key, set.list.size() - 1);
+      if (images && done < 0) done = int(set.list.size()) - 1;
     }
   }
 }

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 
-#include "abu/equilibria/ball_permutations.hpp"
 #include "abu/linear/characteristic.hpp"
 #include "abu/model/friction.hpp"
 #include "spectrum_starts.hpp"
@@ -19,11 +18,6 @@ namespace {
 using ld = long double;
 constexpr ld kEpsLong = std::numeric_limits<ld>::epsilon() / 2;
 constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;
-
-bool smooth_law(FrictionLaw law) {
-  return law == FrictionLaw::none || law == FrictionLaw::viscous || law == FrictionLaw::coulomb ||
-         law == FrictionLaw::stribeck;
-}
 
 // The premise of (13.10.1), checked on the linearization itself: the ball blocks of A, D, E
 // diagonal, and every ball of a side with its side's first ball's rows (to 1e-12 of the
@@ -47,30 +41,8 @@ bool sides_alike(const AlignedReduction& r, const Linearization<ld, any_balls>& 
   return true;
 }
 
-}  // namespace
-
-AlignedReduction aligned_reduction(const ParamsN& p, const EquilibriumN& e) {
-  AlignedReduction r;
-  const int n = p.n_balls();
-  if (n < 3 || e.n_balls() != n || e.family == Family::balanced || e.on_balanced_set || !e.converged ||
-      e.structural_zeros != 0 || e.is_set || !smooth_law(p.law) || !ball_kinds(p).all_equal)
-    return r;
-  const unsigned all = (1u << n) - 1;
-  const unsigned minus = e.pattern & all;
-  if (minus == 0) {
-    // Every ball on one side: one ball and the other n - 1 as the pencil's two "sides".
-    r.size = {1, n - 1};
-    r.first = {0, 1};
-  } else {
-    const int k2 = std::popcount(minus);
-    r.size = {n - k2, k2};
-    r.first = {0, std::countr_zero(minus)};
-  }
-  r.applies = true;
-  return r;
-}
-
-Linearization<ld, 2> aligned_reduced_linearization(const AlignedReduction& r, const Linearization<ld, any_balls>& lin) {
+// The two-ball pencil of the sides' common modes (13.10.1), the side's first ball standing for it.
+Linearization<ld, 2> sides_pencil(const AlignedReduction& r, const Linearization<ld, any_balls>& lin) {
   Linearization<ld, 2> out;
   const std::array<ld, 2> t{std::sqrt(ld(r.size[0])), std::sqrt(ld(r.size[1]))};
   const auto reduce = [&](const DofMatrix<ld, any_balls>& m, DofMatrix<ld, 2>& o) {
@@ -89,6 +61,32 @@ Linearization<ld, 2> aligned_reduced_linearization(const AlignedReduction& r, co
   reduce(lin.damping, out.damping);
   reduce(lin.stiffness, out.stiffness);
   return out;
+}
+
+}  // namespace
+
+AlignedReduction aligned_reduction(const ParamsN& p, const EquilibriumN& e) {
+  return e.n_balls() == p.n_balls() && equal_smooth_balls(p) ? aligned_sides(e) : AlignedReduction{};
+}
+
+AlignedReduction aligned_sides(const EquilibriumN& e) {
+  AlignedReduction r;
+  const int n = e.n_balls();
+  if (e.family == Family::balanced || e.on_balanced_set || !e.converged || e.structural_zeros != 0 || e.is_set)
+    return r;
+  const unsigned all = (1u << n) - 1;
+  const unsigned minus = e.pattern & all;
+  if (minus == 0) {
+    // Every ball on one side: one ball and the other n - 1 as the pencil's two "sides".
+    r.size = {1, n - 1};
+    r.first = {0, 1};
+  } else {
+    const int k2 = std::popcount(minus);
+    r.size = {n - k2, k2};
+    r.first = {0, std::countr_zero(minus)};
+  }
+  r.applies = true;
+  return r;
 }
 
 RelativeModes relative_modes(ld inertia, ld friction, ld stiffness) {
@@ -113,7 +111,7 @@ RelativeModes relative_modes(ld inertia, ld friction, ld stiffness) {
 AlignedPencil aligned_pencil(const AlignedReduction& r, const Linearization<ld, any_balls>& lin, const EquilibriumN& e) {
   AlignedPencil a;
   if (!r.applies || !sides_alike(r, lin, e)) return a;
-  a.free = friction_free(aligned_reduced_linearization(r, lin));
+  a.free = friction_free(sides_pencil(r, lin));
   a.split = friction_split(a.free);
   for (std::size_t s = 0; s < 2; ++s) {
     const int b = 2 + r.first[s];

@@ -26,12 +26,16 @@ constexpr ld kRankThreshold = 4.3e-8L;
 
 }  // namespace
 
+bool equal_smooth_balls(const ParamsN& p) {
+  const bool smooth = p.law == FrictionLaw::none || p.law == FrictionLaw::viscous || p.law == FrictionLaw::coulomb ||
+                      p.law == FrictionLaw::stribeck;
+  return p.n_balls() >= 3 && smooth && ball_kinds(p).all_equal;
+}
+
 BalancedReduction balanced_reduction(const ParamsN& p) {
   BalancedReduction r;
   r.n = p.n_balls();
-  const bool smooth = p.law == FrictionLaw::none || p.law == FrictionLaw::viscous || p.law == FrictionLaw::coulomb ||
-                      p.law == FrictionLaw::stribeck;
-  if (r.n < 3 || !smooth || !ball_kinds(p).all_equal) return r;
+  if (!equal_smooth_balls(p)) return r;
   const auto pl = p.cast<ld>();
   const auto& b = pl.balls[0];
   r.total_mass = pl.total_mass();

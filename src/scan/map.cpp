@@ -234,11 +234,12 @@ void CellAnalyzerN::analyze(int ix, int iy, MapCellN& out) {
     have_set_ = true;
     // What the reductions of §13.9 and §13.10 need of each equilibrium: the geometry only.
     const auto found = set_.points();
+    const bool equal = !lugre && equal_smooth_balls(p);
     sample_g_.assign(found.size(), 0);
     sides_.assign(found.size(), AlignedReduction{});
     for (std::size_t k = 0; k < found.size(); ++k) {
       if (found[k].on_balanced_set) sample_g_[k] = arrangement_of(found[k].position).g;
-      if (!lugre) sides_[k] = aligned_reduction(p, found[k]);
+      if (equal) sides_[k] = aligned_sides(found[k]);
     }
     aligned_roots_.assign(found.size(), {});
     pencil_of_.assign(found.size(), -1);

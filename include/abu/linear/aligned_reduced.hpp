@@ -35,11 +35,8 @@ struct AlignedReduction {
   std::array<int, 2> first{};  ///< the first ball of each side (its rows stand for the side's)
 };
 AlignedReduction aligned_reduction(const ParamsN& p, const EquilibriumN& e);
-
-/// The two-ball pencil of the sides' common modes (13.10.1): rotor, then one coordinate per
-/// side, its couplings to the rotor times sqrt(k) (a similarity of the side-sum pencil).
-Linearization<long double, 2> aligned_reduced_linearization(const AlignedReduction& r,
-                                                            const Linearization<long double, any_balls>& lin);
+/// The same where equal_smooth_balls(p) is already known to hold (a map's set: once per set).
+AlignedReduction aligned_sides(const EquilibriumN& e);
 
 /// The two roots of J0 lambda^2 + gamma lambda + e = 0 (13.10.2) in long double, with
 /// whether both are clear of the axis (|Re| > 1e-6 |lambda|; a root exactly 0 is not).
@@ -54,7 +51,9 @@ RelativeModes relative_modes(long double inertia, long double friction, long dou
 /// only friction changes (friction enters only the balls' damping entries, (6.4)).
 struct AlignedPencil {
   bool applies = false;  ///< the premise of (13.10.1) held on the linearization
-  Linearization<long double, 2> free;  ///< (13.10.1) without the balls' friction damping
+  /// (13.10.1) without the balls' friction damping: rotor, then one coordinate per side, its
+  /// couplings to the rotor times sqrt(k) (a similarity of the side-sum pencil)
+  Linearization<long double, 2> free;
   FrictionSplit split;                 ///< of `free` (characteristic.hpp)
   std::array<int, 2> copies{};         ///< relative modes per side (k - 1; 0 for the lone ball of ++..+)
   std::array<long double, 2> inertia{}, stiffness{};  ///< J0 and e of each side's ball (13.10.2)

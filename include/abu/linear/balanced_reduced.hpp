@@ -37,6 +37,10 @@ struct BalancedReduction {
 };
 BalancedReduction balanced_reduction(const ParamsN& p);
 
+/// n >= 3 balls, every one equal, under a smooth law (none, viscous, coulomb, stribeck): the
+/// premise shared by the reductions of §13.9 and §13.10.
+bool equal_smooth_balls(const ParamsN& p);
+
 /// g = |sum_i e^{2 i beta_i}| (13.9.4) and the frame angle alpha = arg(sum) / 2.
 struct Arrangement {
   long double g = 0;
